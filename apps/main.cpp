@@ -1,1 +1,26 @@
-int main() { return 0; }
+// radkit: the command line. Each subcommand parses, calls the libraries and writes files.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "apps/common.h"
+#include "geometry/scene_loader.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"radkit: radiosity and global-illumination toolkit"};
+  app.set_version_flag("--version", std::string("radkit ") + RADKIT_VERSION);
+  app.require_subcommand(1);
+  radkit::app::addMeshCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const radkit::InputError& e) {
+    std::cerr << "radkit: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "radkit: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

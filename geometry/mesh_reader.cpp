@@ -1,1 +1,199 @@
-// placeholder
+// Mesh and OBJ scene reading. PLY/OFF/STL go through OpenMesh's readers; OBJ through
+// tinyobjloader (double build) because it keeps groups and MTL materials.
+#include "geometry/mesh_reader.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "geometry/scene_loader.h"
+
+namespace radkit {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct DoubleTraits : public OpenMesh::DefaultTraits {
+  typedef OpenMesh::Vec3d Point;
+  typedef OpenMesh::Vec3d Normal;
+};
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+/// Routes OpenMesh's error stream into a string for the duration of a read, so its
+/// complaints become part of our message instead of stray console lines.
+class CapturedOpenMeshErrors {
+ public:
+  CapturedOpenMeshErrors() {
+    omerr().disconnect(std::cerr);
+    omerr().connect(m_text);
+  }
+  ~CapturedOpenMeshErrors() {
+    omerr().disconnect(m_text);
+    omerr().connect(std::cerr);
+  }
+  std::string text() const { return m_text.str(); }
+
+ private:
+  std::ostringstream m_text;
+};
+
+RawMesh readWithOpenMesh(const std::string& path) {
+  PolyMesh mesh;
+  mesh.request_face_status();
+  mesh.request_edge_status();
+  mesh.request_vertex_status();
+  CapturedOpenMeshErrors errors;
+  OpenMesh::IO::Options options;
+  if (!OpenMesh::IO::read_mesh(mesh, path, options)) {
+    throw InputError(path + ": the mesh reader could not parse this file" +
+                     (errors.text().empty() ? "" : " (" + errors.text() + ")") +
+                     ". Fix: check that it is a valid PLY, OFF or STL file.");
+  }
+  if (errors.text().find("equal vertices") != std::string::npos)
+    throw InputError(path + ": a face repeats a vertex (degenerate face). Fix: remove the "
+                     "repeated index from the face.");
+  RawMesh raw;
+  for (auto v : mesh.vertices()) {
+    auto p = mesh.point(v);
+    raw.vertices.push_back({p[0], p[1], p[2]});
+  }
+  for (auto f : mesh.faces()) {
+    // OpenMesh gives a face that cannot join the surface manifoldly (an edge used twice in
+    // the same direction, or by three faces) its own copies of the vertices and marks it.
+    if (mesh.status(f).fixed_nonmanifold())
+      throw InputError(path + ": face " + std::to_string(f.idx()) +
+                       " runs an edge in the same direction as a neighbouring face "
+                       "(inconsistent orientation) or makes an edge non-manifold. Fix: "
+                       "reverse the vertex order of the faces that are flipped so all run "
+                       "counter-clockwise seen from the front.");
+    Face face;
+    for (auto v : mesh.fv_range(f)) face.vertices.push_back(v.idx());
+    raw.faces.push_back(std::move(face));
+  }
+  return raw;
+}
+
+tinyobj::ObjReader parseObj(const std::string& path) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;
+  config.mtl_search_path = fs::path(path).parent_path().string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config))
+    throw InputError(path + ": could not read OBJ: " + reader.Error() +
+                     " Fix: check the file and the MTL it names.");
+  return reader;
+}
+
+/// Appends the faces of one OBJ shape to a mesh whose vertices are the whole OBJ's.
+void appendShapeFaces(const tinyobj::shape_t& shape, std::vector<Face>& faces,
+                      std::vector<int>* faceMaterials) {
+  std::size_t offset = 0;
+  for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+    Face face;
+    for (unsigned k = 0; k < shape.mesh.num_face_vertices[f]; ++k)
+      face.vertices.push_back(shape.mesh.indices[offset + k].vertex_index);
+    offset += shape.mesh.num_face_vertices[f];
+    faces.push_back(std::move(face));
+    if (faceMaterials) faceMaterials->push_back(shape.mesh.material_ids[f]);
+  }
+}
+
+std::vector<Vec3> objVertices(const tinyobj::attrib_t& attrib) {
+  std::vector<Vec3> vertices;
+  for (std::size_t k = 0; k + 2 < attrib.vertices.size(); k += 3)
+    vertices.push_back({attrib.vertices[k], attrib.vertices[k + 1], attrib.vertices[k + 2]});
+  return vertices;
+}
+
+/// Keeps only the vertices the faces use, renumbered in first-use order.
+void compactVertices(const std::vector<Vec3>& all, Surface& surface) {
+  std::vector<int> map(all.size(), -1);
+  for (Face& f : surface.faces)
+    for (int& v : f.vertices) {
+      if (map[v] < 0) {
+        map[v] = static_cast<int>(surface.vertices.size());
+        surface.vertices.push_back(all[v]);
+      }
+      v = map[v];
+    }
+}
+
+}  // namespace
+
+RawMesh readMeshFile(const std::string& path) {
+  if (!fs::exists(path))
+    throw InputError(path + ": mesh file not found. Fix: give a path relative to the scene "
+                     "file, or an absolute path.");
+  std::string ext = lowerExtension(path);
+  if (ext == ".ply" || ext == ".off" || ext == ".stl") return readWithOpenMesh(path);
+  if (ext == ".obj") {
+    tinyobj::ObjReader reader = parseObj(path);
+    RawMesh raw;
+    raw.vertices = objVertices(reader.GetAttrib());
+    for (const auto& shape : reader.GetShapes()) appendShapeFaces(shape, raw.faces, nullptr);
+    return raw;
+  }
+  throw InputError(path + ": unknown mesh format '" + ext +
+                   "'. Fix: use .obj, .ply, .off or .stl.");
+}
+
+Scene loadObjScene(const std::string& path) {
+  if (!fs::exists(path))
+    throw InputError(path + ": scene file not found.");
+  tinyobj::ObjReader reader = parseObj(path);
+  Scene scene;
+  scene.file = path;
+  scene.name = fs::path(path).stem().string();
+  for (const auto& m : reader.GetMaterials()) {
+    Material mat;
+    mat.name = m.name;
+    mat.reflectance = {m.diffuse[0], m.diffuse[1], m.diffuse[2]};
+    mat.emission = {m.emission[0], m.emission[1], m.emission[2]};
+    scene.materials.push_back(mat);
+  }
+  std::vector<Vec3> all = objVertices(reader.GetAttrib());
+  for (const auto& shape : reader.GetShapes()) {
+    std::vector<Face> faces;
+    std::vector<int> materialIds;
+    appendShapeFaces(shape, faces, &materialIds);
+    // A surface has one material: an OBJ group that switches material mid-way is split.
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      int mat = materialIds[f];
+      std::string name = shape.name.empty() ? "object" : shape.name;
+      bool split = std::any_of(materialIds.begin(), materialIds.end(), [&](int m) { return m != materialIds[0]; });
+      if (split) name += "." + (mat >= 0 ? scene.materials[mat].name : std::string("default"));
+      auto it = std::find_if(scene.surfaces.begin(), scene.surfaces.end(),
+                             [&](const Surface& s) { return s.name == name; });
+      if (it == scene.surfaces.end()) {
+        Surface s;
+        s.name = name;
+        s.material = mat;
+        s.source = path + ": object '" + name + "'";
+        scene.surfaces.push_back(s);
+        it = scene.surfaces.end() - 1;
+      }
+      it->faces.push_back(faces[f]);
+    }
+  }
+  for (Surface& s : scene.surfaces) {
+    if (s.material < 0)
+      throw InputError(s.source + " has no material (usemtl). Fix: assign a material with "
+                       "Kd (and Ke for emitters) in the MTL file.");
+    compactVertices(all, s);
+  }
+  return scene;
+}
+
+}  // namespace radkit

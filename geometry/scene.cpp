@@ -1,1 +1,25 @@
-// placeholder
+#include "geometry/scene.h"
+
+namespace radkit {
+
+Bounds3 Scene::bounds() const {
+  Bounds3 b;
+  for (const Surface& s : surfaces)
+    for (const Vec3& v : s.vertices) b.extend(v);
+  return b;
+}
+
+double Scene::metresPerUnit() const {
+  if (units == "mm") return 1e-3;
+  if (units == "cm") return 1e-2;
+  if (units == "km") return 1e3;
+  return 1.0;
+}
+
+int Scene::findMaterial(const std::string& materialName) const {
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == materialName) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace radkit

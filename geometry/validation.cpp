@@ -1,1 +1,264 @@
-// placeholder
+// Scene validation and normalisation. Exact predicates (CGAL, Epick kernel) decide
+// degeneracy; CGAL's Polygon Mesh Processing finds self-intersections.
+#include "geometry/validation.h"
+
+#include "geometry/patch_mesh.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace radkit {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point3 = Kernel::Point_3;
+
+namespace {
+
+Point3 toCgal(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+std::string faceName(const Surface& s, std::size_t f) {
+  return s.source + ", face " + std::to_string(f);
+}
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o.precision(6);
+  o << v;
+  return o.str();
+}
+
+Vec3 newellNormal(const std::vector<Vec3>& p) {
+  Vec3 n;
+  for (std::size_t k = 0; k < p.size(); ++k) n += cross(p[k], p[(k + 1) % p.size()]);
+  return n * 0.5;
+}
+
+std::vector<Vec3> facePoints(const Surface& s, const Face& f) {
+  std::vector<Vec3> p;
+  for (int v : f.vertices) p.push_back(s.vertices[v]);
+  return p;
+}
+
+void checkMaterials(const Scene& scene) {
+  for (const Material& m : scene.materials) {
+    std::string where = scene.file + ": material \"" + m.name + "\"";
+    for (int c = 0; c < 3; ++c) {
+      double r = m.reflectance[c], e = m.emission[c];
+      if (!(r >= 0 && r < 1))
+        throw InputError(where + ": reflectance " + fmt(r) + " (channel " + std::to_string(c) +
+                         ") is outside [0, 1). Fix: use a value below 1; a reflectance of 1 "
+                         "makes the radiosity system singular.");
+      if (!(e >= 0) || !std::isfinite(e))
+        throw InputError(where + ": emission " + fmt(e) + " (channel " + std::to_string(c) +
+                         ") must be a finite number >= 0. Fix: use 0 for surfaces that do not emit.");
+    }
+  }
+}
+
+/// Exact checks of one face as given: vertex indices, repeats, collinearity.
+void checkFace(const Surface& s, std::size_t f) {
+  const Face& face = s.faces[f];
+  if (face.vertices.size() < 3)
+    throw InputError(faceName(s, f) + " has " + std::to_string(face.vertices.size()) +
+                     " vertices. Fix: a face needs at least 3.");
+  for (int v : face.vertices)
+    if (v < 0 || v >= int(s.vertices.size()))
+      throw InputError(faceName(s, f) + " names vertex " + std::to_string(v) + ", which does not exist.");
+  std::set<int> seen(face.vertices.begin(), face.vertices.end());
+  if (seen.size() != face.vertices.size())
+    throw InputError(faceName(s, f) + " repeats a vertex (degenerate face). Fix: remove the repeated point.");
+  std::vector<Vec3> p = facePoints(s, face);
+  bool allCollinear = true;
+  for (std::size_t k = 2; k < p.size() && allCollinear; ++k)
+    allCollinear = CGAL::collinear(toCgal(p[0]), toCgal(p[1]), toCgal(p[k]));
+  if (allCollinear || length(newellNormal(p)) == 0)
+    throw InputError(faceName(s, f) + " is degenerate: its vertices are collinear, so its area "
+                     "is zero. Fix: remove the face or correct its vertices.");
+}
+
+/// Within one surface every directed edge may be used once: a repeat means two faces run
+/// the edge the same way (inconsistent orientation) or three faces share it.
+void checkOrientation(const Surface& s) {
+  std::map<std::pair<int, int>, std::size_t> directed;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    const auto& v = s.faces[f].vertices;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      auto edge = std::make_pair(v[k], v[(k + 1) % v.size()]);
+      auto [it, inserted] = directed.emplace(edge, f);
+      if (!inserted)
+        throw InputError(faceName(s, f) + " runs the edge between vertices " +
+                         std::to_string(edge.first) + " and " + std::to_string(edge.second) +
+                         " in the same direction as face " + std::to_string(it->second) +
+                         ": the orientation is inconsistent (or the edge is non-manifold). "
+                         "Fix: reverse the vertex order of the flipped face so that all run "
+                         "counter-clockwise seen from the front.");
+    }
+  }
+}
+
+/// Drops vertices that lie exactly on the line through their neighbours (exact predicate).
+std::vector<int> withoutCollinearVertices(const Surface& s, const std::vector<int>& v) {
+  std::vector<int> out;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const Vec3& a = s.vertices[v[(k + v.size() - 1) % v.size()]];
+    const Vec3& b = s.vertices[v[k]];
+    const Vec3& c = s.vertices[v[(k + 1) % v.size()]];
+    if (!CGAL::collinear(toCgal(a), toCgal(b), toCgal(c))) out.push_back(v[k]);
+  }
+  return out;
+}
+
+double nonPlanarity(const std::vector<Vec3>& p, double* diameter) {
+  Vec3 n = normalize(newellNormal(p));
+  Vec3 c;
+  for (const Vec3& q : p) c += q;
+  c = c / double(p.size());
+  double dev = 0, diam = 0;
+  for (const Vec3& q : p) {
+    dev = std::max(dev, std::fabs(dot(q - c, n)));
+    for (const Vec3& r : p) diam = std::max(diam, length(q - r));
+  }
+  *diameter = diam;
+  return dev / diam;
+}
+
+bool isConvex(const std::vector<Vec3>& p) {
+  Vec3 n = newellNormal(p);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const Vec3& a = p[k];
+    const Vec3& b = p[(k + 1) % p.size()];
+    const Vec3& c = p[(k + 2) % p.size()];
+    if (dot(cross(b - a, c - b), n) <= 0) return false;
+  }
+  return true;
+}
+
+/// Ear clipping in the polygon's own plane; triangles keep the polygon's orientation.
+std::vector<Face> triangulate(const Surface& s, const std::vector<int>& v) {
+  std::vector<Vec3> p;
+  for (int i : v) p.push_back(s.vertices[i]);
+  Vec3 n = newellNormal(p);
+  std::vector<int> left(v.begin(), v.end());
+  std::vector<Face> out;
+  auto at = [&](int i) { return s.vertices[i]; };
+  auto inside = [&](const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+    return dot(cross(b - a, q - a), n) >= 0 && dot(cross(c - b, q - b), n) >= 0 &&
+           dot(cross(a - c, q - c), n) >= 0;
+  };
+  std::size_t guard = 0;
+  while (left.size() > 3 && guard++ < 10 * v.size() * v.size()) {
+    bool clipped = false;
+    for (std::size_t k = 0; k < left.size() && !clipped; ++k) {
+      int ia = left[(k + left.size() - 1) % left.size()], ib = left[k], ic = left[(k + 1) % left.size()];
+      Vec3 a = at(ia), b = at(ib), c = at(ic);
+      if (dot(cross(b - a, c - b), n) <= 0) continue;  // reflex vertex: not an ear
+      bool empty = true;
+      for (int iq : left)
+        if (iq != ia && iq != ib && iq != ic && inside(at(iq), a, b, c)) empty = false;
+      if (!empty) continue;
+      out.push_back(Face{{ia, ib, ic}});
+      left.erase(left.begin() + k);
+      clipped = true;
+    }
+    if (!clipped) break;  // not simple in projection: fall back to a fan below
+  }
+  for (std::size_t k = 1; k + 1 < left.size(); ++k) out.push_back(Face{{left[0], left[k], left[k + 1]}});
+  return out;
+}
+
+/// Splits a non-planar quadrilateral along the diagonal that leaves the better-shaped pair.
+std::vector<Face> splitQuad(const Surface& s, const std::vector<int>& v) {
+  auto worst = [&](int a, int b, int c, int d) {
+    return std::max(polygonAspectRatio({s.vertices[a], s.vertices[b], s.vertices[c]}),
+                    polygonAspectRatio({s.vertices[a], s.vertices[c], s.vertices[d]}));
+  };
+  if (worst(v[0], v[1], v[2], v[3]) <= worst(v[1], v[2], v[3], v[0]))
+    return {Face{{v[0], v[1], v[2]}}, Face{{v[0], v[2], v[3]}}};
+  return {Face{{v[1], v[2], v[3]}}, Face{{v[1], v[3], v[0]}}};
+}
+
+/// Makes every face a triangle or a planar convex quad.
+void normaliseFaces(Surface& s, LoadReport& report) {
+  std::vector<Face> out;
+  std::size_t warned = 0;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    std::vector<int> v = withoutCollinearVertices(s, s.faces[f].vertices);
+    std::vector<Vec3> p;
+    for (int i : v) p.push_back(s.vertices[i]);
+    if (v.size() == 3) {
+      out.push_back(Face{v});
+      continue;
+    }
+    double diameter = 0;
+    double dev = nonPlanarity(p, &diameter);
+    bool planar = dev <= kPlanarityTolerance;
+    if (!planar && warned++ < 5)
+      report.warnings.push_back(faceName(s, f) + " is not planar (deviation " + fmt(dev * diameter) +
+                                " = " + fmt(100 * dev) + "% of its size): split into triangles.");
+    if (v.size() == 4 && planar && isConvex(p)) {
+      out.push_back(Face{v});
+    } else {
+      std::vector<Face> tris = (v.size() == 4 && isConvex(p)) ? splitQuad(s, v) : triangulate(s, v);
+      out.insert(out.end(), tris.begin(), tris.end());
+    }
+  }
+  if (warned > 5)
+    report.warnings.push_back(s.source + ": " + std::to_string(warned - 5) + " more non-planar faces split.");
+  s.faces = std::move(out);
+}
+
+}  // namespace
+
+std::size_t countSelfIntersections(const Surface& surface) {
+  std::vector<Point3> points;
+  for (const Vec3& v : surface.vertices) points.push_back(toCgal(v));
+  std::vector<std::vector<std::size_t>> triangles;
+  for (const Face& f : surface.faces)
+    for (std::size_t k = 1; k + 1 < f.vertices.size(); ++k)
+      triangles.push_back({std::size_t(f.vertices[0]), std::size_t(f.vertices[k]), std::size_t(f.vertices[k + 1])});
+  // orient_polygon_soup duplicates non-manifold vertices so that the soup becomes a mesh.
+  PMP::orient_polygon_soup(points, triangles);
+  CGAL::Surface_mesh<Point3> mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, triangles, mesh);
+  using FacePair = std::pair<CGAL::Surface_mesh<Point3>::Face_index, CGAL::Surface_mesh<Point3>::Face_index>;
+  std::vector<FacePair> pairs;
+  PMP::self_intersections(faces(mesh), mesh, std::back_inserter(pairs));
+  return pairs.size();
+}
+
+void validateScene(Scene& scene, LoadReport& report) {
+  if (scene.surfaces.empty())
+    throw InputError(scene.file + ": the scene has no surfaces. Fix: add at least one surface.");
+  checkMaterials(scene);
+  std::set<std::string> names;
+  for (Surface& s : scene.surfaces) {
+    if (!names.insert(s.name).second)
+      throw InputError(s.source + ": the surface name \"" + s.name + "\" is used twice. Fix: give each surface its own name.");
+    if (s.faces.empty())
+      throw InputError(s.source + " has no faces. Fix: give it a polygon or a non-empty mesh.");
+    for (std::size_t v = 0; v < s.vertices.size(); ++v)
+      if (!isFinite(s.vertices[v]))
+        throw InputError(s.source + ", vertex " + std::to_string(v) + " has a NaN or infinite coordinate. Fix: correct the coordinates.");
+    for (std::size_t f = 0; f < s.faces.size(); ++f) checkFace(s, f);
+    checkOrientation(s);
+    normaliseFaces(s, report);
+    if (std::size_t n = countSelfIntersections(s))
+      report.warnings.push_back(s.source + " intersects itself (" + std::to_string(n) +
+                                " pairs of triangles cross): form factors near the crossing are unreliable.");
+  }
+  bool emits = std::any_of(scene.surfaces.begin(), scene.surfaces.end(),
+                           [&](const Surface& s) { return scene.materials[s.material].emits(); });
+  if (!emits) report.warnings.push_back(scene.file + ": no surface emits, so every radiosity is zero.");
+}
+
+}  // namespace radkit

@@ -44,7 +44,7 @@ class Visibility {
 /// diagonal or largest absolute coordinate, whichever is larger). Embree tests in single
 /// precision (relative error ~6e-8 of a coordinate), so 1e-6 of the extent stays clear of
 /// rounding in millimetre and kilometre scenes alike while moving points negligibly.
-double rayEpsilon(const Bounds3& sceneBounds);
 constexpr double kRayEpsilonRelative = 1e-6;
+double rayEpsilon(const Bounds3& sceneBounds);
 
 }  // namespace radkit

@@ -1,0 +1,36 @@
+// Options and steps shared by radkit's subcommands.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "geometry/patch_mesh.h"
+#include "geometry/scene.h"
+#include "geometry/subdivision.h"
+
+namespace radkit::app {
+
+/// The scene and meshing options every geometric subcommand takes.
+struct MeshOptions {
+  std::string scene;
+  double maxArea = 0;
+  int patches = 0;
+};
+
+/// Adds SCENE (positional; `required` or defaulting to the Cornell box) and --max-area/--patches.
+void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired = true);
+
+/// The measured Cornell box shipped in data/.
+std::string defaultScenePath();
+
+/// Loads the scene (printing its warnings to stderr) and subdivides it.
+Scene loadSceneReporting(const std::string& path);
+PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
+
+/// Prints a right-aligned "label: value" line to stdout.
+void printField(const std::string& label, const std::string& value);
+
+void addMeshCommand(CLI::App& app);
+
+}  // namespace radkit::app

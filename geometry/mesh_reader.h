@@ -1,0 +1,27 @@
+// Mesh files for mesh surfaces: PLY, OFF, STL through OpenMesh's readers, OBJ through
+// tinyobjloader. Internal to geometry/.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/scene.h"
+
+namespace radkit {
+
+/// A mesh as read: vertex positions and faces (vertex indices, file order).
+struct RawMesh {
+  std::vector<Vec3> vertices;
+  std::vector<Face> faces;
+};
+
+/// \brief Reads a PLY, OFF, STL or OBJ file into one mesh; throws InputError naming the file
+/// on a missing file, an unknown extension, unreadable content, or faces that break the
+/// surface (non-manifold edges or inconsistent orientation, repeated vertices).
+RawMesh readMeshFile(const std::string& path);
+
+/// \brief Loads an OBJ with its MTL as a whole scene: each OBJ object or group is a named
+/// surface; MTL Kd becomes reflectance and Ke emission.
+Scene loadObjScene(const std::string& path);
+
+}  // namespace radkit

@@ -1,0 +1,21 @@
+// Patch subdivision: splits every surface into well-shaped patches (OpenMesh).
+#pragma once
+
+#include "geometry/patch_mesh.h"
+#include "geometry/scene.h"
+
+namespace radkit {
+
+struct SubdivisionSettings {
+  double maxArea = 0;  ///< every patch <= maxArea (scene units²); 0: no limit
+  int targetPatches = 0;  ///< about this many patches in total; 0: no target
+};
+
+/// \brief Splits each surface into patches. With no limit, one patch per input face (quads
+/// stay quads). Each face of a surface is split into a grid (quads) or into similar triangles
+/// with the same count along every edge of that surface, so shared edges match and there are
+/// no T-junctions inside a surface; a single-quad surface gets an n×m grid of near-square
+/// patches. Patch areas sum to the surface area.
+PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings);
+
+}  // namespace radkit

@@ -1,0 +1,26 @@
+// Validation of a loaded scene: every check that names the file, surface and element.
+#pragma once
+
+#include "geometry/scene.h"
+#include "geometry/scene_loader.h"
+
+namespace radkit {
+
+/// Relative non-planarity (distance from the best plane over the polygon's diameter) above
+/// which a polygon is split into triangles, with a warning.
+constexpr double kPlanarityTolerance = 1e-7;
+
+/// \brief Checks and normalises a scene in place; throws InputError on the first error.
+/// Errors: empty scene, no surfaces with faces, NaN/infinite coordinates, reflectance
+/// outside [0,1), negative or non-finite emission, unknown material, degenerate (collinear,
+/// exact predicate) or zero-area faces, repeated vertices, inconsistent orientation or
+/// non-manifold edges inside one surface, duplicate surface names.
+/// Normalises: polygons with more than four vertices, non-convex and non-planar quads are
+/// triangulated (non-planar ones with a warning). Warns on self-intersections (CGAL).
+void validateScene(Scene& scene, LoadReport& report);
+
+/// Reports exact self-intersections between non-adjacent faces of one surface (CGAL PMP).
+/// Returns the number of intersecting face pairs found (0 when clean).
+std::size_t countSelfIntersections(const Surface& surface);
+
+}  // namespace radkit
