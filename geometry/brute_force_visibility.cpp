@@ -44,7 +44,7 @@ std::optional<RayHit> BruteForceVisibility::closestHit(const Vec3& origin, const
 bool BruteForceVisibility::occluded(const Vec3& from, const Vec3& nFrom, const Vec3& to,
                                     const Vec3& nTo) const {
   Vec3 p = liftToward(from, nFrom, to, m_epsilon);
-  Vec3 q = liftToward(to, nTo, from, m_epsilon);
+  Vec3 q = liftToward(to, nTo, p, m_epsilon);
   return closestHit(p, q - p, 0.0, 1.0).has_value();
 }
 

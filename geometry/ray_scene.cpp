@@ -127,7 +127,8 @@ bool RayScene::occluded(const Vec3& from, const Vec3& nFrom, const Vec3& to,
   // ray (t < 0) and the target's plane beyond t = 1, by a margin of eps in both cases.
   const double eps = m_impl->epsilon;
   Vec3 p = liftToward(from, nFrom, to, eps);
-  Vec3 q = liftToward(to, nTo, from, eps);
+  // Toward the lifted p: coplanar ends then go to the same side instead of by rounding.
+  Vec3 q = liftToward(to, nTo, p, eps);
   return m_impl->occluded(p, q - p, 0.0, 1.0);
 }
 

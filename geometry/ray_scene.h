@@ -25,8 +25,9 @@ class RayScene final : public Visibility {
   bool occluded(const Vec3& from, const Vec3& nFrom, const Vec3& to,
                 const Vec3& nTo) const override;
   bool occluded(const Vec3& from, const Vec3& to) const override;
-  std::optional<RayHit> closestHit(const Vec3& origin, const Vec3& direction, double tMin,
-                                   double tMax) const override;
+  std::optional<RayHit> closestHit(
+      const Vec3& origin, const Vec3& direction, double tMin,
+      double tMax = std::numeric_limits<double>::infinity()) const override;
   double epsilon() const override;
 
   /// Raw occlusion query with no offsets: the benchmark's reference for Embree's own rate.
@@ -45,8 +46,9 @@ class BruteForceVisibility final : public Visibility {
   bool occluded(const Vec3& from, const Vec3& nFrom, const Vec3& to,
                 const Vec3& nTo) const override;
   bool occluded(const Vec3& from, const Vec3& to) const override;
-  std::optional<RayHit> closestHit(const Vec3& origin, const Vec3& direction, double tMin,
-                                   double tMax) const override;
+  std::optional<RayHit> closestHit(
+      const Vec3& origin, const Vec3& direction, double tMin,
+      double tMax = std::numeric_limits<double>::infinity()) const override;
   double epsilon() const override { return m_epsilon; }
 
  private:

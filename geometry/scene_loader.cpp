@@ -29,10 +29,17 @@ class ObjectReader {
     if (!m_object.is_object()) fail("must be a JSON object");
   }
 
-  bool has(const std::string& key) {
-    m_read.insert(key);
-    return m_object.contains(key);
+  /// Rejects every key not in `known`; called first, so a misspelt key is what the user
+  /// hears about rather than the missing key it was meant to be.
+  void allowOnly(std::initializer_list<const char*> known) const {
+    for (auto it = m_object.begin(); it != m_object.end(); ++it)
+      if (std::none_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; })) {
+        std::string list;
+        for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+        fail("has an unknown key \"" + it.key() + "\". Fix: use one of: " + list);
+      }
   }
+  bool has(const std::string& key) const { return m_object.contains(key); }
   const json& get(const std::string& key) {
     if (!has(key)) fail("is missing the required key \"" + key + "\"");
     return m_object.at(key);
@@ -66,11 +73,6 @@ class ObjectReader {
     if (!std::isfinite(v)) fail("\"" + what + "\" is not a finite number");
     return v;
   }
-  void rejectUnread() const {
-    for (auto it = m_object.begin(); it != m_object.end(); ++it)
-      if (!m_read.count(it.key()))
-        fail("has an unknown key \"" + it.key() + "\". Fix: remove it or check its spelling");
-  }
   [[noreturn]] void fail(const std::string& what) const {
     throw InputError(m_file + ": " + m_where + " " + what + ".");
   }
@@ -80,17 +82,16 @@ class ObjectReader {
   const json& m_object;
   std::string m_where;
   const std::string& m_file;
-  std::set<std::string> m_read;
 };
 
 Material readMaterial(const std::string& name, const json& j, const std::string& file) {
   ObjectReader r(j, "material \"" + name + "\"", file);
+  r.allowOnly({"reflectance", "emission", "two_sided"});
   Material m;
   m.name = name;
   m.reflectance = r.vec3("reflectance", m.reflectance);
   m.emission = r.vec3("emission", m.emission);
   m.twoSided = r.boolean("two_sided", false);
-  r.rejectUnread();
   return m;
 }
 
@@ -117,18 +118,20 @@ std::vector<Vec3> readPolygon(ObjectReader& r, const json& j, const std::string&
 }
 
 /// Applies scale (number or per-axis), then translate, to mesh vertices.
-void applyTransform(ObjectReader& surface, const json& j, const std::string& file, std::vector<Vec3>& vertices) {
+void applyTransform(ObjectReader& surface, const json& j, const std::string& file, Surface& s) {
   ObjectReader r(j, surface.where() + " transform", file);
+  r.allowOnly({"scale", "translate"});
   Vec3 scale{1, 1, 1};
   if (r.has("scale")) {
-    const json& s = j.at("scale");
-    scale = s.is_array() ? r.toVec3(s, "scale") : Vec3{1, 1, 1} * r.toNumber(s, "scale");
+    const json& given = j.at("scale");
+    scale = given.is_array() ? r.toVec3(given, "scale") : Vec3{1, 1, 1} * r.toNumber(given, "scale");
   }
   if (scale.x == 0 || scale.y == 0 || scale.z == 0) r.fail("\"scale\" must be non-zero");
   Vec3 translate = r.vec3("translate", {0, 0, 0});
-  r.rejectUnread();
-  for (Vec3& v : vertices) v = mul(v, scale) + translate;
-  // A mirroring scale (odd number of negative factors) flips the winding; keep faces front.
+  for (Vec3& v : s.vertices) v = mul(v, scale) + translate;
+  // A mirroring scale turns counter-clockwise faces clockwise: reverse them to keep the front.
+  if (scale.x * scale.y * scale.z < 0)
+    for (Face& f : s.faces) std::reverse(f.vertices.begin(), f.vertices.end());
 }
 
 Surface readSurface(const json& j, std::size_t index, const Scene& scene, const std::string& file) {
@@ -136,6 +139,7 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
   if (j.is_object() && j.contains("name") && j["name"].is_string())
     where += " (\"" + j["name"].get<std::string>() + "\")";
   ObjectReader r(j, where, file);
+  r.allowOnly({"name", "material", "polygon", "polygons", "mesh", "transform"});
   Surface s;
   s.source = file + ": " + where;
   s.name = r.string("name", "surface" + std::to_string(index));
@@ -160,21 +164,26 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
   } else {
     if (!j.at("mesh").is_string()) r.fail("\"mesh\" must be a file name");
     fs::path meshPath = fs::path(file).parent_path() / j.at("mesh").get<std::string>();
-    RawMesh raw = readMeshFile(meshPath.string());
+    RawMesh raw;
+    try {
+      raw = readMeshFile(meshPath.string());
+    } catch (const InputError& e) {
+      r.fail("reads its mesh: " + std::string(e.what()));
+    }
     s.vertices = std::move(raw.vertices);
     s.faces = std::move(raw.faces);
     s.source += " (mesh " + meshPath.string() + ")";
   }
   if (r.has("transform")) {
     if (!r.has("mesh")) r.fail("has a \"transform\": only mesh surfaces take one");
-    applyTransform(r, j.at("transform"), file, s.vertices);
+    applyTransform(r, j.at("transform"), file, s);
   }
-  r.rejectUnread();
   return s;
 }
 
 Camera readCamera(const json& j, const std::string& file) {
   ObjectReader r(j, "camera", file);
+  r.allowOnly({"position", "look_at", "up", "fov_deg"});
   Camera c;
   c.position = r.vec3("position", c.position);
   c.lookAt = r.vec3("look_at", c.lookAt);
@@ -182,7 +191,6 @@ Camera readCamera(const json& j, const std::string& file) {
   c.fovDeg = r.number("fov_deg", c.fovDeg);
   if (!(c.fovDeg > 0 && c.fovDeg < 180)) r.fail("\"fov_deg\" must lie in (0, 180)");
   if (length(c.lookAt - c.position) == 0) r.fail("\"look_at\" must differ from \"position\"");
-  r.rejectUnread();
   return c;
 }
 
@@ -195,13 +203,15 @@ Scene loadJsonScene(const std::string& path) {
   } catch (const json::parse_error& e) {
     // nlohmann's message carries the line and column of the error.
     throw InputError(path + ": malformed JSON: " + e.what());
+  } catch (const json::exception& e) {
+    throw InputError(path + ": unreadable JSON (" + e.what() + "). Fix: numbers must fit a double.");
   }
   Scene scene;
   scene.file = path;
   ObjectReader r(root, "the scene", path);
+  r.allowOnly({"name", "description", "units", "materials", "surfaces", "camera"});
   scene.name = r.string("name", fs::path(path).stem().string());
   scene.units = r.string("units", "m");
-  static_cast<void>(r.string("description", ""));
   const std::set<std::string> units{"m", "mm", "cm", "km"};
   if (!units.count(scene.units)) r.fail("has unknown \"units\" \"" + scene.units + "\". Fix: use m, cm, mm or km");
   if (r.has("materials")) {
@@ -215,7 +225,6 @@ Scene loadJsonScene(const std::string& path) {
   for (std::size_t i = 0; i < surfaces.size(); ++i)
     scene.surfaces.push_back(readSurface(surfaces[i], i, scene, path));
   if (r.has("camera")) scene.camera = readCamera(root.at("camera"), path);
-  r.rejectUnread();
   return scene;
 }
 

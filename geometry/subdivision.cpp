@@ -237,7 +237,7 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings) {
       PatchMesh trial = out;
       emitPatches(tops[s], classCounts(tops[s], h), int(s), trial);
       double over = settings.maxArea > 0 ? maxFaceAreaLimitViolation(trial, out.size(), settings.maxArea) : 0;
-      if (over <= 1 || attempt > 60) {
+      if (over <= 1 + 1e-12 || attempt > 60) {
         out = std::move(trial);
         break;
       }

@@ -23,8 +23,9 @@ class Visibility {
   /// \brief Is the segment between two surface points blocked by any patch?
   /// \param from a point on a surface with unit normal nFrom (either orientation)
   /// \param to   a point on a surface with unit normal nTo (either orientation)
-  /// Both ends are lifted off their surfaces by epsilon() toward the other end, so a point
-  /// on a patch never hits its own patch, even at grazing angles. Thread-safe.
+  /// Both ends are lifted off their surfaces by epsilon() toward the other end (the second
+  /// toward the lifted first, so coplanar ends go to the same side), so a point on a patch
+  /// never hits its own patch, even at grazing angles. Thread-safe.
   virtual bool occluded(const Vec3& from, const Vec3& nFrom, const Vec3& to,
                         const Vec3& nTo) const = 0;
 

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Installs the Debian packages (idempotent) and builds radkit in Release into build/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DRADKIT_TESTS=ON \
+  -DRADKIT_TEST_FOLDERS="solvers;geometry;radiosity" >/dev/null
+cmake --build build -j"${RADKIT_JOBS:-2}"

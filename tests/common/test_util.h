@@ -1,0 +1,55 @@
+// Helpers shared by radkit's tests: temporary folders, running the radkit binary, data paths.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+namespace radkit::test {
+
+inline std::string dataPath(const std::string& name) { return std::string(RADKIT_DATA_DIR) + "/" + name; }
+
+/// A fresh folder under the system temp dir, removed with the object.
+class TempDir {
+ public:
+  TempDir() {
+    std::random_device rd;
+    m_path = std::filesystem::temp_directory_path() / ("radkit-test-" + std::to_string(rd()) + std::to_string(rd()));
+    std::filesystem::create_directories(m_path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(m_path, ec);
+  }
+  std::string file(const std::string& name, const std::string& text) const {
+    std::ofstream(m_path / name, std::ios::binary) << text;
+    return (m_path / name).string();
+  }
+  std::string path(const std::string& name) const { return (m_path / name).string(); }
+
+ private:
+  std::filesystem::path m_path;
+};
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+/// Runs the radkit binary with `args` (shell words), capturing output and exit code.
+inline RunResult runRadkit(const std::string& args) {
+  RunResult r;
+  std::string cmd = std::string("'") + RADKIT_BINARY + "' " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
+  int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+}  // namespace radkit::test

@@ -1,0 +1,149 @@
+// Every class of bad input: a non-zero exit, a message naming file, element and fix, and no
+// output written. Run through the radkit binary as a user would.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <limits>
+
+#include "tests/common/test_util.h"
+
+namespace radkit {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kMaterials = R"("materials": {"grey": {"reflectance": [0.5,0.5,0.5]},
+                                          "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}})";
+const char* kSquare = R"([[0,0,0],[1,0,0],[1,1,0],[0,1,0]])";
+
+std::string sceneWith(const std::string& surfaces) {
+  return std::string("{") + kMaterials + R"(, "surfaces": [)" + surfaces + "]}";
+}
+
+struct BadCase {
+  const char* name;
+  std::string sceneText;
+  std::vector<std::string> mustMention;
+  std::string extraFile, extraText;  // a mesh file the scene refers to
+};
+
+BadCase bad(const char* name, std::string sceneText, std::vector<std::string> mustMention,
+            std::string extraFile = "", std::string extraText = "") {
+  return BadCase{name, std::move(sceneText), std::move(mustMention), std::move(extraFile), std::move(extraText)};
+}
+
+class BadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, FailsCleanly) {
+  const BadCase& c = GetParam();
+  test::TempDir dir;
+  if (!c.extraFile.empty()) dir.file(c.extraFile, c.extraText);
+  std::string scene = dir.file("scene.json", c.sceneText);
+  std::string out = dir.path("out");
+  test::RunResult r = test::runRadkit("mesh '" + scene + "' --out '" + out + "'");
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("scene.json"), std::string::npos) << "message must name the file:\n" << r.output;
+  for (const std::string& word : c.mustMention)
+    EXPECT_NE(r.output.find(word), std::string::npos) << "missing '" << word << "' in:\n" << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "output folder written on error";
+  for (const auto& entry : fs::directory_iterator(fs::path(out).parent_path()))
+    EXPECT_EQ(entry.path().filename().string().find(".out.partial"), std::string::npos) << "staging left behind";
+}
+
+/// A binary PLY triangle whose second vertex has x = NaN (text formats cannot spell NaN
+/// portably; binary ones carry it as it is).
+std::string binaryPlyWithNan() {
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                    "property float y\nproperty float z\nelement face 1\n"
+                    "property list uchar int vertex_indices\nend_header\n";
+  const float v[9] = {0, 0, 0, std::numeric_limits<float>::quiet_NaN(), 0, 0, 0, 1, 0};
+  ply.append(reinterpret_cast<const char*>(v), sizeof v);
+  const unsigned char count = 3;
+  const int idx[3] = {0, 1, 2};
+  ply.append(reinterpret_cast<const char*>(&count), 1);
+  ply.append(reinterpret_cast<const char*>(idx), sizeof idx);
+  return ply;
+}
+
+std::string square(const char* name, const char* material, const std::string& polygon) {
+  return std::string(R"({"name": ")") + name + R"(", "material": ")" + material + R"(", "polygon": )" + polygon + "}";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Geometry, BadInput,
+    ::testing::Values(
+        bad("MalformedJson", "{\n  \"materials\": {},\n  \"surfaces\": [,]\n}", {"line 3", "column"}),
+        bad("InfiniteCoordinate", sceneWith(square("floor", "lamp", "[[0,0,0],[1e999,0,0],[1,1,0]]")),
+                {"number overflow", "Fix"}),
+        bad("NanCoordinateInMesh", sceneWith(R"({"name": "m", "material": "lamp", "mesh": "m.ply"})"),
+                {"\"m\"", "vertex 1", "NaN"}, "m.ply", binaryPlyWithNan()),
+        bad("CollinearFace", sceneWith(square("sliver", "lamp", "[[0,0,0],[1,1,1],[2,2,2]]")),
+                {"sliver", "face 0", "collinear", "Fix"}),
+        bad("RepeatedVertex", sceneWith(square("dup", "lamp", "[[0,0,0],[1,0,0],[1,0,0],[0,1,0]]")),
+                {"dup", "face 0", "repeats a vertex"}),
+        bad("ZeroAreaMeshFace", sceneWith(R"({"name": "flat", "material": "lamp", "mesh": "f.off"})"),
+                {"\"flat\"", "face 1", "collinear"}, "f.off",
+                "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n2 0 0\n3 0 0\n3 0 1 2\n3 1 3 4\n"),
+        bad("InconsistentOrientation",
+                sceneWith(R"({"name": "folded", "material": "lamp", "polygons": [
+                  [[0,0,0],[1,0,0],[1,1,0]], [[0,0,0],[0,1,0],[1,1,0]] ]})"),
+                {"folded", "face 1", "orientation", "Fix"}),
+        bad("InconsistentOrientationInMesh", sceneWith(R"({"name": "m", "material": "lamp", "mesh": "o.off"})"),
+                {"orientation"}, "o.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 3 2\n"),
+        bad("ReflectanceOne",
+                R"({"materials": {"white": {"reflectance": [1.0, 0.5, 0.5], "emission": [1,1,1]}},
+                    "surfaces": [{"name": "a", "material": "white", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})",
+                {"material \"white\"", "reflectance", "[0, 1)"}),
+        bad("NegativeReflectance",
+                R"({"materials": {"w": {"reflectance": [0.5, -0.1, 0.5], "emission": [1,1,1]}},
+                    "surfaces": [{"name": "a", "material": "w", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})",
+                {"material \"w\"", "reflectance"}),
+        bad("NegativeEmission",
+                R"({"materials": {"lamp": {"emission": [1, -2, 1]}},
+                    "surfaces": [{"name": "a", "material": "lamp", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})",
+                {"material \"lamp\"", "emission", ">= 0"}),
+        bad("UnknownMaterial", sceneWith(square("floor", "marble", kSquare)),
+                {"floor", "unknown material \"marble\"", "grey", "lamp"}),
+        bad("UnknownKey", sceneWith(R"({"name": "floor", "material": "grey", "polgon": [[0,0,0],[1,0,0],[1,1,0]]})"),
+                {"floor", "polgon"}),
+        bad("MissingMeshFile", sceneWith(R"({"name": "statue", "material": "grey", "mesh": "statue.ply"})"),
+                {"statue.ply", "not found"}),
+        bad("EmptyScene", std::string("{") + kMaterials + R"(, "surfaces": []})", {"no surfaces"}),
+        bad("DuplicateSurfaceName", sceneWith(square("a", "lamp", kSquare) + "," + square("a", "grey", kSquare)),
+                {"\"a\"", "used twice"})),
+    [](const ::testing::TestParamInfo<BadCase>& param) { return std::string(param.param.name); });
+
+TEST(BadInputCli, MissingSceneFileAndBadOptions) {
+  test::TempDir dir;
+  test::RunResult r = test::runRadkit("mesh /nonexistent/scene.json --out '" + dir.path("o") + "'");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("/nonexistent/scene.json"), std::string::npos) << r.output;
+  r = test::runRadkit("mesh '" + test::dataPath("furnace.json") + "' --max-area -1 --out '" + dir.path("o") + "'");
+  EXPECT_NE(r.exitCode, 0);
+  r = test::runRadkit("mesh '" + test::dataPath("furnace.json") + "' --max-area 1 --patches 10 --out '" + dir.path("o") + "'");
+  EXPECT_NE(r.exitCode, 0) << "--max-area and --patches exclude each other";
+  EXPECT_FALSE(fs::exists(dir.path("o")));
+}
+
+TEST(MeshCli, WritesPatchesAndSummary) {
+  test::TempDir dir;
+  test::RunResult r = test::runRadkit("mesh '" + test::dataPath("cornell-box.json") + "' --patches 500 --out '" + dir.path("o") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("worst aspect ratio"), std::string::npos);
+  EXPECT_NE(r.output.find("warning"), std::string::npos) << "the non-planar wall is reported";
+  std::ifstream csv(dir.path("o/patches.csv"));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "id,surface,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b,b_r,b_g,b_b");
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_GT(rows, 400);
+  EXPECT_LT(rows, 600);
+  EXPECT_TRUE(fs::exists(dir.path("o/patches.vtp")));
+  r = test::runRadkit("--version");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.output.find("radkit "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace radkit

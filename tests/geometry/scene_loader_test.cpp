@@ -1,0 +1,152 @@
+#include "geometry/scene_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tests/common/test_util.h"
+
+namespace radkit {
+namespace {
+
+using test::dataPath;
+
+struct Expected {
+  const char* file;
+  std::size_t surfaces, materials;
+  std::size_t warnings;  // non-planar or non-emitting notices expected on load
+};
+
+TEST(SceneLoader, EveryDataSceneLoads) {
+  const Expected scenes[] = {
+      {"cornell-box.json", 8, 4, 1},  // the measured left wall is non-planar
+      {"cornell-box-empty.json", 6, 4, 1},
+      {"cube-one-emitter.json", 6, 2, 0},
+      {"furnace.json", 6, 1, 0},
+      {"parallel-squares.json", 2, 2, 0},
+      {"perpendicular-squares.json", 2, 2, 0},
+      {"sphere-interior.json", 1, 1, 0},
+      {"terrain-room.json", 2, 2, 0},
+  };
+  for (const Expected& e : scenes) {
+    SCOPED_TRACE(e.file);
+    LoadReport report;
+    Scene scene = loadScene(dataPath(e.file), &report);
+    EXPECT_EQ(scene.surfaces.size(), e.surfaces);
+    EXPECT_EQ(scene.materials.size(), e.materials);
+    EXPECT_EQ(report.warnings.size(), e.warnings);
+    for (const Surface& s : scene.surfaces) {
+      ASSERT_GE(s.material, 0);
+      for (const Face& f : s.faces) EXPECT_TRUE(f.vertices.size() == 3 || f.vertices.size() == 4);
+    }
+  }
+}
+
+TEST(SceneLoader, CornellBoxAsMeasured) {
+  LoadReport report;
+  Scene scene = loadScene(dataPath("cornell-box.json"), &report);
+  EXPECT_EQ(scene.units, "mm");
+  ASSERT_TRUE(scene.camera.has_value());
+  EXPECT_NEAR(scene.camera->fovDeg, 39.3077, 1e-12);
+  const Material& light = scene.materials[scene.findMaterial("light")];
+  EXPECT_EQ(light.emission, (Vec3{17, 12, 4}));
+  // The light is 130 x 105 mm (shared/reference/cornell-box.md).
+  double area = 0;
+  for (const Surface& s : scene.surfaces)
+    if (s.name == "light")
+      for (const Face& f : s.faces) {
+        Vec3 a = s.vertices[f.vertices[0]], b = s.vertices[f.vertices[1]], c = s.vertices[f.vertices[2]];
+        area += length(cross(b - a, c - a)) * (f.vertices.size() == 4 ? 1.0 : 0.5);
+      }
+  EXPECT_NEAR(area, 13650.0, 1e-9);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("left wall"), std::string::npos);
+  EXPECT_NE(report.warnings[0].find("not planar"), std::string::npos);
+}
+
+TEST(SceneLoader, ObjWithMtlAsScene) {
+  test::TempDir dir;
+  dir.file("box.mtl", "newmtl white\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 2 3 4\n");
+  std::string obj = dir.file("box.obj",
+                             "mtllib box.mtl\n"
+                             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 0 1 1\nv 1 1 1\nv 1 0 1\n"
+                             "o floor\nusemtl white\nf 1 2 3 4\n"
+                             "o lamp\nusemtl lamp\nf 5 6 7 8\n");
+  Scene scene = loadScene(obj);
+  ASSERT_EQ(scene.surfaces.size(), 2u);
+  EXPECT_EQ(scene.surfaces[0].name, "floor");
+  EXPECT_EQ(scene.surfaces[1].name, "lamp");
+  const Material& lamp = scene.materials[scene.surfaces[1].material];
+  EXPECT_EQ(lamp.emission, (Vec3{2, 3, 4}));
+  EXPECT_EQ(scene.materials[scene.surfaces[0].material].reflectance, (Vec3{0.5, 0.5, 0.5}));
+  EXPECT_EQ(scene.surfaces[0].vertices.size(), 4u);
+}
+
+TEST(SceneLoader, MeshFormatsAndTransform) {
+  test::TempDir dir;
+  // One unit square as two triangles, written in each format OpenMesh reads.
+  dir.file("sq.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  dir.file("sq.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                     "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                     "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  dir.file("sq.stl", "solid sq\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+                     "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\n"
+                     "vertex 0 1 0\nendloop\nendfacet\nendsolid sq\n");
+  for (const char* ext : {"off", "ply", "stl"}) {
+    SCOPED_TRACE(ext);
+    std::string scene = dir.file("s.json", std::string(R"({"materials": {"m": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
+      "surfaces": [{"name": "sq", "material": "m", "mesh": "sq.)") + ext +
+      R"(", "transform": {"scale": 2, "translate": [10, 0, 0]}}]})");
+    Scene s = loadScene(scene);
+    ASSERT_EQ(s.surfaces.size(), 1u);
+    EXPECT_EQ(s.surfaces[0].faces.size(), 2u);
+    EXPECT_EQ(s.surfaces[0].vertices.size(), 4u);  // STL's repeated corners are merged
+    Bounds3 b = s.bounds();
+    EXPECT_EQ(b.lo, (Vec3{10, 0, 0}));
+    EXPECT_EQ(b.hi, (Vec3{12, 2, 0}));
+  }
+}
+
+TEST(SceneLoader, NonPlanarQuadIsSplitWithWarning) {
+  test::TempDir dir;
+  std::string scene = dir.file("s.json", R"({"materials": {"m": {"emission": [1,1,1]}},
+    "surfaces": [{"name": "bent", "material": "m", "polygon": [[0,0,0],[1,0,0],[1,1,0.1],[0,1,0]]}]})");
+  LoadReport report;
+  Scene s = loadScene(scene, &report);
+  ASSERT_EQ(s.surfaces[0].faces.size(), 2u);
+  EXPECT_EQ(s.surfaces[0].faces[0].vertices.size(), 3u);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("\"bent\""), std::string::npos);
+}
+
+TEST(SceneLoader, PolygonWithManyVerticesIsTriangulated) {
+  test::TempDir dir;
+  // An L-shaped hexagon (non-convex): ear clipping must keep the area, 3 units².
+  std::string scene = dir.file("s.json", R"({"materials": {"m": {"emission": [1,1,1]}},
+    "surfaces": [{"name": "L", "material": "m", "polygon": [[0,0,0],[2,0,0],[2,1,0],[1,1,0],[1,2,0],[0,2,0]]}]})");
+  Scene s = loadScene(scene);
+  double area = 0;
+  for (const Face& f : s.surfaces[0].faces) {
+    ASSERT_EQ(f.vertices.size(), 3u);
+    const auto& v = s.surfaces[0].vertices;
+    Vec3 n = cross(v[f.vertices[1]] - v[f.vertices[0]], v[f.vertices[2]] - v[f.vertices[0]]);
+    EXPECT_GT(n.z, 0);  // orientation kept
+    area += 0.5 * length(n);
+  }
+  EXPECT_NEAR(area, 3.0, 1e-12);
+}
+
+TEST(SceneLoader, SelfIntersectionIsAWarning) {
+  test::TempDir dir;
+  // Two triangles of one surface crossing each other.
+  std::string scene = dir.file("s.json", R"({"materials": {"m": {"emission": [1,1,1]}},
+    "surfaces": [{"name": "x", "material": "m", "polygons": [
+      [[0,0,0],[2,0,0],[1,2,0]], [[1,1,-1],[1,1.5,1],[1,0.5,1]] ]}]})");
+  LoadReport report;
+  loadScene(scene, &report);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("intersects itself"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace radkit
