@@ -1,0 +1,117 @@
+#include "solvers/solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace radkit {
+
+SolverParams SolverParams::parse(const std::string& text) {
+  std::map<std::string, double> values;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.empty()) continue;
+    const auto eq = item.find('=');
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      if (eq == std::string::npos) throw std::invalid_argument("no '='");
+      v = std::stod(item.substr(eq + 1), &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (eq == std::string::npos || eq == 0 || used == 0 || eq + 1 + used != item.size())
+      throw std::invalid_argument("solver parameter '" + item +
+                                  "': expected key=number, e.g. omega=1.5");
+    values[item.substr(0, eq)] = v;
+  }
+  return SolverParams(std::move(values));
+}
+
+double SolverParams::get(const std::string& key, double defaultValue) {
+  m_read.insert(key);
+  const auto it = m_values.find(key);
+  return it == m_values.end() ? defaultValue : it->second;
+}
+
+void SolverParams::rejectUnused(const std::string& solverName) const {
+  std::string unknown, known;
+  for (const auto& kv : m_values)
+    if (!m_read.count(kv.first)) unknown += (unknown.empty() ? "" : ", ") + kv.first;
+  if (unknown.empty()) return;
+  for (const auto& k : m_read) known += (known.empty() ? "" : ", ") + k;
+  throw std::invalid_argument("solver '" + solverName + "' has no parameter " + unknown +
+                              " (known: " + (known.empty() ? "none" : known) + ")");
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(3);
+  s << v;
+  return s.str();
+}
+
+/// Empty when the run goes on; otherwise why it stops (and result.converged is set).
+std::string stopReason(const Solver& solver, const SolverSettings& settings, long iteration,
+                       double seconds, double emissionNorm, bool& converged) {
+  const double r = solver.residual();
+  const std::string tail = " after " + std::to_string(iteration) + " iterations";
+  converged = false;
+  if (!std::isfinite(r)) return "diverged: residual is not finite" + tail;
+  if (r <= settings.tolerance) {
+    converged = true;
+    if (emissionNorm == 0.0 && r == 0.0) return "converged: E = 0, so B = 0 is exact";
+    return "converged: residual " + number(r) + " <= tolerance " + number(settings.tolerance) +
+           tail;
+  }
+  if (iteration >= settings.maxIterations)
+    return "not converged: maximum iterations (" + std::to_string(settings.maxIterations) +
+           ") reached with residual " + number(r) + " > tolerance " +
+           number(settings.tolerance);
+  if (seconds >= settings.maxSeconds)
+    return "not converged: time limit " + number(settings.maxSeconds) + " s reached" + tail +
+           " with residual " + number(r) + " > tolerance " + number(settings.tolerance);
+  return {};
+}
+
+}  // namespace
+
+SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSettings& settings) {
+  SolveResult result;
+  result.solver = solver.name();
+  const Clock::time_point t0 = Clock::now();
+  solver.start(system, settings);
+  result.description = solver.describe();
+  const double emissionNorm = system.emissionNorm();
+  long iteration = 0;
+  for (;;) {
+    const double seconds = secondsSince(t0);
+    result.history.push_back(
+        {iteration, seconds, solver.residual(), solver.unshotPower(), solver.sweeps()});
+    result.reason =
+        stopReason(solver, settings, iteration, seconds, emissionNorm, result.converged);
+    if (!result.reason.empty()) break;
+    solver.step();
+    ++iteration;
+  }
+  result.iterations = iteration;
+  result.seconds = result.history.back().seconds;
+  result.residual = solver.residual();
+  result.radiosity = solver.radiosity();
+  result.ambient = solver.ambient();
+  const Channels r = residualVector(system, result.radiosity);
+  result.checkedResidual = residualMeasure(system, r, result.radiosity, settings.norm);
+  return result;
+}
+
+}  // namespace radkit

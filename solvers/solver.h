@@ -1,0 +1,102 @@
+// The solver interface a lab exercise implements (Nori's integrator.h pattern): one header, one
+// .cpp per solver with no header, each listed by name in solvers/registry.cpp. A solver runs
+// step by step so the caller sees every iteration; solve() is the driver with the stopping rules.
+#pragma once
+
+#include <limits>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "solvers/kernels.h"
+#include "solvers/radiosity_system.h"
+
+namespace radkit {
+
+/// Run-wide stopping rules, shared by every solver of a run.
+struct SolverSettings {
+  double tolerance = 1e-6;  ///< stop when residual() <= tolerance
+  long maxIterations = 100000000;  ///< steps (sweeps, or shots for Southwell)
+  double maxSeconds = std::numeric_limits<double>::infinity();  ///< wall clock, start included
+  ResidualNorm norm = ResidualNorm::Relative;
+};
+
+/// Per-solver parameters (pbrt's ParameterDictionary): the solver reads each key once with its
+/// default beside it; keys nobody read are rejected by the registry.
+class SolverParams {
+ public:
+  SolverParams() = default;
+  SolverParams(std::map<std::string, double> values) : m_values(std::move(values)) {}
+  /// \brief Parses "key=value,key=value" (empty text: no parameters); throws on bad syntax.
+  static SolverParams parse(const std::string& text);
+  /// \brief The value of key, or defaultValue when absent; marks key as read.
+  double get(const std::string& key, double defaultValue);
+  /// \brief Throws std::invalid_argument naming every key that no get() read.
+  void rejectUnused(const std::string& solverName) const;
+
+ private:
+  std::map<std::string, double> m_values;
+  std::set<std::string> m_read;
+};
+
+/// An iterative solver for B = E + ρFB, all three channels at once.
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  /// \brief Registry name, e.g. "gauss-seidel".
+  virtual std::string name() const = 0;
+  /// \brief One line with the method and its parameters, for report.json.
+  virtual std::string describe() const = 0;
+  /// \brief Validates the system and sets the initial guess B = E (iteration 0, its residual
+  ///        known). system must outlive the solver's use.
+  virtual void start(const RadiositySystem& system, const SolverSettings& settings) = 0;
+  /// \brief One iteration: a sweep (Jacobi, Gauss-Seidel, SOR), a shot (Southwell) or a
+  ///        conjugate-gradient step. A step after exact convergence leaves B unchanged.
+  virtual void step() = 0;
+  /// \brief Current radiosity B per channel, W/m².
+  virtual const Channels& radiosity() const = 0;
+  /// \brief Residual of radiosity() in settings.norm (exact up to rounding for Jacobi,
+  ///        Gauss-Seidel, SOR and CG; for Southwell see southwell.cpp: ‖ΔB‖, an upper bound).
+  virtual double residual() const = 0;
+  /// \brief Σ_i A_i Σ_c |r_ic| in W: the unshot power ΔB·A for Southwell, the residual's
+  ///        power for the others.
+  virtual double unshotPower() const = 0;
+  /// \brief Work since start() in full passes over F: iterations for the sweeping methods,
+  ///        Σ (entries of each shot row) / (entries of F) for Southwell.
+  virtual double sweeps() const = 0;
+  /// \brief Display-only ambient term per channel (Cohen et al. 1988); zero but for Southwell.
+  ///        Never part of radiosity().
+  virtual Rgb ambient() const { return {0.0, 0.0, 0.0}; }
+};
+
+/// One row of convergence.csv.
+struct HistoryRow {
+  long iteration = 0;
+  double seconds = 0.0;
+  double residual = 0.0;
+  double unshotPower = 0.0;
+  double sweeps = 0.0;  ///< sweep-equivalents (see Solver::sweeps)
+};
+
+/// What solve() returns.
+struct SolveResult {
+  std::string solver;        ///< registry name
+  std::string description;   ///< describe()
+  bool converged = false;
+  std::string reason;        ///< why it stopped, one sentence for the console
+  long iterations = 0;
+  double seconds = 0.0;
+  double residual = 0.0;      ///< solver's residual() at the end
+  double checkedResidual = 0.0;  ///< recomputed from F by the driver, same norm
+  Channels radiosity;
+  Rgb ambient{};
+  std::vector<HistoryRow> history;  ///< iteration 0 (after start) then every step
+};
+
+/// \brief Runs solver from B = E until residual <= tolerance, maxIterations steps or
+///        maxSeconds, recording every iteration. Throws what start() throws.
+SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSettings& settings);
+
+}  // namespace radkit

@@ -1,0 +1,64 @@
+#include <gtest/gtest.h>
+
+#include "analytic_systems.h"
+
+namespace radkit {
+using namespace radkit::test;
+
+TEST(SolverParams, Construct) {
+  SolverParams p = SolverParams::parse("omega=1.5,power_iterations=10");
+  EXPECT_EQ(p.get("omega", 0.0), 1.5);
+  EXPECT_EQ(p.get("missing", 7.0), 7.0);
+  EXPECT_THROW(p.rejectUnused("sor"), std::invalid_argument);  // power_iterations unread
+  EXPECT_EQ(p.get("power_iterations", 30), 10.0);
+  EXPECT_NO_THROW(p.rejectUnused("sor"));
+  EXPECT_THROW(SolverParams::parse("omega"), std::invalid_argument);
+  EXPECT_THROW(SolverParams::parse("omega=fast"), std::invalid_argument);
+  EXPECT_THROW(SolverParams::parse("omega=1.5x"), std::invalid_argument);
+  EXPECT_NO_THROW(SolverParams::parse(""));
+}
+
+TEST(Solve, ExactMaxIterationsSaysNotConvergedAndWhy) {
+  Problem p = randomReciprocal(40, 21);  // CG solves the 6-face box in 3 steps: too easy
+  for (const std::string& name : solverNames()) {
+    const SolveResult r = runSolver(name, p.system, 1e-12, ResidualNorm::Relative, 3);
+    EXPECT_FALSE(r.converged) << name;
+    EXPECT_EQ(r.iterations, 3) << name;
+    EXPECT_EQ(r.history.size(), 4u) << name;  // iteration 0 and three steps
+    EXPECT_NE(r.reason.find("not converged: maximum iterations (3)"), std::string::npos) << r.reason;
+  }
+}
+
+TEST(Solve, ExactTimeLimitSaysNotConverged) {
+  Problem p = cubeOneEmitter(0.99);
+  SolverSettings settings;
+  settings.tolerance = 1e-12;
+  settings.maxSeconds = 0.0;
+  auto solver = makeSolver("jacobi");
+  const SolveResult r = solve(*solver, p.system, settings);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.reason.find("time limit"), std::string::npos) << r.reason;
+}
+
+TEST(Solve, ExactZeroEmissionIsExact) {
+  Problem p = cubeOneEmitter(0.5);
+  p.system.emission = makeChannels(6, 0.0);
+  for (const std::string& name : solverNames()) {
+    const SolveResult r = runSolver(name, p.system, 1e-9);
+    EXPECT_TRUE(r.converged) << name;
+    EXPECT_EQ(r.iterations, 0) << name;
+    EXPECT_EQ(maxAbs(r.radiosity), 0.0) << name;
+    EXPECT_NE(r.reason.find("B = 0 is exact"), std::string::npos) << r.reason;
+  }
+}
+
+TEST(Solve, ExactHistoryIsMonotoneInTimeAndIteration) {
+  const SolveResult r = runSolver("gauss-seidel", cubeOneEmitter(0.9).system, 1e-10);
+  for (std::size_t k = 1; k < r.history.size(); ++k) {
+    EXPECT_EQ(r.history[k].iteration, long(k));
+    EXPECT_GE(r.history[k].seconds, r.history[k - 1].seconds);
+  }
+  EXPECT_EQ(r.history.back().residual, r.residual);
+}
+
+}  // namespace radkit
