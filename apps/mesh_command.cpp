@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "apps/common.h"
-#include "geometry/output_folder.h"
+#include "util/output_folder.h"
 #include "geometry/patch_io.h"
 
 namespace radkit::app {

@@ -3,7 +3,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "geometry/output_folder.h"
+#include "util/output_folder.h"
 
 namespace radkit {
 

@@ -1,4 +1,4 @@
-#include "geometry/output_folder.h"
+#include "util/output_folder.h"
 
 #include <unistd.h>
 

@@ -1,0 +1,133 @@
+#include "render/radiosity_image.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace radkit {
+
+namespace {
+
+/// Mean value coordinates of x in a convex planar polygon (Floater 2003): smooth inside,
+/// linear on the edges, the barycentric coordinates for a triangle.
+std::vector<double> meanValueCoordinates(const std::vector<Vec3>& poly, const Vec3& x) {
+  const std::size_t n = poly.size();
+  std::vector<double> w(n, 0.0);
+  std::vector<Vec3> d(n);
+  std::vector<double> r(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    d[i] = poly[i] - x;
+    r[i] = length(d[i]);
+    if (r[i] < 1e-300) {  // at a vertex
+      w.assign(n, 0.0);
+      w[i] = 1;
+      return w;
+    }
+  }
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t prev = (i + n - 1) % n, next = (i + 1) % n;
+    auto tanHalf = [&](std::size_t a, std::size_t b) {
+      double c = std::clamp(dot(d[a], d[b]) / (r[a] * r[b]), -1.0, 1.0);
+      return std::sqrt(std::max(0.0, (1 - c) / (1 + c)));
+    };
+    w[i] = (tanHalf(prev, i) + tanHalf(i, next)) / r[i];
+    sum += w[i];
+  }
+  for (double& v : w) v = sum > 0 ? v / sum : 1.0 / n;
+  return w;
+}
+
+}  // namespace
+
+std::vector<Vec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<Vec3>& radiosity) {
+  std::vector<Vec3> sum(mesh.vertices.size());
+  std::vector<double> weight(mesh.vertices.size(), 0.0);
+  for (int i = 0; i < mesh.size(); ++i) {
+    const Patch& p = mesh.patches[i];
+    for (int k = 0; k < p.vertexCount; ++k) {
+      sum[p.vertex[k]] += radiosity[i] * p.area;
+      weight[p.vertex[k]] += p.area;
+    }
+  }
+  for (std::size_t v = 0; v < sum.size(); ++v)
+    if (weight[v] > 0) sum[v] = sum[v] / weight[v];
+  return sum;
+}
+
+RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, const Camera& camera,
+                              const std::vector<Vec3>& radiosity, const std::vector<bool>& twoSided,
+                              const ImageSettings& s) {
+  PinholeCamera cam(camera, s.width, s.height);
+  RadianceImage img;
+  img.width = s.width;
+  img.height = s.height;
+  img.radiance.assign(std::size_t(s.width) * s.height, Vec3{});
+  img.patch.assign(std::size_t(s.width) * s.height, -1);
+  std::vector<Vec3> atVertex;
+  if (s.smooth) atVertex = vertexRadiosity(mesh, radiosity);
+  const int n = std::max(1, s.samplesPerAxis);
+
+  // Radiance leaving the hit patch toward the camera: B/π on the front side (Lambertian).
+  auto shade = [&](const Vec3& dir, const RayHit& hit) {
+    const Patch& p = mesh.patches[hit.patch];
+    if (dot(dir, p.normal) > 0 && !twoSided[p.surface]) return Vec3{};
+    if (!s.smooth) return radiosity[hit.patch] / M_PI;
+    Vec3 x = cam.origin() + dir * hit.distance;
+    std::vector<double> w = meanValueCoordinates(mesh.polygon(p), x);
+    Vec3 b;
+    for (int k = 0; k < p.vertexCount; ++k) b += atVertex[p.vertex[k]] * w[k];
+    return b / M_PI;
+  };
+
+  tbb::parallel_for(0, s.height, [&](int y) {
+    for (int x = 0; x < s.width; ++x) {
+      Vec3 sum;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          Vec3 dir = cam.direction(x + (i + 0.5) / n, y + (j + 0.5) / n);
+          if (auto hit = rays.closestHit(cam.origin(), dir, 0.0)) sum += shade(dir, *hit);
+        }
+      img.radiance[std::size_t(y) * s.width + x] = sum / double(n * n);
+      if (auto hit = rays.closestHit(cam.origin(), cam.direction(x + 0.5, y + 0.5), 0.0))
+        img.patch[std::size_t(y) * s.width + x] = hit->patch;
+    }
+  });
+  return img;
+}
+
+double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEmits) {
+  std::vector<double> lum;
+  for (std::size_t k = 0; k < image.radiance.size(); ++k)
+    if (image.patch[k] >= 0 && !pixelEmits[k]) lum.push_back(luminance(image.radiance[k]));
+  if (lum.empty()) return 1;
+  std::size_t q = std::min(lum.size() - 1, std::size_t(0.95 * lum.size()));
+  std::nth_element(lum.begin(), lum.begin() + q, lum.end());
+  return lum[q] > 0 ? 0.8 / lum[q] : 1;
+}
+
+double srgbEncode(double v) {
+  v = std::clamp(v, 0.0, 1.0);
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+}
+
+Canvas toneMap(const RadianceImage& image, double exposure) {
+  Canvas c(image.width, image.height, {0, 0, 0});
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      Vec3 v = image.radiance[std::size_t(y) * image.width + x] * exposure;
+      auto byte = [](double t) { return std::uint8_t(std::lround(255 * srgbEncode(t))); };
+      c.set(x, y, {byte(v.x), byte(v.y), byte(v.z)});
+    }
+  return c;
+}
+
+std::optional<int> pickPatch(const Visibility& rays, const Camera& camera, int width, int height,
+                             int x, int y) {
+  PinholeCamera cam(camera, width, height);
+  if (auto hit = rays.closestHit(cam.origin(), cam.direction(x + 0.5, y + 0.5), 0.0)) return hit->patch;
+  return std::nullopt;
+}
+
+}  // namespace radkit

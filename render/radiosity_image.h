@@ -1,0 +1,54 @@
+// Camera images of a radiosity solution: primary rays through Embree, flat or smooth
+// (vertex-interpolated) shading, exposure and sRGB. Also picking: the patch under a pixel.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "geometry/patch_mesh.h"
+#include "geometry/visibility.h"
+#include "render/camera.h"
+#include "util/canvas.h"
+
+namespace radkit {
+
+struct ImageSettings {
+  int width = 512;
+  int height = 512;
+  int samplesPerAxis = 2;  ///< stratified samples per pixel: samplesPerAxis² (deterministic)
+  bool smooth = false;     ///< interpolate radiosity from vertices instead of flat patches
+  double exposure = 0;     ///< multiplier on radiance; 0 picks one automatically
+};
+
+/// Linear radiance image (W/m²/sr per channel) and the patch seen at each pixel centre.
+struct RadianceImage {
+  int width = 0, height = 0;
+  std::vector<Vec3> radiance;  ///< row-major, top row first
+  std::vector<int> patch;      ///< -1 where the ray escapes
+  double exposure = 1;         ///< the exposure used when this image is tone mapped
+};
+
+/// \brief Renders L = B/π of each patch (Lambertian), front sides only (back sides black
+/// unless `twoSided[p.surface]`). Parallel over rows; deterministic.
+RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, const Camera& camera,
+                              const std::vector<Vec3>& radiosity, const std::vector<bool>& twoSided,
+                              const ImageSettings& settings);
+
+/// Per-vertex radiosity: the area-weighted mean of the patches around each vertex.
+std::vector<Vec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<Vec3>& radiosity);
+
+/// Automatic exposure: maps the 95th percentile of non-emitting pixel luminance to 0.8.
+double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEmits);
+
+/// Exposure, clamp and the sRGB transfer curve (IEC 61966-2-1).
+Canvas toneMap(const RadianceImage& image, double exposure);
+double srgbEncode(double linear);
+
+/// \brief The patch seen through pixel (x, y) (pixel centre), or nothing.
+std::optional<int> pickPatch(const Visibility& rays, const Camera& camera, int width, int height,
+                             int x, int y);
+
+/// Rec. 709 luminance weights.
+inline double luminance(const Vec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
+
+}  // namespace radkit
