@@ -32,5 +32,7 @@ PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
 void printField(const std::string& label, const std::string& value);
 
 void addMeshCommand(CLI::App& app);
+void addPipelineCommands(CLI::App& app);
+void addBenchCommands(CLI::App& app);
 
 }  // namespace radkit::app

@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("radkit ") + RADKIT_VERSION);
   app.require_subcommand(1);
   radkit::app::addMeshCommand(app);
+  radkit::app::addPipelineCommands(app);
+  radkit::app::addBenchCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -77,8 +77,26 @@ SurfaceTopology buildTopology(const Surface& s) {
       t.classLength.push_back(0);
     }
     t.edgeClass[e] = id[r];
-    double len = t.mesh.calc_edge_length(PolyMesh::EdgeHandle(int(e)));
-    t.classLength[id[r]] = std::max(t.classLength[id[r]], len);
+  }
+  // The length a class must resolve: quad edges by their length (a×b cells of about h²);
+  // a triangle by √area, so its n² similar cells also come out about h² whatever its shape
+  // (by its longest edge, a right triangle would get cells of h²/4).
+  for (auto f : t.mesh.faces()) {
+    std::vector<int> e;
+    for (auto h : t.mesh.fh_range(f)) e.push_back(t.edgeClass[t.mesh.edge_handle(h).idx()]);
+    if (e.size() == 4) {
+      int k = 0;
+      for (auto h : t.mesh.fh_range(f)) {
+        double len = t.mesh.calc_edge_length(t.mesh.edge_handle(h));
+        t.classLength[e[k]] = std::max(t.classLength[e[k]], len);
+        ++k;
+      }
+    } else {
+      std::vector<Vec3> p;
+      for (auto v : t.mesh.fv_range(f)) p.push_back(toVec3(t.mesh.point(v)));
+      double area = 0.5 * length(cross(p[1] - p[0], p[2] - p[0]));
+      t.classLength[e[0]] = std::max(t.classLength[e[0]], std::sqrt(area));
+    }
   }
   return t;
 }

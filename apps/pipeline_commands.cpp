@@ -1,0 +1,194 @@
+// radkit formfactors, radkit solvers and radkit run: one pipeline, three selections of output.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "apps/common.h"
+#include "apps/options.h"
+#include "apps/report.h"
+#include "geometry/patch_io.h"
+#include "radiosity/form_factor_heat_map.h"
+#include "radiosity/form_factor_writers.h"
+#include "render/radiosity_image.h"
+#include "util/output_folder.h"
+
+namespace radkit::app {
+
+namespace {
+
+enum class Job { FormFactors, Solvers, Run };
+
+struct PipelineCommand {
+  Job job = Job::Run;
+  MeshOptions mesh;
+  FormFactorOptions ff;
+  SolverOptions solver;
+  std::string out;
+  bool noRender = false, photometric = false, smooth = false, writeMatrix = false;
+  int imageSize = 512;
+};
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+/// `run`'s mesh when none is given: on the Cornell box, surface radiosities lie within 0.3 %
+/// of an 8 000-patch run (docs/run.md), in about 15 s on two cores.
+constexpr int kDefaultRunPatches = 4000;
+
+/// Patches above which `run` leaves formfactors.mtx out unless asked (it grows as n²).
+constexpr int kMatrixFileLimit = 1500;
+
+void writeFormFactorFiles(OutputFolder& folder, const Scene& scene, const PipelineResult& r, bool matrixFile) {
+  std::vector<std::string> names = surfaceNames(scene);
+  const FormFactorMatrix& f = r.formFactors->matrix;
+  writeSurfaceFormFactors(folder.path("surface_formfactors.csv"), r.mesh, names, f);
+  HeatMapSettings heat;
+  heat.title = scene.name + ": F_ij, " + std::to_string(r.mesh.size()) + " patches, " + r.formFactors->diagnostics.method;
+  writeFormFactorHeatMap(folder.path("formfactors.png"), r.mesh, names, f, heat);
+  if (matrixFile)
+    writeMatrixMarket(folder.path("formfactors.mtx"), f,
+                      {"radkit form factors of " + scene.file, r.formFactors->diagnostics.description,
+                       "row i, column j: F_ij (patch ids from 0 in patches.csv are i-1, j-1)"});
+}
+
+void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd) {
+  ImageSettings s;
+  s.width = s.height = cmd.imageSize;
+  s.smooth = cmd.smooth;
+  std::vector<bool> twoSided;
+  for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
+  Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(r.mesh.bounds());
+  RadianceImage img = renderRadiosity(r.mesh, *r.rays, camera, r.radiosity, twoSided, s);
+  std::vector<bool> emits(img.patch.size(), false);
+  for (std::size_t k = 0; k < emits.size(); ++k)
+    emits[k] = img.patch[k] >= 0 &&
+               scene.materials[scene.surfaces[r.mesh.patches[img.patch[k]].surface].material].emits();
+  writePng(folder.path("render.png"), toneMap(img, autoExposure(img, emits)));
+}
+
+void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd, double total) {
+  const FormFactorDiagnostics& d = r.formFactors->diagnostics;
+  std::printf("\n");
+  printField("scene", scene.name + " (" + scene.file + ")");
+  printField("patches", std::to_string(r.mesh.size()));
+  printField("form factors", d.method + ", " + d.storage + ", " + std::to_string(d.raysCast) + " rays (" +
+                                 std::to_string(d.raysSaved) + " saved), " + fmt("%.3g rays/s", d.raysPerSecond));
+  printField("row sums", fmt("%.6f", d.rowSumMin) + " .. " + fmt("%.6f", d.rowSumMax) + ", reciprocity error " +
+                             fmt("%.2e", d.maxRelativeReciprocityError));
+  printField("seconds", "mesh " + fmt("%.2f", r.seconds.mesh) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
+                            ", form factors " + fmt("%.2f", r.seconds.formFactors) + ", solve " +
+                            fmt("%.2f", r.seconds.solve) + ", total " + fmt("%.2f", total));
+  for (const SolveResult& s : r.solves)
+    printField(s.solver, std::to_string(s.iterations) + " iterations, residual " + fmt("%.2e", s.checkedResidual) +
+                             ", " + fmt("%.3f s", s.seconds) + (s.converged ? "" : "  NOT CONVERGED: " + s.reason));
+  if (!r.solves.empty()) {
+    printField("energy balance", "emitted " + fmt("%.4g W", luminance(r.energy.emitted)) + " = absorbed " +
+                                     fmt("%.4g", luminance(r.energy.absorbed)) + " + escaped " +
+                                     fmt("%.4g", luminance(r.energy.escaped)) + " (Y), imbalance " +
+                                     fmt("%.2e", r.energy.relativeImbalance));
+    for (const SurfaceResult& s : r.surfaces) {
+      std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) + fmt(" %10.4f W/m²", s.radiosity.z);
+      if (cmd.photometric) line += fmt("  %9.2f cd/m²", s.luminance) + fmt("  %9.1f lux", s.illuminance);
+      printField(s.name, line);
+    }
+  }
+  printField("peak memory", fmt("%.0f MiB", peakMemoryBytes() / 1048576.0));
+  printField("wrote", cmd.out);
+}
+
+void runJob(PipelineCommand& cmd) {
+  auto start = std::chrono::steady_clock::now();
+  cmd.ff.finish();
+  if (cmd.job != Job::FormFactors) cmd.solver.finish();
+  if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
+  if (cmd.job == Job::Run && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0) cmd.mesh.patches = kDefaultRunPatches;
+  Scene scene = loadSceneReporting(cmd.mesh.scene);
+  if (cmd.out.empty()) cmd.out = "out/" + scene.name;
+
+  PipelineSettings settings;
+  settings.mesh = {cmd.mesh.maxArea, cmd.mesh.patches};
+  settings.formFactors = cmd.ff.settings;
+  settings.solvers = cmd.job == Job::FormFactors ? std::vector<SolverChoice>{} : cmd.solver.choices;
+  settings.stopping = cmd.solver.stopping;
+  Progress progress;
+  PipelineLog log;
+  log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
+  log.message = [&](const std::string& line) {
+    progress.finish();
+    std::fprintf(stderr, "%s\n", line.c_str());
+  };
+  PipelineResult r = runPipeline(scene, settings, log);
+  progress.finish();
+
+  OutputFolder folder(cmd.out);
+  nlohmann::json report{{"radkit", RADKIT_VERSION},
+                        {"command", cmd.job == Job::Run ? "run" : cmd.job == Job::Solvers ? "solvers" : "formfactors"},
+                        {"scene", sceneJson(scene)},
+                        {"mesh", meshJson(scene, r.mesh)},
+                        {"form_factors", toJson(r.formFactors->diagnostics)}};
+  writePatchesCsv(folder.path("patches.csv"), scene, r.mesh, r.solves.empty() ? nullptr : &r.radiosity);
+  if (cmd.job != Job::Solvers)
+    writeFormFactorFiles(folder, scene, r, cmd.job == Job::FormFactors || cmd.writeMatrix || r.mesh.size() <= kMatrixFileLimit);
+  if (!r.solves.empty()) {
+    writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), r.solves);
+    nlohmann::json solves = nlohmann::json::array();
+    for (const SolveResult& s : r.solves) solves.push_back(solveJson(s));
+    report["solvers"] = solves;
+    report["energy_balance"] = energyJson(r.energy);
+    report["surfaces"] = surfacesJson(r.surfaces);
+  }
+  if (cmd.job == Job::Solvers)
+    for (const SolveResult& s : r.solves) writeSolutionCsv(folder.path("solution-" + s.solver + ".csv"), scene, r.mesh, s);
+  if (cmd.job == Job::Run) {
+    writeSurfacesCsv(folder.path("surfaces.csv"), scene, r.surfaces, cmd.photometric);
+    writePatchesVtp(folder.path("radiosity.vtp"), scene, r.mesh, &r.radiosity);
+    if (!cmd.noRender) renderImage(folder, scene, r, cmd);
+  }
+  double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report["seconds"] = {{"mesh", r.seconds.mesh},       {"ray_scene", r.seconds.rayScene},
+                       {"form_factors", r.seconds.formFactors}, {"solve", r.seconds.solve},
+                       {"results", r.seconds.results}, {"total", total}};
+  report["peak_memory_bytes"] = peakMemoryBytes();
+  writeJson(folder.path("report.json"), report);
+  folder.commit();
+  printSummary(scene, r, cmd, total);
+}
+
+CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std::string& help) {
+  auto cmd = std::make_shared<PipelineCommand>();
+  cmd->job = job;
+  CLI::App* sub = app.add_subcommand(name, help);
+  addMeshOptions(*sub, cmd->mesh, job != Job::Run);
+  addFormFactorOptions(*sub, cmd->ff);
+  if (job != Job::FormFactors)
+    addSolverOptions(*sub, cmd->solver, job == Job::Solvers ? "jacobi,gauss-seidel,sor,southwell,cg" : "gauss-seidel");
+  auto* out = sub->add_option("--out", cmd->out, job == Job::Run ? "Output folder (default out/<scene name>)" : "Output folder");
+  if (job != Job::Run) out->required();
+  if (job == Job::Run) {
+    sub->add_flag("--no-render", cmd->noRender, "Skip render.png");
+    sub->add_flag("--photometric", cmd->photometric, "Add luminance (cd/m²) and illuminance (lux) to surfaces.csv");
+    sub->add_flag("--smooth", cmd->smooth, "Interpolate radiosity between patches in render.png");
+    sub->add_flag("--write-matrix", cmd->writeMatrix,
+                  "Write formfactors.mtx even above " + std::to_string(kMatrixFileLimit) + " patches");
+    sub->add_option("--image-size", cmd->imageSize, "Side of render.png in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
+  }
+  sub->callback([cmd] { runJob(*cmd); });
+  return sub;
+}
+
+}  // namespace
+
+void addPipelineCommands(CLI::App& app) {
+  addPipelineCommand(app, Job::FormFactors, "formfactors",
+                     "Compute the form-factor matrix: formfactors.mtx, surface_formfactors.csv, formfactors.png, report.json");
+  addPipelineCommand(app, Job::Solvers, "solvers",
+                     "Build F once and run several solvers from the same start: convergence.csv/.png, solution-<solver>.csv");
+  addPipelineCommand(app, Job::Run, "run",
+                     "The main job: mesh, form factors, solve, and every output (default scene: the Cornell box, "
+                     "default mesh: about " + std::to_string(kDefaultRunPatches) + " patches)");
+}
+
+}  // namespace radkit::app

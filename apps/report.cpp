@@ -1,0 +1,142 @@
+#include "apps/report.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+#include "geometry/patch_io.h"
+#include "solvers/convergence.h"
+#include "util/line_chart.h"
+#include "util/output_folder.h"
+
+namespace radkit::app {
+
+using nlohmann::json;
+
+namespace {
+json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
+}  // namespace
+
+json sceneJson(const Scene& scene) {
+  json j{{"name", scene.name}, {"file", scene.file}, {"units", scene.units}};
+  json names = json::array();
+  for (const Surface& s : scene.surfaces) names.push_back(s.name);
+  j["surfaces"] = names;
+  j["materials"] = scene.materials.size();
+  if (scene.camera)
+    j["camera"] = {{"position", triple(scene.camera->position)},
+                   {"look_at", triple(scene.camera->lookAt)},
+                   {"up", triple(scene.camera->up)},
+                   {"fov_deg", scene.camera->fovDeg}};
+  return j;
+}
+
+json meshJson(const Scene& scene, const PatchMesh& mesh) {
+  int quads = 0;
+  double lo = INFINITY, hi = 0, aspect = 0;
+  for (const Patch& p : mesh.patches) {
+    quads += p.isQuad();
+    lo = std::min(lo, p.area);
+    hi = std::max(hi, p.area);
+    aspect = std::max(aspect, mesh.aspectRatio(p));
+  }
+  return {{"patches", mesh.size()},   {"quads", quads},          {"triangles", mesh.size() - quads},
+          {"vertices", mesh.vertices.size()}, {"total_area", mesh.totalArea()}, {"area_units", scene.units + "^2"},
+          {"min_patch_area", lo},     {"max_patch_area", hi},    {"worst_aspect_ratio", aspect}};
+}
+
+json solveJson(const SolveResult& r) {
+  json milestonesJson = json::array();
+  for (const Milestone& m : milestones(r)) {
+    json row{{"residual", m.level}, {"reached", m.reached}};
+    if (m.reached) row.update({{"iterations", m.iterations}, {"seconds", m.seconds}, {"sweeps", m.sweeps}});
+    milestonesJson.push_back(row);
+  }
+  return {{"solver", r.solver},     {"description", r.description},         {"converged", r.converged},
+          {"reason", r.reason},     {"iterations", r.iterations},           {"seconds", r.seconds},
+          {"residual", r.residual}, {"checked_residual", r.checkedResidual}, {"milestones", milestonesJson},
+          {"ambient", json::array({r.ambient[0], r.ambient[1], r.ambient[2]})}};
+}
+
+json energyJson(const EnergyBalance& e) {
+  return {{"emitted_W", triple(e.emitted)},
+          {"absorbed_W", triple(e.absorbed)},
+          {"escaped_W", triple(e.escaped)},
+          {"relative_imbalance", e.relativeImbalance}};
+}
+
+json surfacesJson(const std::vector<SurfaceResult>& surfaces) {
+  json a = json::array();
+  for (const SurfaceResult& s : surfaces)
+    a.push_back({{"surface", s.name},
+                 {"area_m2", s.area},
+                 {"radiosity_W_m2", triple(s.radiosity)},
+                 {"irradiance_W_m2", triple(s.irradiance)},
+                 {"luminance_cd_m2", s.luminance},
+                 {"illuminance_lux", s.illuminance}});
+  return a;
+}
+
+std::size_t peakMemoryBytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return std::size_t(u.ru_maxrss) * 1024;  // Linux reports KiB
+}
+
+void writeJson(const std::string& path, const json& j) { writeFileAtomically(path, j.dump(2) + "\n"); }
+
+void writeConvergence(const std::string& csvPath, const std::string& pngPath, const std::vector<SolveResult>& solves) {
+  std::ostringstream csv;
+  writeConvergenceHeader(csv);
+  ChartPanel byIteration{"Residual against iteration", "iteration", "relative residual", false, true, {}};
+  ChartPanel bySeconds{"Residual against time", "seconds", "relative residual", true, true, {}};
+  for (const SolveResult& s : solves) {
+    writeConvergenceRows(csv, s);
+    ChartSeries it{s.solver, {}, {}}, sec{s.solver, {}, {}};
+    for (const HistoryRow& h : s.history) {
+      it.x.push_back(double(h.iteration));
+      it.y.push_back(h.residual);
+      sec.x.push_back(h.seconds);
+      sec.y.push_back(h.residual);
+    }
+    byIteration.series.push_back(it);
+    bySeconds.series.push_back(sec);
+  }
+  writeFileAtomically(csvPath, csv.str());
+  writeLineChartPng(pngPath, {byIteration, bySeconds});
+}
+
+void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh, const SolveResult& solve) {
+  std::vector<Vec3> b = toVec3(solve.radiosity);
+  writePatchesCsv(path, scene, mesh, &b);
+}
+
+void Progress::operator()(const std::string& stage, double fraction) {
+  bool terminal = isatty(STDERR_FILENO);
+  if (stage != m_stage) {
+    finish();
+    m_stage = stage;
+    m_lastTenth = -1;
+  }
+  int tenth = int(fraction * 10 + 1e-9);
+  if (terminal) {
+    int filled = int(fraction * 30 + 0.5);
+    std::fprintf(stderr, "\r%-14s [%s%s] %3d%%", stage.c_str(), std::string(filled, '#').c_str(),
+                 std::string(30 - filled, '.').c_str(), int(fraction * 100 + 0.5));
+    m_open = true;
+  } else if (tenth > m_lastTenth) {
+    std::fprintf(stderr, "%s: %d%%\n", stage.c_str(), tenth * 10);
+  }
+  m_lastTenth = std::max(m_lastTenth, tenth);
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (m_open) std::fprintf(stderr, "\n");
+  m_open = false;
+}
+
+}  // namespace radkit::app

@@ -1,0 +1,41 @@
+// report.json pieces: each output of a run described as JSON, plus console summaries.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "radiosity/radiosity_pipeline.h"
+
+namespace radkit::app {
+
+nlohmann::json sceneJson(const Scene& scene);
+nlohmann::json meshJson(const Scene& scene, const PatchMesh& mesh);
+nlohmann::json solveJson(const SolveResult& result);
+nlohmann::json energyJson(const EnergyBalance& e);
+nlohmann::json surfacesJson(const std::vector<SurfaceResult>& surfaces);
+/// Peak resident memory of this process in bytes (getrusage).
+std::size_t peakMemoryBytes();
+
+/// Pretty-printed JSON, written atomically.
+void writeJson(const std::string& path, const nlohmann::json& j);
+
+/// Writes convergence.csv and convergence.png (residual against iteration and against seconds).
+void writeConvergence(const std::string& csvPath, const std::string& pngPath, const std::vector<SolveResult>& solves);
+
+/// Writes `solution-<solver>.csv` style patch files for one solve.
+void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh, const SolveResult& solve);
+
+/// Shows a stage's progress: a redrawn bar when stderr is a terminal, else a line per 10 %.
+class Progress {
+ public:
+  void operator()(const std::string& stage, double fraction);
+  void finish();
+
+ private:
+  std::string m_stage;
+  int m_lastTenth = -1;
+  bool m_open = false;
+};
+
+}  // namespace radkit::app

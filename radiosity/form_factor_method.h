@@ -1,0 +1,89 @@
+// FormFactorMethod: the interface every form-factor algorithm implements (Nori style: one
+// header, one .cpp per method, a name table in form_factor_registry.cpp).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/patch_mesh.h"
+#include "geometry/visibility.h"
+#include "radiosity/quadrature.h"
+
+namespace radkit {
+
+enum class FormFactorPrecision { Double, Float };
+
+/// Every setting of a form-factor run, with its default beside it. The CLI fills it once.
+struct FormFactorSettings {
+  std::string method = "point-polygon";  ///< --ff: a name from formFactorMethodNames()
+  int samples = 16;                      ///< --ff-samples K >= 1: rays / point pairs per pair
+  std::uint64_t seed = 1;                ///< --seed: every stream derives from it
+  bool enforceReciprocity = false;       ///< --ff-enforce reciprocity: A_iF_ij, A_jF_ji → mean
+  FormFactorPrecision precision = FormFactorPrecision::Double;  ///< --ff-storage float
+  std::size_t memoryBudget = std::size_t(8) << 30;               ///< --memory-budget, bytes
+  QuadratureSettings quadrature;  ///< point-polygon's cubature over patch i
+  bool cullUnblockable = true;    ///< point-polygon, monte-carlo: no rays for unblockable pairs
+};
+
+/// One computed entry of a row: F_ij and its standard error (0 for deterministic parts).
+struct RowEntry {
+  int column = 0;
+  double value = 0;
+  double standardError = 0;
+};
+
+/// What a method returns for row i, plus its work counters.
+struct RowResult {
+  std::vector<RowEntry> entries;  ///< non-zero entries only, columns ascending
+  long long raysCast = 0;
+  long long raysSaved = 0;          ///< rays not cast because nothing could block the pair
+  long long pairsCulled = 0;        ///< facing pairs proven unblockable
+  long long pairsFacing = 0;        ///< pairs that passed the facing test
+  long long overlappingPairs = 0;   ///< coplanar pairs sharing area (coincident patches)
+  long long quadraturePoints = 0;   ///< contour-formula evaluations
+  double raySeconds = 0;            ///< thread time spent casting (and sampling) rays
+  double geometrySeconds = 0;       ///< thread time spent on everything else
+  int firstOverlap[2] = {-1, -1};   ///< one overlapping pair, for the report
+  void clear();
+};
+
+/// Which entries computeRow produces.
+enum class RowCoverage {
+  UpperTriangle,  ///< j > i only; F_ji = F_ij A_i/A_j by reciprocity
+  FullRow         ///< every j
+};
+
+/// Abstract form-factor algorithm. Instances are immutable after construction and
+/// computeRow is thread-safe; results depend only on (settings.seed, i, j).
+class FormFactorMethod {
+ public:
+  virtual ~FormFactorMethod() = default;
+  /// \brief Registry name ("point-polygon", ...).
+  virtual std::string name() const = 0;
+  /// \brief One line with the method and its parameters, for report.json.
+  virtual std::string describe() const = 0;
+  /// \brief Which entries computeRow fills.
+  virtual RowCoverage coverage() const = 0;
+  /// \brief Computes row i (see coverage()); out is cleared first.
+  virtual void computeRow(int i, RowResult& out) const = 0;
+};
+
+/// \brief Creates the method registered under settings.method. The mesh and visibility must
+/// outlive it. Throws std::invalid_argument for an unknown name (listing the known ones) or
+/// for invalid settings (K < 1, ...).
+std::unique_ptr<FormFactorMethod> makeFormFactorMethod(const PatchMesh& mesh,
+                                                       const Visibility& visibility,
+                                                       const FormFactorSettings& settings);
+
+/// \brief The registered names, default first.
+std::vector<std::string> formFactorMethodNames();
+/// \brief One help line per method: "name: summary".
+std::vector<std::string> formFactorMethodHelp();
+
+/// \brief Throws std::invalid_argument naming the flag when a setting is out of range.
+void validateFormFactorSettings(const FormFactorSettings& settings);
+
+}  // namespace radkit

@@ -1,0 +1,76 @@
+// The table of form-factor methods: the one place a name meets its constructor.
+#include <sstream>
+#include <stdexcept>
+
+#include "radiosity/form_factor_method.h"
+
+namespace radkit {
+
+// Factories, one per method .cpp (no headers: the registry is their only caller).
+std::unique_ptr<FormFactorMethod> createPointPolygon(const PatchMesh&, const Visibility&,
+                                                     const FormFactorSettings&);
+std::unique_ptr<FormFactorMethod> createMonteCarlo(const PatchMesh&, const Visibility&,
+                                                   const FormFactorSettings&);
+std::unique_ptr<FormFactorMethod> createHemisphere(const PatchMesh&, const Visibility&,
+                                                   const FormFactorSettings&);
+
+namespace {
+struct MethodEntry {
+  const char* name;
+  const char* help;
+  std::unique_ptr<FormFactorMethod> (*create)(const PatchMesh&, const Visibility&,
+                                              const FormFactorSettings&);
+};
+
+constexpr MethodEntry kMethods[] = {
+    {"point-polygon",
+     "Gauss-Legendre points on patch i, exact contour formula to patch j, visibility "
+     "fraction from K rays (default)",
+     createPointPolygon},
+    {"monte-carlo", "K uniform point pairs per patch pair (area-to-area), slow reference",
+     createMonteCarlo},
+    {"hemisphere", "K cosine-distributed rays per patch, counting first hits (ray-traced "
+     "hemicube)", createHemisphere},
+};
+}  // namespace
+
+void validateFormFactorSettings(const FormFactorSettings& s) {
+  if (s.samples < 1)
+    throw std::invalid_argument("--ff-samples must be at least 1 (got " +
+                                std::to_string(s.samples) + ")");
+  if (s.quadrature.order < 1 || s.quadrature.order > 16)
+    throw std::invalid_argument("quadrature order must be in [1, 16] (got " +
+                                std::to_string(s.quadrature.order) + ")");
+  if (!(s.quadrature.tolerance > 0))
+    throw std::invalid_argument("quadrature tolerance must be positive");
+  if (s.quadrature.maxDepth < 0 || s.quadrature.maxDepth > 30)
+    throw std::invalid_argument("quadrature depth must be in [0, 30]");
+}
+
+std::unique_ptr<FormFactorMethod> makeFormFactorMethod(const PatchMesh& mesh,
+                                                       const Visibility& visibility,
+                                                       const FormFactorSettings& settings) {
+  validateFormFactorSettings(settings);
+  for (const MethodEntry& m : kMethods)
+    if (settings.method == m.name) return m.create(mesh, visibility, settings);
+  std::ostringstream msg;
+  msg << "unknown form-factor method '" << settings.method << "' (--ff); known:";
+  for (const MethodEntry& m : kMethods) msg << ' ' << m.name;
+  throw std::invalid_argument(msg.str());
+}
+
+std::vector<std::string> formFactorMethodNames() {
+  std::vector<std::string> names;
+  for (const MethodEntry& m : kMethods) names.emplace_back(m.name);
+  return names;
+}
+
+std::vector<std::string> formFactorMethodHelp() {
+  std::vector<std::string> lines;
+  for (const MethodEntry& m : kMethods) lines.push_back(std::string(m.name) + ": " + m.help);
+  return lines;
+}
+
+void RowResult::clear() { *this = RowResult{}; }
+
+}  // namespace radkit

@@ -1,0 +1,34 @@
+// Writers for the form-factor outputs: formfactors.mtx and surface_formfactors.csv (the heat
+// map is in form_factor_heat_map.h). Each writes path + ".tmp" and renames it into place.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/patch_mesh.h"
+#include "geometry/scene.h"
+#include "solvers/matrix.h"
+
+namespace radkit {
+
+/// \brief Surface-level factors F_{S→T} = Σ_{i∈S} Σ_{j∈T} A_i F_ij / A_S, row S, column T
+/// (surfaces as in mesh.surfaceBegin). Rows of surfaces without area are zero.
+DenseMatrix<double> surfaceFormFactors(const PatchMesh& mesh, const FormFactorMatrix& f);
+
+/// \brief Writes F as Matrix Market `coordinate real general`: row i+1, column j+1, F_ij, for
+/// every stored non-zero; `comments` become `%` lines after the banner (describe the run).
+/// Values are printed with 17 significant digits (9 for float storage).
+void writeMatrixMarket(const std::string& path, const FormFactorMatrix& f,
+                       const std::vector<std::string>& comments);
+
+/// \brief Writes `from,to,F` for every ordered pair of surfaces (names quoted when needed).
+/// \param surfaceNames one name per surface of the mesh (see surfaceNames()).
+void writeSurfaceFormFactors(const std::string& path, const PatchMesh& mesh,
+                             const std::vector<std::string>& surfaceNames,
+                             const FormFactorMatrix& f);
+
+/// \brief The names of a scene's surfaces, in order.
+std::vector<std::string> surfaceNames(const Scene& scene);
+
+
+}  // namespace radkit

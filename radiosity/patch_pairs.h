@@ -1,0 +1,51 @@
+// Per-patch data the form-factor methods read in their inner loops, and the cheap geometric
+// relations between two patches (facing, coplanar, overlapping).
+#pragma once
+
+#include <vector>
+
+#include "geometry/patch_mesh.h"
+
+namespace radkit {
+
+/// One patch, copied out of the PatchMesh into a compact record.
+struct PatchInfo {
+  Vec3 v[4];
+  int count = 0;
+  Vec3 normal;
+  Vec3 centroid;
+  double area = 0;
+  double planeOffset = 0;  ///< n·p for points p in the plane
+  Bounds3 bounds;
+  Vec3 sphereCentre;        ///< bounding sphere (centroid, farthest vertex)
+  double sphereRadius = 0;
+  double split = 1;         ///< patchSplit(): area share of triangle (0,1,2)
+  int surface = -1;
+
+  /// Signed distance of p from the patch plane (positive on the front side).
+  double height(const Vec3& p) const { return dot(normal, p) - planeOffset; }
+};
+
+/// The patch table and the tolerance used for "on the plane" decisions.
+class PatchTable {
+ public:
+  explicit PatchTable(const PatchMesh& mesh);
+  int size() const { return static_cast<int>(m_patches.size()); }
+  const PatchInfo& operator[](int i) const { return m_patches[i]; }
+  /// Distances below this count as "on the plane": 1e-9 of the scene extent.
+  double planeTolerance() const { return m_tolerance; }
+
+  /// \brief True when some part of b lies strictly in front of a and some part of a strictly
+  /// in front of b: only then can F_ab be non-zero (cos⁺ on both ends).
+  bool facing(int a, int b) const;
+  /// \brief True when both patches lie in one plane (either orientation).
+  bool coplanar(int a, int b) const;
+  /// \brief Area shared by two coplanar patches (0 when they merely touch).
+  double overlapArea(int a, int b) const;
+
+ private:
+  std::vector<PatchInfo> m_patches;
+  double m_tolerance = 0;
+};
+
+}  // namespace radkit

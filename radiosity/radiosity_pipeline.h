@@ -1,0 +1,70 @@
+// The radiosity pipeline as one call: mesh, ray scene, form factors, solvers, results.
+// `radkit run`, `radkit solvers` and lab exercises all go through it.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/patch_mesh.h"
+#include "geometry/ray_scene.h"
+#include "geometry/scene.h"
+#include "geometry/subdivision.h"
+#include "radiosity/form_factors.h"
+#include "radiosity/radiosity_solution.h"
+#include "solvers/solver.h"
+
+namespace radkit {
+
+/// One solver to run: a registry name and its parameters ("omega=1.2").
+struct SolverChoice {
+  std::string name = "gauss-seidel";
+  std::string parameters;
+};
+
+struct PipelineSettings {
+  SubdivisionSettings mesh;
+  FormFactorSettings formFactors;
+  /// Each runs from B = E; the first is "the" solution. None: stop after the form factors.
+  std::vector<SolverChoice> solvers{SolverChoice{}};
+  SolverSettings stopping;
+};
+
+/// Progress reports: a stage name and the fraction done (0..1), or a message line.
+struct PipelineLog {
+  std::function<void(const std::string& stage, double fraction)> progress;
+  std::function<void(const std::string& line)> message;
+};
+
+/// Wall seconds per stage, in pipeline order.
+struct StageSeconds {
+  double mesh = 0, rayScene = 0, formFactors = 0, solve = 0, results = 0;
+};
+
+struct PipelineResult {
+  PatchMesh mesh;
+  std::unique_ptr<RayScene> rays;
+  std::unique_ptr<FormFactorResult> formFactors;  ///< stable address: `system` points into it
+  RadiositySystem system;
+  std::vector<SolveResult> solves;
+  std::vector<Vec3> radiosity;   ///< the first solver's B per patch
+  std::vector<Vec3> irradiance;  ///< H = F B
+  std::vector<SurfaceResult> surfaces;
+  EnergyBalance energy;
+  StageSeconds seconds;
+};
+
+/// \brief Runs every stage on an already loaded scene. Throws std::invalid_argument for bad
+/// settings (unknown solver, K = 0), MemoryBudgetError when F fits no storage.
+PipelineResult runPipeline(const Scene& scene, const PipelineSettings& settings, const PipelineLog& log = {});
+
+/// \brief Solves one system with one solver from B = E, reporting progress after each step.
+SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system, const SolverSettings& stopping,
+                      const PipelineLog& log = {});
+
+/// \brief Parses "jacobi,sor:omega=1.2,southwell" (parameters after ':', ';'-separated
+/// key=value pairs) into choices; names are checked against the solver registry.
+std::vector<SolverChoice> parseSolverList(const std::string& text);
+
+}  // namespace radkit

@@ -1,0 +1,57 @@
+// From a meshed scene and its form factors to the radiosity system, and from a solution to
+// what users read: per-surface radiosity, irradiance, photometric units and energy balance.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/patch_mesh.h"
+#include "geometry/scene.h"
+#include "solvers/radiosity_system.h"
+
+namespace radkit {
+
+/// \brief B = E + ρFB for the patches: areas in m² (scene units converted), ρ and E per
+/// channel from each patch's surface material. `f` must outlive the system.
+RadiositySystem makeRadiositySystem(const Scene& scene, const PatchMesh& mesh, const FormFactorMatrix& f);
+
+std::vector<Vec3> toVec3(const Channels& c);
+
+/// Irradiance H_i = Σ_j F_ij B_j (W/m²): the flux density arriving at each patch.
+std::vector<Vec3> irradiance(const FormFactorMatrix& f, const Channels& radiosity);
+
+/// Luminous efficacy used for photometric units (lm/W), as in the course's table.
+constexpr double kLumensPerWatt = 683.0;
+
+/// Area-weighted means over one named surface.
+struct SurfaceResult {
+  std::string name;
+  double area = 0;     ///< m²
+  Vec3 radiosity;      ///< W/m²
+  Vec3 irradiance;     ///< W/m²
+  double luminance = 0;    ///< cd/m²: 683 · Y(B) / π (Lambertian, L = B/π)
+  double illuminance = 0;  ///< lux: 683 · Y(H)
+};
+
+/// \brief Per-surface results; Y is the Rec. 709 luminance of the RGB triple.
+std::vector<SurfaceResult> surfaceResults(const Scene& scene, const PatchMesh& mesh,
+                                          const std::vector<Vec3>& radiosity,
+                                          const std::vector<Vec3>& irradiance);
+
+/// \brief Writes `surface,area,b_r,b_g,b_b` (+ `luminance_cd_m2,illuminance_lux` when
+/// photometric); area in scene units² as in patches.csv.
+void writeSurfacesCsv(const std::string& path, const Scene& scene, const std::vector<SurfaceResult>& results,
+                      bool photometric);
+
+/// Power bookkeeping of a solution, in W per channel. Emitted light is either absorbed
+/// (A_i(1-ρ_i)H_i) or leaves the scene (A_i B_i (1 − Σ_j F_ij)); the relative imbalance
+/// measures how far the solution and F are from conserving energy.
+struct EnergyBalance {
+  Vec3 emitted, absorbed, escaped;
+  double relativeImbalance = 0;  ///< max over channels |emitted − absorbed − escaped| / emitted
+};
+
+EnergyBalance energyBalance(const Scene& scene, const PatchMesh& mesh, const FormFactorMatrix& f,
+                            const std::vector<Vec3>& radiosity, const std::vector<Vec3>& irradiance);
+
+}  // namespace radkit

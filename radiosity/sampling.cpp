@@ -1,0 +1,103 @@
+// Sampling warps: each maps [0,1)² onto its domain with the density stated in sampling.h.
+#include "radiosity/sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace radkit {
+
+namespace {
+constexpr std::uint64_t kGolden = 0x9E3779B97F4A7C15ull;
+}
+
+std::uint64_t splitMix64(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+Rng::Rng(std::uint64_t seed, std::uint64_t a, std::uint64_t b)
+    : m_state(splitMix64(splitMix64(splitMix64(seed + kGolden) ^ a) + kGolden * (b + 1))) {}
+
+std::uint64_t Rng::nextBits() {
+  m_state += kGolden;
+  return splitMix64(m_state);
+}
+
+double Rng::uniform() { return double(nextBits() >> 11) * 0x1.0p-53; }
+
+void latinHypercube(int K, int dims, Rng& rng, std::vector<double>& out,
+                    std::vector<int>& scratch) {
+  out.resize(static_cast<std::size_t>(K) * dims);
+  scratch.resize(K);
+  for (int d = 0; d < dims; ++d) {
+    for (int k = 0; k < K; ++k) scratch[k] = k;
+    for (int k = K - 1; k > 0; --k) {  // Fisher–Yates
+      // Lemire's multiply-shift: an index in [0, k] from the high 32 bits.
+      int r = static_cast<int>(((rng.nextBits() >> 32) * std::uint64_t(k + 1)) >> 32);
+      std::swap(scratch[k], scratch[r]);
+    }
+    for (int k = 0; k < K; ++k)
+      out[static_cast<std::size_t>(k) * dims + d] = (scratch[k] + rng.uniform()) / K;
+  }
+}
+
+Frame::Frame(const Vec3& normal) : n(normal) {
+  double sign = std::copysign(1.0, n.z);
+  double a = -1.0 / (sign + n.z);
+  double b = n.x * n.y * a;
+  s = {1 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+  t = {b, sign + n.y * n.y * a, -n.y};
+}
+
+Vec3 sampleCosineHemisphere(double u0, double u1) {
+  // Uniform on the unit disk (r = √u0, φ = 2πu1), projected up: density cos θ/π (Malley).
+  double r = std::sqrt(u0), phi = 2 * M_PI * u1;
+  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u0))};
+}
+
+double cosineHemispherePdf(const Vec3& local) { return local.z > 0 ? local.z / M_PI : 0.0; }
+
+void invertCosineHemisphereSample(const Vec3& local, double& u0, double& u1) {
+  u0 = local.x * local.x + local.y * local.y;
+  double phi = std::atan2(local.y, local.x);
+  if (phi < 0) phi += 2 * M_PI;
+  u1 = phi / (2 * M_PI);
+}
+
+Vec3 sampleUniformTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u0, double u1) {
+  double su = std::sqrt(u0);
+  double b0 = 1 - su, b1 = u1 * su;
+  return a * b0 + b * b1 + c * (1 - b0 - b1);
+}
+
+void invertUniformTriangleSample(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p,
+                                 double& u0, double& u1) {
+  // Barycentrics of p by area ratios, then u0 = (1 − b0)², u1 = b1/(1 − b0).
+  Vec3 normal = cross(b - a, c - a);
+  double area2 = dot(normal, normal);
+  double b0 = dot(cross(b - p, c - p), normal) / area2;
+  double b1 = dot(cross(c - p, a - p), normal) / area2;
+  u0 = (1 - b0) * (1 - b0);
+  u1 = b0 < 1 ? b1 / (1 - b0) : 0.0;
+}
+
+double patchSplit(const Vec3* v, int count) {
+  if (count == 3) return 1.0;
+  double a0 = length(cross(v[1] - v[0], v[2] - v[0]));
+  double a1 = length(cross(v[2] - v[0], v[3] - v[0]));
+  return a0 / (a0 + a1);
+}
+
+Vec3 samplePatchUniform(const Vec3* v, int count, double u0, double u1) {
+  return samplePatchUniform(v, count, patchSplit(v, count), u0, u1);
+}
+
+Vec3 samplePatchUniform(const Vec3* v, int count, double split, double u0, double u1) {
+  if (count == 3 || split >= 1) return sampleUniformTriangle(v[0], v[1], v[2], u0, u1);
+  // Reusing u0 after rescaling keeps the Latin-hypercube stratification of the input.
+  if (u0 < split) return sampleUniformTriangle(v[0], v[1], v[2], u0 / split, u1);
+  return sampleUniformTriangle(v[0], v[2], v[3], std::min((u0 - split) / (1 - split), 1.0), u1);
+}
+
+}  // namespace radkit

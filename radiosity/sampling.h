@@ -1,0 +1,66 @@
+// Random streams and sampling warps for the form-factor estimators. Every warp has its pdf
+// beside it and, where cheap, its inverse (pbrt-v4 util/sampling.h, Nori warp.h).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/vec3.h"
+
+namespace radkit {
+
+/// SplitMix64 finaliser (Steele, Lea & Flood 2014): a bijective 64-bit mixer.
+std::uint64_t splitMix64(std::uint64_t z);
+
+/// A counter-based random stream: output k is splitMix64(key + k·golden). Streams keyed by
+/// (seed, i, j) give the same numbers whatever thread computes them.
+class Rng {
+ public:
+  /// \brief Stream for the ordered key (seed, a, b).
+  Rng(std::uint64_t seed, std::uint64_t a, std::uint64_t b);
+  std::uint64_t nextBits();
+  /// \brief Uniform double in [0, 1) with 53 random bits.
+  double uniform();
+
+ private:
+  std::uint64_t m_state;
+};
+
+/// \brief Latin-hypercube samples: K points in [0,1)^dims, each dimension stratified into K
+/// intervals (one point each) and randomly permuted independently. out[k·dims + d].
+void latinHypercube(int K, int dims, Rng& rng, std::vector<double>& out,
+                    std::vector<int>& scratch);
+
+/// Orthonormal frame around a unit normal (Duff et al. 2017, branchless).
+struct Frame {
+  Vec3 s, t, n;
+  explicit Frame(const Vec3& normal);
+  Vec3 toWorld(const Vec3& local) const { return s * local.x + t * local.y + n * local.z; }
+  Vec3 toLocal(const Vec3& w) const { return {dot(w, s), dot(w, t), dot(w, n)}; }
+};
+
+/// \brief Cosine-weighted direction on the hemisphere z > 0 (polar map of the unit disk,
+/// lifted by Malley's method). u in [0,1)².
+Vec3 sampleCosineHemisphere(double u0, double u1);
+/// \brief Density per steradian of sampleCosineHemisphere: cos θ / π (0 below the horizon).
+double cosineHemispherePdf(const Vec3& local);
+/// \brief Inverse of sampleCosineHemisphere: the (u0, u1) that produce the direction.
+void invertCosineHemisphereSample(const Vec3& local, double& u0, double& u1);
+
+/// \brief Uniform point on triangle abc: barycentrics (1−√u0, u1√u0).
+Vec3 sampleUniformTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u0, double u1);
+/// \brief Inverse of sampleUniformTriangle for a point p in the triangle.
+void invertUniformTriangleSample(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p,
+                                 double& u0, double& u1);
+
+/// \brief Uniform point on a planar convex patch (triangle or quad; a quad is split into the
+/// triangles (0,1,2) and (0,2,3), chosen by u0 in proportion to area). Density 1/area.
+Vec3 samplePatchUniform(const Vec3* v, int count, double u0, double u1);
+/// \brief The same with the first triangle's share of the area precomputed (patchSplit).
+Vec3 samplePatchUniform(const Vec3* v, int count, double split, double u0, double u1);
+/// \brief Area of triangle (0,1,2) over the patch area (1 for triangles).
+double patchSplit(const Vec3* v, int count);
+/// \brief Density per unit area of samplePatchUniform: 1/area on the patch.
+inline double patchUniformPdf(double area) { return 1.0 / area; }
+
+}  // namespace radkit
