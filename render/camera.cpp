@@ -25,6 +25,17 @@ Vec3 PinholeCamera::direction(double x, double y) const {
   return normalize(m_forward + m_right * sx + m_up * sy);
 }
 
+bool PinholeCamera::project(const Vec3& point, double& x, double& y) const {
+  Vec3 d = point - m_origin;
+  double depth = dot(d, m_forward);
+  if (depth <= 0) return false;
+  double aspect = double(m_width) / m_height;
+  double sx = dot(d, m_right) / depth, sy = dot(d, m_up) / depth;
+  x = (sx / (m_tanHalfFov * aspect) + 1) * m_width / 2;
+  y = (1 - sy / m_tanHalfFov) * m_height / 2;
+  return true;
+}
+
 Camera PinholeCamera::framing(const Bounds3& b) {
   Camera c;
   Vec3 centre = (b.lo + b.hi) * 0.5;

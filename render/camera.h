@@ -13,6 +13,9 @@ class PinholeCamera {
 
   /// Unit direction through image point (x, y) in pixels, (0, 0) the top-left corner.
   Vec3 direction(double x, double y) const;
+  /// Inverse of direction(): the image point (x, y) where `point` appears; false when the
+  /// point is behind the camera.
+  bool project(const Vec3& point, double& x, double& y) const;
   const Vec3& origin() const { return m_origin; }
   int width() const { return m_width; }
   int height() const { return m_height; }

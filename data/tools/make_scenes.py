@@ -76,15 +76,15 @@ def cornell(name, blocks):
 dump("cornell-box.json", cornell("cornell-box", True))
 dump("cornell-box-empty.json", cornell("cornell-box-empty", False))
 
-# ---- Unit cube seen from inside (normals inward).
+# ---- Unit cube seen from inside: each face counter-clockwise seen from the centre.
 def cube_faces():
     return {
-        "bottom": quad((0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)),
-        "top": quad((0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)),
-        "front": quad((0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)),
-        "back": quad((0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0)),
-        "left": quad((0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0)),
-        "right": quad((1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)),
+        "bottom": quad((0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)),
+        "top": quad((0, 0, 1), (0, 1, 1), (1, 1, 1), (1, 0, 1)),
+        "front": quad((0, 0, 0), (0, 0, 1), (1, 0, 1), (1, 0, 0)),
+        "back": quad((0, 1, 0), (1, 1, 0), (1, 1, 1), (0, 1, 1)),
+        "left": quad((0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)),
+        "right": quad((1, 0, 0), (1, 0, 1), (1, 1, 1), (1, 1, 0)),
     }
 
 dump("cube-one-emitter.json", {

@@ -42,6 +42,23 @@ TEST(SceneLoader, EveryDataSceneLoads) {
   }
 }
 
+TEST(SceneLoader, EnclosuresFaceInward) {
+  // Every face of the closed and open boxes must face the scene's centre: an outward face
+  // sees nothing, and its form factors are all zero.
+  for (const char* file : {"cornell-box-empty.json", "cube-one-emitter.json", "furnace.json", "sphere-interior.json"}) {
+    SCOPED_TRACE(file);
+    Scene scene = loadScene(dataPath(file));
+    Bounds3 b = scene.bounds();
+    Vec3 centre = (b.lo + b.hi) * 0.5;
+    for (const Surface& s : scene.surfaces)
+      for (const Face& f : s.faces) {
+        const auto& v = s.vertices;
+        Vec3 n = cross(v[f.vertices[1]] - v[f.vertices[0]], v[f.vertices[2]] - v[f.vertices[0]]);
+        EXPECT_GT(dot(n, centre - v[f.vertices[0]]), 0) << s.name;
+      }
+  }
+}
+
 TEST(SceneLoader, CornellBoxAsMeasured) {
   LoadReport report;
   Scene scene = loadScene(dataPath("cornell-box.json"), &report);
