@@ -32,7 +32,7 @@ void writePatchesCsv(const std::string& path, const Scene& scene, const PatchMes
     o << i << ',' << csvField(scene.surfaces[p.surface].name) << ',' << p.area;
     writeTriple(o, p.centroid);
     writeTriple(o, p.normal);
-    writeTriple(o, m.reflectance);
+    writeTriple(o, m.diffuseAlbedo());
     writeTriple(o, m.emission);
     writeTriple(o, radiosity ? (*radiosity)[i] : Vec3{});
     o << '\n';
@@ -74,7 +74,7 @@ void writePatchesVtp(const std::string& path, const Scene& scene, const PatchMes
   auto material = [&](int i) -> const Material& {
     return scene.materials[scene.surfaces[mesh.patches[i].surface].material];
   };
-  triples("reflectance", [&](int i) { return material(i).reflectance; });
+  triples("reflectance", [&](int i) { return material(i).diffuseAlbedo(); });
   triples("emission", [&](int i) { return material(i).emission; });
   if (radiosity) triples("radiosity", [&](int i) { return (*radiosity)[i]; });
   o << "</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";

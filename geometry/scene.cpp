@@ -2,6 +2,25 @@
 
 namespace radkit {
 
+Vec3 Material::diffuseAlbedo() const {
+  switch (brdf) {
+    case BrdfModel::Lambert:
+    case BrdfModel::Phong: return reflectance;
+    case BrdfModel::CookTorrance: return reflectance * (1 - metallic);
+    default: return {0, 0, 0};
+  }
+}
+
+const char* brdfName(BrdfModel model) {
+  switch (model) {
+    case BrdfModel::Lambert: return "lambert";
+    case BrdfModel::Phong: return "phong";
+    case BrdfModel::CookTorrance: return "cook-torrance";
+    case BrdfModel::Mirror: return "mirror";
+    default: return "glass";
+  }
+}
+
 Bounds3 Scene::bounds() const {
   Bounds3 b;
   for (const Surface& s : surfaces)

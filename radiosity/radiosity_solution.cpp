@@ -32,7 +32,7 @@ RadiositySystem makeRadiositySystem(const Scene& scene, const PatchMesh& mesh, c
     s.area[i] = p.area * m2;
     const Material& m = materialOf(scene, p);
     for (int c = 0; c < 3; ++c) {
-      s.reflectance[c][i] = m.reflectance[c];
+      s.reflectance[c][i] = m.diffuseAlbedo()[c];  // radiosity sees the diffuse part only
       s.emission[c][i] = m.emission[c];
     }
   }
@@ -105,7 +105,7 @@ EnergyBalance energyBalance(const Scene& scene, const PatchMesh& mesh, const For
     const Material& m = materialOf(scene, p);
     double a = p.area * m2;
     e.emitted += m.emission * a;
-    e.absorbed += mul(Vec3{1, 1, 1} - m.reflectance, h[i]) * a;
+    e.absorbed += mul(Vec3{1, 1, 1} - m.diffuseAlbedo(), h[i]) * a;
     e.escaped += b[i] * (a * std::max(0.0, 1 - rows[i]));
   }
   for (int c = 0; c < 3; ++c)

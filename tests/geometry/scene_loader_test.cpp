@@ -81,6 +81,36 @@ TEST(SceneLoader, CornellBoxAsMeasured) {
   EXPECT_NE(report.warnings[0].find("not planar"), std::string::npos);
 }
 
+TEST(SceneLoader, MaterialModels) {
+  test::TempDir dir;
+  std::string scene = dir.file("s.json", R"({"materials": {
+      "plastic": {"brdf": "phong", "kd": [0.5, 0.4, 0.3], "ks": [0.2, 0.2, 0.2], "shininess": 50},
+      "gold": {"brdf": "cook-torrance", "base_color": [0.9, 0.7, 0.3], "metallic": 1, "roughness": 0.3},
+      "ceramic": {"brdf": "cook-torrance", "base_color": [0.8, 0.8, 0.8], "ior": 1.5},
+      "glass": {"brdf": "glass", "ior": 1.5},
+      "mirror": {"brdf": "mirror"},
+      "lamp": {"emission": [1, 1, 1]}},
+    "surfaces": [{"name": "a", "material": "lamp", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})");
+  Scene s = loadScene(scene);
+  const Material& plastic = s.materials[s.findMaterial("plastic")];
+  EXPECT_EQ(plastic.brdf, BrdfModel::Phong);
+  EXPECT_EQ(plastic.diffuseAlbedo(), (Vec3{0.5, 0.4, 0.3}));
+  EXPECT_EQ(plastic.shininess, 50);
+  EXPECT_EQ(s.materials[s.findMaterial("gold")].diffuseAlbedo(), (Vec3{0, 0, 0}));  // metals have no diffuse part
+  EXPECT_NEAR(s.materials[s.findMaterial("ceramic")].f0.x, 0.04, 1e-15);           // ((1.5-1)/(1.5+1))²
+  EXPECT_EQ(s.materials[s.findMaterial("glass")].diffuseAlbedo(), (Vec3{0, 0, 0}));
+  EXPECT_EQ(s.materials[s.findMaterial("mirror")].specular, (Vec3{1, 1, 1}));
+  EXPECT_STREQ(brdfName(s.materials[s.findMaterial("gold")].brdf), "cook-torrance");
+  // A key of another model, an unknown model and a non-conserving Phong are errors.
+  for (const char* bad : {R"("brdf": "lambert", "shininess": 3)", R"("brdf": "velvet")",
+                          R"("brdf": "phong", "kd": [0.6,0.6,0.6], "ks": [0.5,0.5,0.5])",
+                          R"("brdf": "cook-torrance", "roughness": 0)"}) {
+    std::string text = std::string(R"({"materials": {"m": {"emission": [1,1,1], )") + bad +
+                       R"(}}, "surfaces": [{"name": "a", "material": "m", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})";
+    EXPECT_THROW(loadScene(dir.file("bad.json", text)), InputError) << bad;
+  }
+}
+
 TEST(SceneLoader, ObjWithMtlAsScene) {
   test::TempDir dir;
   dir.file("box.mtl", "newmtl white\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 2 3 4\n");
