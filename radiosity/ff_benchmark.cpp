@@ -12,7 +12,7 @@
 
 #include "radiosity/form_factors.h"
 #include "radiosity/patch_pairs.h"
-#include "radiosity/sampling.h"
+#include "geometry/sampling.h"
 
 namespace radkit {
 

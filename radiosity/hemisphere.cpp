@@ -11,7 +11,7 @@
 
 #include "radiosity/form_factor_method.h"
 #include "radiosity/patch_pairs.h"
-#include "radiosity/sampling.h"
+#include "geometry/sampling.h"
 
 namespace radkit {
 

@@ -10,7 +10,7 @@
 #include "radiosity/form_factor_method.h"
 #include "radiosity/occluder_culling.h"
 #include "radiosity/patch_pairs.h"
-#include "radiosity/sampling.h"
+#include "geometry/sampling.h"
 
 namespace radkit {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "radiosity/contour.h"
-#include "radiosity/sampling.h"
+#include "geometry/sampling.h"
 
 namespace radkit {
 

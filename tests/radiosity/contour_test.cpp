@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "radiosity/contour.h"
-#include "radiosity/sampling.h"
+#include "geometry/sampling.h"
 #include "test_scenes.h"
 
 namespace radkit {

@@ -155,32 +155,5 @@ double coaxialDisks(double r1, double r2, double h) {
   return 0.5 * (X - std::sqrt(X * X - 4 * (R2 / R1) * (R2 / R1)));
 }
 
-double chiSquareTail(double x, int k) {
-  // Q(a, z) with a = k/2, z = x/2: series for z < a + 1, Lentz continued fraction otherwise
-  // (Numerical Recipes §6.2).
-  double a = 0.5 * k, z = 0.5 * x;
-  if (z <= 0) return 1.0;
-  double lg = std::lgamma(a);
-  if (z < a + 1) {
-    double term = 1 / a, sum = term;
-    for (int n = 1; n < 1000 && std::fabs(term) > 1e-16 * std::fabs(sum); ++n)
-      term *= z / (a + n), sum += term;
-    return 1 - sum * std::exp(-z + a * std::log(z) - lg);
-  }
-  double b = z + 1 - a, c = 1e300, d = 1 / b, h = d;
-  for (int i = 1; i < 1000; ++i) {
-    double an = -i * (i - a);
-    b += 2;
-    d = an * d + b;
-    if (std::fabs(d) < 1e-300) d = 1e-300;
-    c = b + an / c;
-    if (std::fabs(c) < 1e-300) c = 1e-300;
-    d = 1 / d;
-    double delta = d * c;
-    h *= delta;
-    if (std::fabs(delta - 1) < 1e-15) break;
-  }
-  return std::exp(-z + a * std::log(z) - lg) * h;
-}
 
 }  // namespace radkit::test

@@ -1,6 +1,8 @@
 // Hand-built patch meshes and the closed-form oracles of shared/reference/view-factors.md.
 #pragma once
 
+#include "tests/common/statistics.h"
+
 #include <string>
 #include <vector>
 
@@ -48,7 +50,5 @@ double diskOnAxis(double R, double h);
 double diskOffAxis(double r, double h, double l);
 double coaxialDisks(double r1, double r2, double h);
 
-/// Upper tail of the χ² distribution with k degrees of freedom (regularized Γ(k/2, x/2)).
-double chiSquareTail(double x, int k);
 
 }  // namespace radkit::test

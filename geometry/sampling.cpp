@@ -1,5 +1,5 @@
 // Sampling warps: each maps [0,1)² onto its domain with the density stated in sampling.h.
-#include "radiosity/sampling.h"
+#include "geometry/sampling.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,42 +4,15 @@
 #include <cmath>
 #include <fstream>
 
-#include "radiosity/contour.h"
-#include "radiosity/sampling.h"
-#include "test_scenes.h"
+#include "geometry/sampling.h"
+#include "radiosity/contour.h"  // clipToHalfSpace: exact cell areas for the expected counts
+#include "tests/common/statistics.h"
 
 namespace radkit {
 namespace {
 // Šidák-corrected significance for the two χ² tests of this file.
-const double kAlpha = 1 - std::pow(1 - 0.01, 1.0 / 2);
+const double kAlpha = test::sidakAlpha(0.01, 2);
 
-/// Pools cells expecting < 5 into one, returns the p-value; fails on samples in zero cells.
-double chiSquarePValue(const std::vector<double>& observed, const std::vector<double>& expected,
-                       const std::string& dumpName) {
-  double chi2 = 0, pooledObs = 0, pooledExp = 0;
-  int dof = -1;
-  for (std::size_t k = 0; k < observed.size(); ++k) {
-    if (expected[k] <= 0) {
-      EXPECT_EQ(observed[k], 0) << "sample where the pdf is zero (cell " << k << ")";
-      continue;
-    }
-    if (expected[k] < 5) {
-      pooledObs += observed[k], pooledExp += expected[k];
-      continue;
-    }
-    chi2 += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
-    ++dof;
-  }
-  if (pooledExp > 0) chi2 += (pooledObs - pooledExp) * (pooledObs - pooledExp) / pooledExp, ++dof;
-  double p = test::chiSquareTail(chi2, dof);
-  if (p < kAlpha) {
-    std::ofstream dump(dumpName);
-    dump << "cell,observed,expected\n";
-    for (std::size_t k = 0; k < observed.size(); ++k)
-      dump << k << ',' << observed[k] << ',' << expected[k] << '\n';
-  }
-  return p;
-}
 }  // namespace
 
 TEST(Sampling, Construct) {
@@ -100,7 +73,7 @@ TEST(Sampling, StatisticalCosineHemisphere) {
           Vec3 w{s * std::cos(phi), s * std::sin(phi), z};
           expected[a * nphi + b] += N * cosineHemispherePdf(w) * dz * dphi / (sub * sub);
         }
-  EXPECT_GT(chiSquarePValue(observed, expected, "chi2_cosine_hemisphere.csv"), kAlpha);
+  EXPECT_GT(test::chiSquarePValue(observed, expected, "chi2_cosine_hemisphere.csv", kAlpha), kAlpha);
 }
 
 // Points on a trapezoid histogrammed on a grid over its bounding rectangle; the pdf 1/A
@@ -131,7 +104,7 @@ TEST(Sampling, StatisticalPatchArea) {
       for (int k = 1; k + 1 < m; ++k) cellArea += 0.5 * cross(poly[k] - poly[0], poly[k + 1] - poly[0]).z;
       expected[a * nx + b] = N * cellArea * patchUniformPdf(area);
     }
-  EXPECT_GT(chiSquarePValue(observed, expected, "chi2_patch_area.csv"), kAlpha);
+  EXPECT_GT(test::chiSquarePValue(observed, expected, "chi2_patch_area.csv", kAlpha), kAlpha);
 }
 
 }  // namespace radkit

@@ -1,0 +1,22 @@
+// Statistical test helpers shared by every sampler and Monte Carlo test.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace radkit::test {
+
+/// Upper tail of the χ² distribution with k degrees of freedom (regularized Γ(k/2, x/2)).
+double chiSquareTail(double x, int k);
+
+/// \brief χ² goodness of fit of histogram counts against expected counts (STYLE.md): cells
+/// expecting fewer than 5 are pooled, a sample in a cell of zero expectation fails the test
+/// (gtest failure), and when p < alpha both tables are written to `dumpName` as CSV.
+/// \return the p-value.
+double chiSquarePValue(const std::vector<double>& observed, const std::vector<double>& expected,
+                       const std::string& dumpName, double alpha);
+
+/// Šidák-corrected level for one of m tests at family level alpha: 1 − (1 − α)^(1/m).
+double sidakAlpha(double alpha, int tests);
+
+}  // namespace radkit::test
