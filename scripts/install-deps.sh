@@ -8,7 +8,7 @@ packages=(
   libcgal-dev libopenmesh-dev libembree-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libstb-dev
   libgtest-dev libbenchmark-dev
-  libvtk9-dev xvfb xauth libplplot-dev plplot-driver-cairo
+  libvtk9-dev xvfb xauth libplplot-dev plplot-driver-cairo libnanoflann-dev
 )
 
 missing=()

@@ -3,4 +3,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
-./build/apps/radkit mesh data/cornell-box.json --patches 4000 --out out/cornell-box
+./build/apps/radkit run --out out/cornell-box
