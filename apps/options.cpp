@@ -71,7 +71,7 @@ void addSolverOptions(CLI::App& c, SolverOptions& o, const std::string& defaultS
   std::string help;
   for (const std::string& line : solverHelp()) help += "\n  " + line;
   c.add_option("--solvers,--solver", o.solvers,
-               "Comma-separated solvers, parameters after ':' (sor:omega=1.2):" + help)
+               "Comma-separated solvers, parameters after ':' separated by ';' (sor:omega=1.2;power_iterations=40):" + help)
       ->capture_default_str();
   c.add_option("--tol", o.stopping.tolerance, "Stop at relative residual ||E + rho F B - B|| / ||E|| <= tol")
       ->check(CLI::PositiveNumber)
