@@ -31,7 +31,12 @@ PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
 /// Prints a right-aligned "label: value" line to stdout.
 void printField(const std::string& label, const std::string& value);
 
+/// Runs `radkit run SCENE` with default settings into outDir (empty: out/<scene name>);
+/// returns the folder written.
+std::string runDefaultJob(const std::string& scenePath, const std::string& outDir);
+
 void addMeshCommand(CLI::App& app);
+void addViewCommand(CLI::App& app);
 void addPipelineCommands(CLI::App& app);
 void addBenchCommands(CLI::App& app);
 

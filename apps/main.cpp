@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   radkit::app::addMeshCommand(app);
   radkit::app::addPipelineCommands(app);
   radkit::app::addBenchCommands(app);
+  radkit::app::addViewCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

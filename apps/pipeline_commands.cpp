@@ -183,6 +183,15 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
 
 }  // namespace
 
+std::string runDefaultJob(const std::string& scenePath, const std::string& outDir) {
+  PipelineCommand cmd;
+  cmd.job = Job::Run;
+  cmd.mesh.scene = scenePath;
+  cmd.out = outDir;
+  runJob(cmd);
+  return cmd.out;
+}
+
 void addPipelineCommands(CLI::App& app) {
   addPipelineCommand(app, Job::FormFactors, "formfactors",
                      "Compute the form-factor matrix: formfactors.mtx, surface_formfactors.csv, formfactors.png, report.json");

@@ -1,0 +1,135 @@
+// Headless screenshots and picking. These need X: they skip without a display, and the
+// `viewer_screenshots` ctest entry runs them under xvfb-run with RADKIT_REQUIRE_DISPLAY=1.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+
+#include "tests/common/test_util.h"
+#include "tests/viewer/test_run.h"
+#include "util/canvas.h"
+#include "viewer/viewer.h"
+
+namespace radkit::viewer {
+namespace {
+
+class ViewerDisplay : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display) {
+      if (std::getenv("RADKIT_REQUIRE_DISPLAY")) FAIL() << "RADKIT_REQUIRE_DISPLAY is set but DISPLAY is not";
+      GTEST_SKIP() << "no X display (ctest runs these under xvfb-run as viewer_screenshots)";
+    }
+    test::writeTestRun(folder());
+  }
+  std::string folder() const { return m_dir.path(""); }
+
+  /// Renders `mode` at w × h and reads the PNG back.
+  Canvas shot(const std::string& mode, int w, int h, bool smooth = false) {
+    ViewerOptions o;
+    o.runFolder = folder();
+    o.screenshot = m_dir.path(mode.substr(0, mode.find(':')) + (smooth ? "-smooth" : "") + ".png");
+    o.mode = mode;
+    o.width = w;
+    o.height = h;
+    o.smooth = smooth;
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_EQ(runViewer(o), 0);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 5.0) << mode << " took " << seconds << " s";
+    EXPECT_FALSE(std::filesystem::exists(o.screenshot + ".tmp"));
+    return readPng(o.screenshot);
+  }
+
+  radkit::test::TempDir m_dir;
+};
+
+struct ImageStats {
+  std::size_t distinctColours = 0;
+  double differentFromCorner = 0;  ///< fraction of pixels unlike the top-left... background pixel
+};
+
+ImageStats stats(const Canvas& c) {
+  std::set<int> colours;
+  const Rgb8 bg = c.at(c.width() - 1, c.height() - 1);
+  std::size_t different = 0;
+  for (int y = 0; y < c.height(); ++y)
+    for (int x = 0; x < c.width(); ++x) {
+      const Rgb8 p = c.at(x, y);
+      colours.insert(p.r << 16 | p.g << 8 | p.b);
+      different += std::abs(p.r - bg.r) + std::abs(p.g - bg.g) + std::abs(p.b - bg.b) > 24;
+    }
+  return {colours.size(), double(different) / (double(c.width()) * c.height())};
+}
+
+/// Mean colour over a square of side 2r around (x, y).
+Vec3 meanColour(const Canvas& c, double x, double y, int r = 4) {
+  Vec3 sum;
+  int n = 0;
+  for (int j = int(y) - r; j <= int(y) + r; ++j)
+    for (int i = int(x) - r; i <= int(x) + r; ++i, ++n)
+      sum += Vec3{double(c.at(i, j).r), double(c.at(i, j).g), double(c.at(i, j).b)};
+  return sum / n;
+}
+
+TEST_F(ViewerDisplay, EveryModeFillsAnImageOfTheRequestedSize) {
+  const int w = 333, h = 222;  // odd sizes: exactly these, not a power of two or the screen
+  for (const std::string mode : {"radiosity", "false-colour", "formfactors-row:0", "matrix", "convergence"}) {
+    const Canvas c = shot(mode, w, h);
+    ASSERT_EQ(c.width(), w) << mode;
+    ASSERT_EQ(c.height(), h) << mode;
+    const ImageStats s = stats(c);
+    EXPECT_GT(s.distinctColours, 20u) << mode;  // text, colour bar, patches: not a flat fill
+    EXPECT_GT(s.differentFromCorner, 0.05) << mode;
+  }
+}
+
+TEST_F(ViewerDisplay, RadiosityShowsRedLeftGreenRightAndBackground) {
+  const int w = 320, h = 240;
+  const Canvas c = shot("radiosity", w, h);
+  double x, y;
+  test::projectToPixel({-0.5, -0.25, 0}, w, h, x, y);
+  const Vec3 left = meanColour(c, x, y);
+  test::projectToPixel({0.5, -0.25, 0}, w, h, x, y);
+  const Vec3 right = meanColour(c, x, y);
+  test::projectToPixel({0, -0.9, 0}, w, h, x, y);
+  const Vec3 below = meanColour(c, x, y);
+  EXPECT_GT(left.x, 2 * left.y) << "left wall should be red";
+  EXPECT_GT(right.y, 2 * right.x) << "right wall should be green";
+  EXPECT_LT(below.x + below.y + below.z, 3 * 60) << "below the walls is dark background";
+  // Patch 0 (B_r 0.9) is brighter than patch 1 (B_r 0.6) in flat shading.
+  test::projectToPixel({-0.5, 0.25, 0}, w, h, x, y);
+  EXPECT_GT(left.x, meanColour(c, x, y).x + 10);
+}
+
+TEST_F(ViewerDisplay, SmoothShadingBlendsAcrossTheSharedEdge) {
+  const int w = 320, h = 240;
+  const Canvas flat = shot("radiosity", w, h), smooth = shot("radiosity", w, h, true);
+  double x, yLow, yHigh;
+  test::projectToPixel({-0.5, -0.02, 0}, w, h, x, yLow);  // just below the shared edge y = 0
+  test::projectToPixel({-0.5, 0.02, 0}, w, h, x, yHigh);
+  const double flatJump = meanColour(flat, x, yLow, 1).x - meanColour(flat, x, yHigh, 1).x;
+  const double smoothJump = meanColour(smooth, x, yLow, 1).x - meanColour(smooth, x, yHigh, 1).x;
+  EXPECT_GT(flatJump, 10);
+  EXPECT_LT(std::abs(smoothJump), flatJump / 2);
+}
+
+TEST_F(ViewerDisplay, PickReturnsThePatchUnderThePixel) {
+  const int w = 320, h = 240;
+  double x, y;
+  test::projectToPixel({-0.5, -0.25, 0}, w, h, x, y);
+  EXPECT_EQ(pickPatchAt(folder(), w, h, int(x), int(y)), 0);
+  test::projectToPixel({-0.5, 0.25, 0}, w, h, x, y);
+  EXPECT_EQ(pickPatchAt(folder(), w, h, int(x), int(y)), 1);
+  test::projectToPixel({0.5, 0.25, 0}, w, h, x, y);
+  EXPECT_EQ(pickPatchAt(folder(), w, h, int(x), int(y)), 2);
+  test::projectToPixel({0, 0, 0}, w, h, x, y);  // the gap between the walls
+  EXPECT_EQ(pickPatchAt(folder(), w, h, int(x), int(y)), -1);
+  EXPECT_EQ(pickPatchAt(folder(), w, h, 2, 2), -1);
+}
+
+}  // namespace
+}  // namespace radkit::viewer

@@ -1,0 +1,269 @@
+// Text parsers of a run folder: report.json, formfactors.mtx, convergence.csv, surfaces.csv.
+#include "viewer/run_folder.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "geometry/scene_loader.h"
+
+namespace radkit::viewer {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw InputError(path + ": " + what); }
+
+[[noreturn]] void failLine(const std::string& path, long long line, const std::string& what) {
+  fail(path + ":" + std::to_string(line), what);
+}
+
+std::ifstream openOrFail(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot be opened (missing or unreadable); write it with `radkit run --out DIR`");
+  return in;
+}
+
+/// Splits one CSV line, honouring "quoted, fields" with "" for a quote (RFC 4180).
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    char c = line[k];
+    if (quoted && c == '"' && k + 1 < line.size() && line[k + 1] == '"') {
+      fields.back() += '"';
+      ++k;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.emplace_back();
+    } else if (c != '\r') {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+double toNumber(const std::string& text, const std::string& path, long long line, const std::string& column) {
+  char* end = nullptr;
+  errno = 0;
+  double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || errno == ERANGE)
+    failLine(path, line, "column '" + column + "': '" + text + "' is not a number");
+  return v;
+}
+
+/// A CSV file as a header and rows of fields, each row checked to have the header's width.
+struct CsvTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+
+  int column(const std::string& name, const std::string& path) const {
+    auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end()) fail(path, "header has no column '" + name + "'");
+    return static_cast<int>(it - header.begin());
+  }
+};
+
+CsvTable readCsv(const std::string& path) {
+  std::ifstream in = openOrFail(path);
+  CsvTable t;
+  std::string line;
+  if (!std::getline(in, line)) fail(path, "is empty (expected a header line)");
+  t.header = splitCsv(line);
+  for (long long n = 2; std::getline(in, line); ++n) {
+    if (line.empty() || line == "\r") continue;
+    t.rows.push_back(splitCsv(line));
+    if (t.rows.back().size() != t.header.size())
+      failLine(path, n,
+               std::to_string(t.rows.back().size()) + " fields, header has " + std::to_string(t.header.size()));
+  }
+  return t;
+}
+
+Vec3 jsonVec3(const nlohmann::json& j, const std::string& path, const std::string& key) {
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
+    fail(path, "scene.camera." + key + " must be an array of 3 numbers");
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+}  // namespace
+
+Bounds3 PatchData::bounds() const {
+  Bounds3 b;
+  for (const Vec3& p : points) b.extend(p);
+  return b;
+}
+
+std::vector<double> FormFactorRows::row(int i) const {
+  std::vector<double> r(n, 0.0);
+  for (long long k = rowStart[i]; k < rowStart[i + 1]; ++k) r[column[k]] = value[k];
+  return r;
+}
+
+double FormFactorRows::maxValue() const { return value.empty() ? 0.0 : *std::max_element(value.begin(), value.end()); }
+
+std::string RunFolder::surfaceName(int patch) const {
+  int s = patches.surface[patch];
+  return s >= 0 && s < int(report.surfaces.size()) ? report.surfaces[s] : "#" + std::to_string(s);
+}
+
+RunReport readRunReport(const std::string& path) {
+  std::ifstream in = openOrFail(path);
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const nlohmann::json::exception& e) {
+    fail(path, std::string("is not valid JSON: ") + e.what());
+  }
+  if (!j.contains("scene") || !j["scene"].is_object()) fail(path, "has no \"scene\" object");
+  const nlohmann::json& s = j["scene"];
+  RunReport r;
+  try {
+    r.sceneName = s.value("name", "");
+    r.sceneFile = s.value("file", "");
+    r.units = s.value("units", "");
+    r.surfaces = s.value("surfaces", std::vector<std::string>{});
+  } catch (const nlohmann::json::exception& e) {
+    fail(path, std::string("scene: ") + e.what());
+  }
+  if (s.contains("camera") && !s["camera"].is_null()) {
+    const nlohmann::json& c = s["camera"];
+    Camera cam;
+    cam.position = jsonVec3(c.value("position", nlohmann::json()), path, "position");
+    cam.lookAt = jsonVec3(c.value("look_at", nlohmann::json()), path, "look_at");
+    cam.up = jsonVec3(c.value("up", nlohmann::json()), path, "up");
+    if (c.contains("fov_deg") && c["fov_deg"].is_number()) cam.fovDeg = c["fov_deg"].get<double>();
+    if (!(cam.fovDeg > 0 && cam.fovDeg < 180)) fail(path, "scene.camera.fov_deg must be in (0, 180)");
+    r.camera = cam;
+  }
+  return r;
+}
+
+FormFactorRows readFormFactorsMtx(const std::string& path) {
+  std::ifstream in = openOrFail(path);
+  std::string line;
+  long long lineNo = 1;
+  if (!std::getline(in, line) || line.rfind("%%MatrixMarket matrix coordinate real general", 0) != 0)
+    failLine(path, 1, "expected the header '%%MatrixMarket matrix coordinate real general'");
+  while (std::getline(in, line) && (line.empty() || line[0] == '%')) ++lineNo;
+  ++lineNo;
+  long long rows = 0, cols = 0, entries = 0;
+  if (!(std::istringstream(line) >> rows >> cols >> entries) || rows != cols || rows <= 0 || entries < 0)
+    failLine(path, lineNo, "expected the size line 'n n nonzeros' of a square matrix");
+  std::vector<int> row(entries), col(entries);
+  std::vector<double> val(entries);
+  for (long long k = 0; k < entries; ++k) {
+    ++lineNo;
+    if (!std::getline(in, line))
+      failLine(path, lineNo, "ends after " + std::to_string(k) + " of " + std::to_string(entries) + " entries");
+    const char* p = line.c_str();
+    char* end = nullptr;
+    long i = std::strtol(p, &end, 10);
+    long jj = std::strtol(end, &end, 10);
+    val[k] = std::strtod(end, &end);
+    if (i < 1 || i > rows || jj < 1 || jj > rows || !std::isfinite(val[k]))
+      failLine(path, lineNo, "expected 'row column value' with 1 <= row, column <= " + std::to_string(rows));
+    row[k] = int(i - 1);
+    col[k] = int(jj - 1);
+  }
+  // Counting sort by row: the writer's order is not part of the contract.
+  FormFactorRows f;
+  f.n = int(rows);
+  f.rowStart.assign(rows + 1, 0);
+  for (int r : row) ++f.rowStart[r + 1];
+  for (long long r = 0; r < rows; ++r) f.rowStart[r + 1] += f.rowStart[r];
+  std::vector<long long> next(f.rowStart.begin(), f.rowStart.end() - 1);
+  f.column.resize(entries);
+  f.value.resize(entries);
+  for (long long k = 0; k < entries; ++k) {
+    long long at = next[row[k]]++;
+    f.column[at] = col[k];
+    f.value[at] = val[k];
+  }
+  return f;
+}
+
+std::vector<SolverHistory> readConvergenceCsv(const std::string& path) {
+  CsvTable t = readCsv(path);
+  const int cSolver = t.column("solver", path), cIter = t.column("iteration", path);
+  const int cSec = t.column("seconds", path), cRes = t.column("residual", path);
+  const int cUnshot = t.column("unshot_power", path);
+  std::vector<SolverHistory> runs;
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    const auto& r = t.rows[k];
+    const long long line = static_cast<long long>(k) + 2;
+    int iteration = int(toNumber(r[cIter], path, line, "iteration"));
+    // A new block when the solver changes or its iteration count starts again.
+    if (runs.empty() || runs.back().solver != r[cSolver] || iteration <= runs.back().iteration.back())
+      runs.push_back(SolverHistory{r[cSolver], {}, {}, {}, {}});
+    SolverHistory& h = runs.back();
+    h.iteration.push_back(iteration);
+    h.seconds.push_back(toNumber(r[cSec], path, line, "seconds"));
+    h.residual.push_back(toNumber(r[cRes], path, line, "residual"));
+    h.unshotPower.push_back(toNumber(r[cUnshot], path, line, "unshot_power"));
+  }
+  return runs;
+}
+
+std::vector<SurfaceSummary> readSurfacesCsv(const std::string& path) {
+  CsvTable t = readCsv(path);
+  const int cName = t.column("surface", path), cArea = t.column("area", path);
+  const int cR = t.column("b_r", path), cG = t.column("b_g", path), cB = t.column("b_b", path);
+  auto optional = [&](const char* name) {
+    auto it = std::find(t.header.begin(), t.header.end(), name);
+    return it == t.header.end() ? -1 : int(it - t.header.begin());
+  };
+  const int cLum = optional("luminance_cd_m2"), cLux = optional("illuminance_lux");
+  std::vector<SurfaceSummary> out;
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    const auto& r = t.rows[k];
+    const long long line = static_cast<long long>(k) + 2;
+    SurfaceSummary s;
+    s.name = r[cName];
+    s.area = toNumber(r[cArea], path, line, "area");
+    s.radiosity = {toNumber(r[cR], path, line, "b_r"), toNumber(r[cG], path, line, "b_g"),
+                   toNumber(r[cB], path, line, "b_b")};
+    if (cLum >= 0) s.luminance = toNumber(r[cLum], path, line, "luminance_cd_m2");
+    if (cLux >= 0) s.illuminance = toNumber(r[cLux], path, line, "illuminance_lux");
+    out.push_back(s);
+  }
+  return out;
+}
+
+RunFolder readRunFolder(const std::string& folder) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(folder))
+    throw InputError(folder + ": no such run folder; create one with `radkit run --out " + folder + "`");
+  auto file = [&](const char* name) { return (fs::path(folder) / name).string(); };
+  RunFolder run;
+  run.path = folder;
+  run.report = readRunReport(file("report.json"));
+  run.patches = readPatchesVtp(file("radiosity.vtp"));
+  for (int i = 0; i < run.patches.size(); ++i)
+    if (run.patches.surface[i] < 0 || run.patches.surface[i] >= int(run.report.surfaces.size()))
+      fail(file("radiosity.vtp"), "patch " + std::to_string(i) + " has surface index " +
+                                      std::to_string(run.patches.surface[i]) + ", but report.json lists " +
+                                      std::to_string(run.report.surfaces.size()) + " surfaces");
+  if (fs::exists(file("formfactors.mtx"))) {
+    run.formFactors = readFormFactorsMtx(file("formfactors.mtx"));
+    if (run.formFactors->n != run.patches.size())
+      fail(file("formfactors.mtx"), "is " + std::to_string(run.formFactors->n) + "×" +
+                                        std::to_string(run.formFactors->n) + " but radiosity.vtp has " +
+                                        std::to_string(run.patches.size()) + " patches (files of different runs?)");
+  } else {
+    run.formFactorsMissing = "no formfactors.mtx (large runs skip it: rerun with --write-matrix)";
+  }
+  if (fs::exists(file("convergence.csv")))
+    run.convergence = readConvergenceCsv(file("convergence.csv"));
+  else
+    run.convergenceMissing = "no convergence.csv in " + folder;
+  if (fs::exists(file("surfaces.csv"))) run.surfaces = readSurfacesCsv(file("surfaces.csv"));
+  return run;
+}
+
+}  // namespace radkit::viewer

@@ -1,0 +1,93 @@
+// RunFolder: the files `radkit run` writes, read into plain structs for the viewer.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/scene.h"
+#include "geometry/vec3.h"
+
+namespace radkit::viewer {
+
+/// The patches of radiosity.vtp: shared points, polygons (3 or 4 corners) and per-patch
+/// cell data. Patch i is polygon i; all vectors indexed by patch have the same size.
+struct PatchData {
+  std::vector<Vec3> points;                ///< scene units
+  std::vector<std::vector<int>> polygons;  ///< indices into points, counter-clockwise
+  std::vector<int> surface;                ///< index into RunReport::surfaces
+  std::vector<double> area;                ///< scene units²
+  std::vector<Vec3> reflectance;           ///< ρ per RGB channel
+  std::vector<Vec3> emission;              ///< E, W/m²
+  std::vector<Vec3> radiosity;             ///< B, W/m²
+
+  int size() const { return static_cast<int>(polygons.size()); }
+  bool emits(int patch) const { return maxComponent(emission[patch]) > 0; }
+  Bounds3 bounds() const;
+};
+
+/// formfactors.mtx as compressed rows: row i holds F_ij for j = column[k],
+/// k in [rowStart[i], rowStart[i+1]).
+struct FormFactorRows {
+  int n = 0;
+  std::vector<long long> rowStart;  ///< size n + 1
+  std::vector<int> column;          ///< from 0
+  std::vector<double> value;
+
+  long long nonZeros() const { return static_cast<long long>(value.size()); }
+  /// Row i densely (n values).
+  std::vector<double> row(int i) const;
+  double maxValue() const;
+};
+
+/// One solver run's block of convergence.csv.
+struct SolverHistory {
+  std::string solver;
+  std::vector<int> iteration;
+  std::vector<double> seconds, residual, unshotPower;
+};
+
+/// One row of surfaces.csv; photometric columns are NaN when absent.
+struct SurfaceSummary {
+  std::string name;
+  double area = 0;
+  Vec3 radiosity;  ///< area-weighted mean B, W/m²
+  double luminance = NAN, illuminance = NAN;
+};
+
+/// What the viewer needs from report.json.
+struct RunReport {
+  std::string sceneName, sceneFile, units;
+  std::vector<std::string> surfaces;  ///< names in surface-index order
+  std::optional<Camera> camera;
+};
+
+/// A whole run folder. Optional files that are absent leave their member empty
+/// (with the reason in the matching `...Missing` message, for the views to show).
+struct RunFolder {
+  std::string path;
+  RunReport report;
+  PatchData patches;
+  std::optional<FormFactorRows> formFactors;
+  std::vector<SolverHistory> convergence;
+  std::vector<SurfaceSummary> surfaces;
+  std::string formFactorsMissing, convergenceMissing;
+
+  /// Name of a patch's surface ("#3" when report.json lists fewer surfaces).
+  std::string surfaceName(int patch) const;
+};
+
+/// \brief Reads radiosity.vtp and report.json (required), formfactors.mtx, convergence.csv
+/// and surfaces.csv (optional), and checks they agree (patch count, surface indices).
+/// \throws radkit::InputError naming the file, the line or element and the fix.
+RunFolder readRunFolder(const std::string& folder);
+
+/// \brief The parsers behind readRunFolder, one file each (`path` names the file in errors).
+/// readPatchesVtp (patches_vtp.cpp, through VTK's XML reader) needs every cell array above.
+PatchData readPatchesVtp(const std::string& path);
+RunReport readRunReport(const std::string& path);
+FormFactorRows readFormFactorsMtx(const std::string& path);
+std::vector<SolverHistory> readConvergenceCsv(const std::string& path);
+std::vector<SurfaceSummary> readSurfacesCsv(const std::string& path);
+
+}  // namespace radkit::viewer

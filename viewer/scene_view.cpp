@@ -1,0 +1,252 @@
+#include "viewer/scene_view.h"
+
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkProperty.h>
+#include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/camera.h"
+#include "viewer/colour_maps.h"
+
+namespace radkit::viewer {
+
+namespace {
+
+constexpr double kBackground[3] = {0.11, 0.11, 0.13};
+constexpr double kZeroColour[3] = {0.32, 0.32, 0.36};  // F_ij = 0: not seen from the picked patch
+constexpr double kAboveColour[3] = {1.0, 1.0, 1.0};    // emitters, above the false-colour range
+constexpr double kOutline[3] = {0.2, 0.95, 1.0};
+
+std::string triple(const Vec3& v) {
+  return "(" + formatNumber(v.x) + ", " + formatNumber(v.y) + ", " + formatNumber(v.z) + ")";
+}
+
+vtkSmartPointer<vtkUnsignedCharArray> colourArray(const std::vector<Vec3>& b, double exposure) {
+  auto a = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  a->SetName("colour");
+  a->SetNumberOfComponents(3);
+  a->SetNumberOfTuples(vtkIdType(b.size()));
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    auto c = trueColour(b[i], exposure);
+    a->SetTypedTuple(vtkIdType(i), c.data());
+  }
+  return a;
+}
+
+vtkSmartPointer<vtkDoubleArray> valueArray(const std::vector<double>& v) {
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName("value");
+  a->SetNumberOfValues(vtkIdType(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a->SetValue(vtkIdType(i), v[i]);
+  return a;
+}
+
+}  // namespace
+
+SceneView::SceneView(const RunFolder& run) : m_run(run) {
+  const PatchData& p = run.patches;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (const Vec3& x : p.points) points->InsertNextPoint(x.x, x.y, x.z);
+  vtkNew<vtkCellArray> polys;
+  for (const auto& poly : p.polygons) {
+    polys->InsertNextCell(vtkIdType(poly.size()));
+    for (int v : poly) polys->InsertCellPoint(v);
+  }
+  m_surface->SetPoints(points);
+  m_surface->SetPolys(polys);
+  m_autoExposure = autoExposure(p);
+
+  m_mapper->SetInputData(m_surface);
+  m_mapper->SetLookupTable(m_lut);
+  m_mapper->UseLookupTableScalarRangeOn();
+  m_mapper->InterpolateScalarsBeforeMappingOn();  // smooth false colour follows the map
+  m_actor->SetMapper(m_mapper);
+  m_actor->GetProperty()->LightingOff();  // radiosity is the shading
+  m_actor->GetProperty()->SetEdgeColor(0.05, 0.05, 0.05);
+  m_renderer->AddActor(m_actor);
+
+  m_outlineMapper->SetInputData(m_outline);
+  m_outlineActor->SetMapper(m_outlineMapper);
+  m_outlineActor->GetProperty()->SetColor(kOutline[0], kOutline[1], kOutline[2]);
+  m_outlineActor->GetProperty()->SetLineWidth(3);
+  m_outlineActor->GetProperty()->LightingOff();
+  m_outlineActor->PickableOff();
+  m_renderer->AddActor(m_outlineActor);
+
+  m_scalarBar->SetLookupTable(m_lut);
+  m_scalarBar->SetNumberOfLabels(5);
+  m_scalarBar->SetPosition(0.87, 0.1);
+  m_scalarBar->SetPosition2(0.12, 0.8);
+  m_scalarBar->SetBarRatio(0.3);
+  m_scalarBar->SetLabelFormat("%-#6.3g");
+  m_renderer->AddActor2D(m_scalarBar);
+  m_title->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  m_title->SetPosition(0.012, 0.975);
+  m_info->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  m_info->SetPosition(0.012, 0.91);
+  m_renderer->AddActor2D(m_title);
+  m_renderer->AddActor2D(m_info);
+  setFontSize(16);
+
+  m_picker->SetTolerance(0.0);
+  m_picker->PickFromListOn();
+  m_picker->AddPickList(m_actor);
+  m_renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
+  resetCamera();
+}
+
+void SceneView::setFontSize(int pixels) {
+  styleText(m_title->GetTextProperty(), pixels);
+  m_title->GetTextProperty()->SetVerticalJustificationToTop();
+  styleText(m_info->GetTextProperty(), pixels);
+  m_info->GetTextProperty()->SetVerticalJustificationToTop();
+  m_info->GetTextProperty()->SetFontFamilyToCourier();  // numbers line up
+  for (vtkTextProperty* t : {m_scalarBar->GetTitleTextProperty(), m_scalarBar->GetLabelTextProperty(),
+                             m_scalarBar->GetAnnotationTextProperty()}) {
+    styleText(t, pixels, false);
+    t->ShadowOff();
+    t->ItalicOff();
+    t->BoldOff();
+  }
+  m_scalarBar->SetUnconstrainedFontSize(true);
+}
+
+void SceneView::resetCamera() {
+  const Camera c = m_run.report.camera ? *m_run.report.camera : PinholeCamera::framing(m_run.patches.bounds());
+  vtkCamera* cam = m_renderer->GetActiveCamera();
+  cam->SetPosition(c.position.x, c.position.y, c.position.z);
+  cam->SetFocalPoint(c.lookAt.x, c.lookAt.y, c.lookAt.z);
+  cam->SetViewUp(c.up.x, c.up.y, c.up.z);
+  cam->SetViewAngle(c.fovDeg);  // vertical, as in radkit::Camera
+  cam->OrthogonalizeViewUp();
+  m_renderer->ResetCameraClippingRange();
+}
+
+void SceneView::show(const ViewSettings& s) {
+  m_actor->GetProperty()->SetEdgeVisibility(s.edges);
+  m_scalarBar->SetVisibility(s.mode != ViewMode::Radiosity);
+  if (s.mode == ViewMode::FalseColour)
+    showFalseColour(s);
+  else if (s.mode == ViewMode::FormFactorRow && m_run.formFactors && s.picked >= 0)
+    showFormFactorRow(s);
+  else
+    showTrueColour(s);
+  showOutline(s.picked);
+  m_info->SetInput(s.picked >= 0 ? patchInfo(s.picked).c_str() : "");
+  m_info->SetVisibility(s.picked >= 0);
+  m_renderer->ResetCameraClippingRange();
+}
+
+void SceneView::showTrueColour(const ViewSettings& s) {
+  m_exposureUsed = s.exposure > 0 ? s.exposure : m_autoExposure;
+  const std::vector<Vec3>& b = m_run.patches.radiosity;
+  m_surface->GetCellData()->AddArray(colourArray(b, m_exposureUsed));
+  m_surface->GetPointData()->AddArray(colourArray(pointAverage(m_run.patches, b), m_exposureUsed));
+  m_mapper->SetColorModeToDirectScalars();
+  m_mapper->SetScalarMode(s.smooth ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
+  m_mapper->SelectColorArray("colour");
+  m_scalarBar->SetVisibility(false);
+  std::string note;
+  if (s.mode == ViewMode::FormFactorRow)
+    note = m_run.formFactors ? "  [click a patch to paint its row of F]" : "  [" + m_run.formFactorsMissing + "]";
+  m_title->SetInput((m_run.report.sceneName + ": radiosity, true colour (exposure " + formatNumber(m_exposureUsed) +
+                     (s.exposure > 0 ? "" : ", auto") + ", " + (s.smooth ? "smooth" : "flat") + ")" + note)
+                        .c_str());
+}
+
+void SceneView::showFalseColour(const ViewSettings& s) {
+  std::vector<double> v(m_run.patches.size());
+  for (int i = 0; i < m_run.patches.size(); ++i)
+    v[i] = channelValue(m_run.patches.radiosity[i], s.channel, s.photometric);
+  const double hi = falseColourTop(m_run.patches, v);
+  fillLookupTable(m_lut, ColourMap::Inferno, 0, hi, false, kZeroColour, kAboveColour);
+  setValues(v, s.smooth);
+  std::string label = channelLabel(s.channel, s.photometric);
+  m_scalarBar->SetTitle(label.replace(label.find(" ("), 2, "\n(").c_str());
+  m_scalarBar->SetNumberOfLabels(6);
+  m_scalarBar->SetLabelFormat("%-#6.3g");
+  m_scalarBar->SetDrawAboveRangeSwatch(*std::max_element(v.begin(), v.end()) > hi);
+  m_scalarBar->SetAboveRangeAnnotation("above,\nemitters");
+  m_title->SetInput((m_run.report.sceneName + ": false colour, " + channelLabel(s.channel, s.photometric) + " (" +
+                     (s.smooth ? "smooth" : "flat") + ")")
+                        .c_str());
+}
+
+void SceneView::showFormFactorRow(const ViewSettings& s) {
+  std::vector<double> row = m_run.formFactors->row(s.picked);
+  const double max = std::max(1e-300, *std::max_element(row.begin(), row.end()));
+  const double hi = std::pow(10.0, std::ceil(std::log10(max) - 1e-9));
+  const double lo = hi * 1e-5;                      // five whole decades: the near field to the far corners
+  for (double& f : row) f = f > 0 ? f : lo * 1e-3;  // zeros (not seen) below the range
+  fillLookupTable(m_lut, ColourMap::Viridis, lo, hi, true, kZeroColour, kAboveColour);
+  setValues(row, s.smooth);
+  m_scalarBar->SetTitle(("F_ij\ni = " + std::to_string(s.picked)).c_str());
+  m_scalarBar->SetNumberOfLabels(6);  // one per decade
+  m_scalarBar->SetLabelFormat("%.0e");
+  m_scalarBar->SetDrawAboveRangeSwatch(false);
+  m_scalarBar->SetDrawBelowRangeSwatch(true);
+  m_scalarBar->SetBelowRangeAnnotation("0");
+  double sum = 0;
+  for (long long k = m_run.formFactors->rowStart[s.picked]; k < m_run.formFactors->rowStart[s.picked + 1]; ++k)
+    sum += m_run.formFactors->value[k];
+  m_title->SetInput((m_run.report.sceneName + ": form factors F_ij from patch " + std::to_string(s.picked) +
+                     " (log scale; row sum " + formatNumber(sum) + ")")
+                        .c_str());
+}
+
+void SceneView::setValues(const std::vector<double>& perPatch, bool smooth) {
+  m_surface->GetCellData()->AddArray(valueArray(perPatch));
+  m_surface->GetPointData()->AddArray(valueArray(pointAverage(m_run.patches, perPatch)));
+  m_mapper->SetColorModeToMapScalars();
+  m_mapper->SetScalarMode(smooth ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
+  m_mapper->SelectColorArray("value");
+  m_scalarBar->SetDrawBelowRangeSwatch(false);
+}
+
+void SceneView::showOutline(int patch) {
+  m_outlineActor->SetVisibility(patch >= 0);
+  if (patch < 0) return;
+  // Nudged towards the eye along each sight line: the same pixels, never hidden by the patch.
+  double eye[3];
+  m_renderer->GetActiveCamera()->GetPosition(eye);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> lines;
+  const auto& poly = m_run.patches.polygons[patch];
+  lines->InsertNextCell(vtkIdType(poly.size() + 1));
+  for (std::size_t k = 0; k <= poly.size(); ++k) {
+    const Vec3& x = m_run.patches.points[poly[k % poly.size()]];
+    const Vec3 nudged = x + (Vec3{eye[0], eye[1], eye[2]} - x) * 0.002;
+    lines->InsertCellPoint(points->InsertNextPoint(nudged.x, nudged.y, nudged.z));
+  }
+  m_outline->SetPoints(points);
+  m_outline->SetLines(lines);
+  m_outline->Modified();
+}
+
+std::string SceneView::patchInfo(int i) const {
+  const PatchData& p = m_run.patches;
+  const std::string units = m_run.report.units.empty() ? "units" : m_run.report.units;
+  return "patch " + std::to_string(i) + "  surface '" + m_run.surfaceName(i) + "'" +  //
+         "\narea " + formatNumber(p.area[i]) + " " + units + "²" +                    //
+         "\nrho  " + triple(p.reflectance[i]) +                                       //
+         "\nE    " + triple(p.emission[i]) + " W/m²" +                                //
+         "\nB    " + triple(p.radiosity[i]) + " W/m²" +                               //
+         "\nL_v  " + formatNumber(channelValue(p.radiosity[i], Channel::Luminance, true)) + " cd/m²";
+}
+
+int SceneView::pick(double x, double y) {
+  if (!m_picker->Pick(x, y, 0, m_renderer)) return -1;
+  const vtkIdType cell = m_picker->GetCellId();
+  return cell >= 0 && cell < m_run.patches.size() ? int(cell) : -1;
+}
+
+}  // namespace radkit::viewer
