@@ -11,6 +11,7 @@
 #include "apps/report.h"
 #include "geometry/ray_scene.h"
 #include "radiosity/ff_benchmark.h"
+#include "render/path_benchmark.h"
 #include "solvers/sweep_benchmark.h"
 
 namespace radkit::app {
@@ -32,6 +33,23 @@ void runFormFactorBench(FormFactorBench& b) {
   s.formFactors = b.ff.settings;
   s.referenceRays = b.referenceRays;
   nlohmann::json j = toJson(benchmarkFormFactors(mesh, rays, s));
+  j["scene"] = scene.name;
+  std::cout << j.dump(2) << std::endl;
+}
+
+struct PathTraceBench {
+  MeshOptions mesh;
+  PathTraceBenchmarkSettings settings;
+};
+
+void runPathTraceBench(PathTraceBench& b) {
+  if (b.mesh.scene.empty()) b.mesh.scene = defaultScenePath();
+  Scene scene = loadSceneReporting(b.mesh.scene);
+  PatchMesh mesh = meshScene(scene, b.mesh);
+  RayScene rays(mesh);
+  ShadingScene shading(scene, mesh, rays, BsdfSettings{});
+  Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(mesh.bounds());
+  nlohmann::json j = toJson(benchmarkPathTracer(shading, camera, b.settings));
   j["scene"] = scene.name;
   std::cout << j.dump(2) << std::endl;
 }
@@ -67,6 +85,16 @@ void addBenchCommands(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   f->callback([ff] { runFormFactorBench(*ff); });
+
+  auto path = std::make_shared<PathTraceBench>();
+  path->settings.render.width = path->settings.render.height = 128;
+  path->settings.render.samplesPerPixel = 64;
+  CLI::App* p = bench->add_subcommand("path-trace", "Path-traced rays per second against raw Embree closest hits on the same scene");
+  addMeshOptions(*p, path->mesh, false);
+  p->add_option("--spp", path->settings.render.samplesPerPixel, "Samples per pixel of the 128x128 image")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  p->callback([path] { runPathTraceBench(*path); });
 
   auto sweep = std::make_shared<SweepBenchmarkSettings>();
   CLI::App* s = bench->add_subcommand("solver", "Jacobi and Gauss-Seidel sweep bandwidth against a STREAM-like triad");

@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   radkit::app::addPipelineCommands(app);
   radkit::app::addBenchCommands(app);
   radkit::app::addViewCommand(app);
+  radkit::app::addRenderCommand(app);
+  radkit::app::addBrdfCommand(app);
+  radkit::app::addPhotonsCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,317 @@
+// radkit photons: photon mapping (Jensen 1996) of a scene, compared with radiosity.
+// Writes patches.csv, surfaces.csv, photonmap.png, caustics.png, comparison.csv,
+// difference.png and report.json (docs/photon-mapping.md).
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/common.h"
+#include "apps/report.h"
+#include "geometry/patch_io.h"
+#include "geometry/ray_scene.h"
+#include "geometry/scene_loader.h"
+#include "radiosity/radiosity_pipeline.h"
+#include "render/photon_benchmark.h"
+#include "render/photon_comparison.h"
+#include "render/photon_estimate.h"
+#include "render/photon_image.h"
+#include "render/photon_tracer.h"
+#include "util/output_folder.h"
+
+namespace radkit::app {
+
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+/// Patches when no mesh option is given: patches.csv at a useful resolution, and the computed
+/// radiosity comparison in a couple of seconds on the Cornell box.
+constexpr int kDefaultPhotonPatches = 1000;
+
+struct PhotonsCommand {
+  MeshOptions mesh;
+  PhotonSettings settings;
+  std::string filter = "epanechnikov", view = "gather", compare, out;
+  int imageSize = 256;
+  bool noRadiosity = false, noImage = false;
+  long long benchRays = 1000000;
+};
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+/// The radiosity solution to compare with: a run folder's surfaces.csv, or computed here on
+/// the same mesh (then per patch too).
+struct RadiosityReference {
+  std::string source;
+  std::vector<SurfaceRadiosity> surfaces;
+  std::vector<Vec3> patches;  ///< empty when only per-surface values are known
+  double seconds = 0;
+};
+
+RadiosityReference radiosityReference(const PhotonsCommand& cmd, const Scene& scene, const PatchMesh& mesh) {
+  RadiosityReference ref;
+  const auto start = Clock::now();
+  if (!cmd.compare.empty()) {
+    ref.source = cmd.compare;
+    ref.surfaces = readSurfacesCsv((std::filesystem::path(cmd.compare) / "surfaces.csv").string());
+  } else {
+    PipelineSettings settings;
+    settings.mesh = {cmd.mesh.maxArea, cmd.mesh.patches};
+    PipelineResult r = runPipeline(scene, settings);
+    ref.source = "computed (radkit run, same mesh)";
+    for (const SurfaceResult& s : r.surfaces)
+      ref.surfaces.push_back({s.name, s.area / (scene.metresPerUnit() * scene.metresPerUnit()), s.radiosity});
+    if (r.mesh.size() == mesh.size()) ref.patches = r.radiosity;
+  }
+  ref.seconds = since(start);
+  return ref;
+}
+
+/// Per-patch values for difference.png: the patches' own, or their surfaces' when the
+/// reference is per surface only.
+void writeDifference(OutputFolder& folder, const Scene& scene, const PatchMesh& mesh, const RayScene& rays,
+                     const PhotonRadiosity& photon, const RadiosityReference& ref,
+                     const std::vector<SurfaceComparison>& rows, const PhotonsCommand& cmd) {
+  std::vector<Vec3> b = photon.radiosity, se = photon.radiosityError, rad = ref.patches;
+  if (rad.empty()) {
+    rad.resize(mesh.size());
+    for (int i = 0; i < mesh.size(); ++i) {
+      const SurfaceComparison& row = rows[mesh.patches[i].surface];
+      b[i] = row.photon, se[i] = row.photonError, rad[i] = row.radiosity;
+    }
+  }
+  ImageSettings s;
+  s.width = s.height = cmd.imageSize;
+  s.samplesPerAxis = 1;
+  std::vector<bool> twoSided;
+  for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
+  const Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(mesh.bounds());
+  RadianceImage seen = renderRadiosity(mesh, rays, camera, b, twoSided, s);
+  writePng(folder.path("difference.png"),
+           differenceImage(seen, b, se, rad, ref.patches.empty() ? "z per surface" : "z per patch"));
+}
+
+json surfacesJson(const std::vector<SurfaceEstimate>& surfaces) {
+  json a = json::array();
+  for (const SurfaceEstimate& s : surfaces)
+    a.push_back({{"name", s.name}, {"area", s.area}, {"radiosity", triple(s.radiosity)},
+                 {"standard_error", triple(s.radiosityError)}, {"irradiance", triple(s.irradiance)},
+                 {"caustic_irradiance", triple(s.causticIrradiance)}, {"photons", s.photons}});
+  return a;
+}
+
+json statsJson(const PhotonTrace& t, const EmitterSampler& emitters) {
+  const PhotonTraceStats& s = t.stats;
+  return {{"emitted", s.emitted},   {"stored", s.stored},         {"caustic", s.caustic},
+          {"escaped", s.escaped},   {"absorbed", s.absorbed},     {"truncated", s.truncated},
+          {"rays", s.rays},         {"emitted_power", triple(t.emittedPower)},
+          {"total_power", triple(emitters.totalPower())}};
+}
+
+/// Everything one run computes, in the order it is computed.
+struct PhotonRun {
+  Scene scene;
+  PatchMesh mesh;
+  std::unique_ptr<RayScene> rays;
+  std::unique_ptr<EmitterSampler> emitters;
+  PhotonTrace trace;
+  PhotonRadiosity estimate;
+  RadiosityReference reference;
+  std::vector<SurfaceComparison> rows;
+  std::unique_ptr<PhotonMap> global, caustic;
+  PhotonView view = PhotonView::FinalGather;
+  std::size_t stored = 0;
+  double buildSeconds = 0;
+  json seconds;
+};
+
+/// Loads, meshes, checks emitters and the --compare folder (before any long work), traces
+/// and estimates.
+void traceAndEstimate(PhotonsCommand& cmd, PhotonRun& r) {
+  if (!cmd.compare.empty() && !std::filesystem::exists(std::filesystem::path(cmd.compare) / "surfaces.csv"))
+    throw InputError("--compare " + cmd.compare + ": no surfaces.csv there. Fix: give the --out folder of a "
+                     "`radkit run` of the same scene");
+  r.scene = loadSceneReporting(cmd.mesh.scene);
+  auto t = Clock::now();
+  r.mesh = meshScene(r.scene, cmd.mesh);
+  r.rays = std::make_unique<RayScene>(r.mesh);
+  r.seconds["mesh_and_ray_scene"] = since(t);
+  r.emitters = std::make_unique<EmitterSampler>(r.scene, r.mesh);
+  if (r.emitters->empty())
+    throw InputError(r.scene.file + ": no surface emits, so no photon can start. Fix: give a material an "
+                     "\"emission\" above zero");
+  if (!cmd.compare.empty()) r.reference = radiosityReference(cmd, r.scene, r.mesh);
+  r.trace = tracePhotons(r.scene, r.mesh, *r.rays, *r.emitters, cmd.settings);
+  r.seconds["trace"] = r.trace.stats.seconds;
+  t = Clock::now();
+  r.estimate = estimateRadiosity(r.scene, r.mesh, r.trace.photons, cmd.settings.photons);
+  r.seconds["estimate"] = since(t);
+  if (!cmd.compare.empty()) r.rows = compareSurfaces(r.estimate.surfaces, r.reference.surfaces);
+}
+
+/// The global and caustic maps. They serve the images and the kd-tree figures; a study of the
+/// per-surface estimate (--no-image --bench-rays 0) leaves them empty.
+void buildMaps(const PhotonsCommand& cmd, PhotonRun& r) {
+  const bool needed = !cmd.noImage || cmd.benchRays > 0;
+  auto t = Clock::now();
+  r.stored = r.trace.photons.size();
+  PhotonMaps maps = buildPhotonMaps(r.mesh, needed ? std::move(r.trace.photons) : std::vector<Photon>{});
+  r.global = std::move(maps.global);
+  r.caustic = std::move(maps.caustic);
+  r.buildSeconds = needed ? since(t) : 0.0;
+  r.seconds["kd_build"] = since(t);
+  t = Clock::now();
+  const PhotonSettings& ps = cmd.settings;
+  r.view = cmd.view == "map" || ps.gatherRays == 0 ? PhotonView::GlobalMap : PhotonView::FinalGather;
+  if (!cmd.noImage && r.view == PhotonView::FinalGather)
+    r.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
+  r.seconds["precompute"] = since(t);
+}
+
+/// photonmap.png and caustics.png (at photonmap.png's exposure, so the two compare).
+void writeImages(OutputFolder& folder, const PhotonsCommand& cmd, PhotonRun& r) {
+  const auto t = Clock::now();
+  const PhotonScene in{r.scene, r.mesh, *r.rays, *r.emitters, *r.global, *r.caustic};
+  const Camera camera = r.scene.camera ? *r.scene.camera : PinholeCamera::framing(r.mesh.bounds());
+  const int n = cmd.imageSize;
+  RadianceImage image = renderPhotonImage(in, camera, n, n, r.view, cmd.settings);
+  const double exposure = photonImageExposure(in, image);
+  writePng(folder.path("photonmap.png"), toneMap(image, exposure));
+  if (!r.caustic->empty())
+    writePng(folder.path("caustics.png"),
+             toneMap(renderPhotonImage(in, camera, n, n, PhotonView::CausticMap, cmd.settings), exposure));
+  r.seconds["image"] = since(t);
+}
+
+json ratesJson(const PhotonsCommand& cmd, PhotonRun& r) {
+  const auto t = Clock::now();
+  const RateMeasurement embree = measureClosestHitRate(r.mesh, *r.rays, std::size_t(cmd.benchRays), cmd.settings.seed);
+  // A k-nearest query costs about a hundred rays: time a hundredth as many.
+  const RateMeasurement queries = measureKdTreeQueries(*r.global, r.mesh, std::size_t(cmd.benchRays / 100),
+                                                       cmd.settings.neighbours, cmd.settings.filter);
+  r.seconds["benchmark"] = since(t);
+  const double photonRays = r.trace.stats.rays / r.trace.stats.seconds;
+  return {{"photons_per_second", r.trace.stats.emitted / r.trace.stats.seconds},
+          {"photon_rays_per_second", photonRays},
+          {"embree_closest_hit_rays_per_second", embree.perSecond()},
+          {"embree_rays_timed", embree.count},
+          {"photon_rays_over_embree", embree.perSecond() > 0 ? photonRays / embree.perSecond() : 0.0},
+          {"kd_build_photons_per_second", r.buildSeconds > 0 ? r.stored / r.buildSeconds : 0.0},
+          {"kd_queries_timed", queries.count},
+          {"kd_queries_per_second", queries.perSecond()}};
+}
+
+json reportJson(const PhotonsCommand& cmd, const PhotonRun& r, const json& rates) {
+  const PhotonSettings& ps = cmd.settings;
+  json report{{"radkit", RADKIT_VERSION},
+              {"command", "photons"},
+              {"scene", sceneJson(r.scene)},
+              {"mesh", meshJson(r.scene, r.mesh)},
+              {"settings", {{"photons", ps.photons}, {"k", ps.neighbours}, {"filter", filterName(ps.filter)},
+                            {"seed", ps.seed}, {"view", viewName(r.view)}, {"gather_rays", ps.gatherRays},
+                            {"direct_rays", ps.directRays}, {"image_size", cmd.noImage ? 0 : cmd.imageSize}}},
+              {"photons", statsJson(r.trace, *r.emitters)},
+              {"rates", rates},
+              {"seconds", r.seconds},
+              {"memory", {{"photon_map_bytes", r.global->memoryBytes()},
+                          {"caustic_map_bytes", r.caustic->memoryBytes()},
+                          {"peak_memory_bytes", peakMemoryBytes()}}},
+              {"surfaces", surfacesJson(r.estimate.surfaces)}};
+  if (!r.reference.surfaces.empty())
+    report["comparison"] = {{"radiosity", r.reference.source}, {"per_patch", !r.reference.patches.empty()}};
+  return report;
+}
+
+void printSummary(const PhotonsCommand& cmd, const PhotonRun& r, const json& rates) {
+  std::printf("\n");
+  printField("scene", r.scene.name + " (" + r.scene.file + ")");
+  printField("photons", std::to_string(r.trace.stats.emitted) + " emitted, " + std::to_string(r.stored) + " stored, " +
+                            std::to_string(r.trace.stats.caustic) + " caustic, " +
+                            fmt("%.3g photons/s", rates["photons_per_second"].get<double>()));
+  printField("rays", fmt("%.3g/s tracing photons", rates["photon_rays_per_second"].get<double>()) +
+                         fmt(", %.3g/s raw Embree", rates["embree_closest_hit_rays_per_second"].get<double>()));
+  for (const SurfaceEstimate& s : r.estimate.surfaces) {
+    std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) +
+                       fmt(" %10.4f W/m²", s.radiosity.z) + fmt("  ± %.2g", luminance(s.radiosityError));
+    for (const SurfaceComparison& c : r.rows)
+      if (c.name == s.name && luminance(c.radiosity) > 0)
+        line += fmt("   radiosity %10.4f", luminance(c.radiosity)) +
+                fmt(" (%+.2f %%)", 100 * (luminance(c.photon) / luminance(c.radiosity) - 1));
+    printField(s.name, line);
+  }
+  printField("seconds", fmt("trace %.2f", r.trace.stats.seconds) + fmt(", total %.2f", r.seconds["total"].get<double>()));
+  printField("wrote", cmd.out);
+}
+
+void run(PhotonsCommand& cmd) {
+  const auto start = Clock::now();
+  cmd.settings.filter = cmd.filter == "cone" ? IrradianceFilter::Cone : IrradianceFilter::Epanechnikov;
+  if (cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0) cmd.mesh.patches = kDefaultPhotonPatches;
+  PhotonRun r;
+  traceAndEstimate(cmd, r);
+  buildMaps(cmd, r);
+  OutputFolder folder(cmd.out);
+  if (!cmd.noImage) writeImages(folder, cmd, r);
+  if (cmd.compare.empty() && !cmd.noRadiosity) {
+    r.reference = radiosityReference(cmd, r.scene, r.mesh);
+    r.rows = compareSurfaces(r.estimate.surfaces, r.reference.surfaces);
+  }
+  if (!r.reference.surfaces.empty()) {
+    r.seconds["radiosity"] = r.reference.seconds;
+    writeComparisonCsv(folder.path("comparison.csv"), r.rows);
+    writeDifference(folder, r.scene, r.mesh, *r.rays, r.estimate, r.reference, r.rows, cmd);
+  }
+  writePatchesCsv(folder.path("patches.csv"), r.scene, r.mesh, &r.estimate.radiosity);
+  writeSurfacesCsv(folder.path("surfaces.csv"), r.scene,
+                   surfaceResults(r.scene, r.mesh, r.estimate.radiosity, r.estimate.irradiance), false);
+  const json rates = ratesJson(cmd, r);
+  r.seconds["total"] = since(start);
+  writeJson(folder.path("report.json"), reportJson(cmd, r, rates));
+  folder.commit();
+  printSummary(cmd, r, rates);
+}
+
+}  // namespace
+
+void addPhotonsCommand(CLI::App& app) {
+  auto cmd = std::make_shared<PhotonsCommand>();
+  CLI::App* sub = app.add_subcommand(
+      "photons", "Photon mapping (Jensen): per-patch radiosity with standard errors, photonmap.png, caustics.png, and "
+                 "a comparison with the radiosity solution (comparison.csv, difference.png)");
+  addMeshOptions(*sub, cmd->mesh, true);
+  sub->add_option("--photons", cmd->settings.photons, "Photons emitted")
+      ->check(CLI::Range(std::size_t(1), std::size_t(4000000000)))->capture_default_str();
+  sub->add_option("--k", cmd->settings.neighbours, "Photons in each irradiance estimate (k nearest)")
+      ->check(CLI::Range(2, 100000))->capture_default_str();
+  sub->add_option("--filter", cmd->filter, "Density-estimation kernel")
+      ->check(CLI::IsMember({"epanechnikov", "cone"}))->capture_default_str();
+  sub->add_option("--seed", cmd->settings.seed, "Random seed (photon i uses stream (seed, i))")->capture_default_str();
+  sub->add_option("--gather", cmd->settings.gatherRays, "Final-gathering rays per pixel (0: show the map directly)")
+      ->check(CLI::Range(0, 4096))->capture_default_str();
+  sub->add_option("--view", cmd->view, "photonmap.png: final gathering or the global map itself")
+      ->check(CLI::IsMember({"gather", "map"}))->capture_default_str();
+  sub->add_option("--image-size", cmd->imageSize, "Side of the images in pixels")
+      ->check(CLI::Range(16, 8192))->capture_default_str();
+  auto* compare = sub->add_option("--compare", cmd->compare,
+                                  "A `radkit run` output folder to compare with (its surfaces.csv); default: solve "
+                                  "radiosity on the same mesh here");
+  sub->add_flag("--no-radiosity", cmd->noRadiosity, "Skip the comparison with radiosity")->excludes(compare);
+  sub->add_flag("--no-image", cmd->noImage, "Skip photonmap.png and caustics.png (and their gathering)");
+  sub->add_option("--bench-rays", cmd->benchRays,
+                  "Random rays timed for the raw Embree reference, and a hundredth as many k-nearest queries (0: skip)")
+      ->check(CLI::Range(0LL, 1000000000LL))->capture_default_str();
+  sub->add_option("--out", cmd->out, "Output folder")->required();
+  sub->callback([cmd] { run(*cmd); });
+}
+
+}  // namespace radkit::app

@@ -1,0 +1,121 @@
+#include "render/shading.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "radiosity/radiosity_solution.h"
+#include "render/camera.h"
+
+namespace radkit {
+
+RadiosityLighting radiosityLighting(const PipelineResult& r) {
+  RadiosityLighting l;
+  l.radiosity = r.radiosity;
+  l.emission = toVec3(r.system.emission);
+  const std::vector<Vec3> direct = irradiance(r.formFactors->matrix, r.system.emission);
+  l.indirectIrradiance.resize(r.irradiance.size());
+  for (std::size_t i = 0; i < r.irradiance.size(); ++i) {
+    const Vec3 h = r.irradiance[i] - direct[i];
+    l.indirectIrradiance[i] = {std::max(0.0, h.x), std::max(0.0, h.y), std::max(0.0, h.z)};
+  }
+  return l;
+}
+
+namespace {
+
+/// Radiance the radiosity solution reflects from a surface point toward the viewer:
+/// (B − E)/π, Lambertian (its emission is counted by light sampling instead).
+Vec3 reflectedRadiosity(const SurfaceHit& hit, const RadiosityLighting& l) {
+  if (!hit.bsdf) return {};
+  return (l.radiosity[hit.patch] - l.emission[hit.patch]) / M_PI;
+}
+
+/// One camera sample: follow delta lobes, then at the first glossy or diffuse vertex add
+/// direct light (MIS), the BSDF-sampled ray's emission (MIS) and glossy radiosity, and
+/// the diffuse lobe's indirect light ρ_d/π · H_indirect.
+Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lighting, Vec3 o, Vec3 d, Rng& rng,
+                     const TwoPassSettings& s, long long& rays) {
+  Vec3 radiance, beta{1, 1, 1};
+  for (int depth = 0; depth <= s.maxSpecularDepth; ++depth) {
+    ++rays;
+    std::optional<SurfaceHit> hit = scene.intersect(o, d);
+    if (!hit) break;
+    radiance += mul(beta, scene.emitted(*hit));
+    if (!hit->bsdf) break;
+    const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    if (hit->bsdf->isDelta()) {
+      std::optional<BsdfSample> bs = hit->bsdf->sample(hit->wo, u0, u1, u2);
+      if (!bs) break;
+      beta = mul(beta, bs->weight);
+      d = hit->frame.toWorld(bs->wi);
+      o = scene.spawn(*hit, d);
+      continue;
+    }
+    radiance += mul(beta, scene.directLight(*hit, rng, rays));
+    const Vec3 diffuse = hit->bsdf->diffuseAlbedo();
+    radiance += mul(beta, mul(diffuse, lighting.indirectIrradiance[hit->patch])) / M_PI;
+    if (std::optional<BsdfSample> bs = hit->bsdf->sample(hit->wo, u0, u1, u2)) {
+      const Vec3 wi = hit->frame.toWorld(bs->wi);
+      ++rays;
+      if (std::optional<SurfaceHit> next = scene.intersect(scene.spawn(*hit, wi), wi)) {
+        const Vec3 le = scene.emitted(*next);
+        if (maxComponent(le) > 0)
+          radiance += mul(beta, mul(bs->weight, le)) * powerHeuristic(bs->pdf, scene.lightPdf(*next));
+        // Only the non-diffuse lobes gather the solution; the diffuse lobe has H_indirect.
+        const Vec3 glossy = hit->bsdf->eval(hit->wo, bs->wi) - diffuse / M_PI;
+        if (maxComponent(glossy) > 0)
+          radiance += mul(beta, mul(glossy, reflectedRadiosity(*next, lighting))) * (bs->wi.z / bs->pdf);
+      }
+    }
+    break;
+  }
+  return radiance;
+}
+
+}  // namespace
+
+MonteCarloImage renderTwoPass(const ShadingScene& scene, const Camera& camera, const RadiosityLighting& lighting,
+                              const TwoPassSettings& s) {
+  const auto start = std::chrono::steady_clock::now();
+  const PinholeCamera cam(camera, s.width, s.height);
+  const int n = std::max(1, s.samplesPerPixel);
+  MonteCarloImage out;
+  RadianceImage& img = out.image;
+  img.width = s.width;
+  img.height = s.height;
+  img.radiance.assign(std::size_t(s.width) * s.height, Vec3{});
+  img.patch.assign(img.radiance.size(), -1);
+  out.varianceOfMean.assign(img.radiance.size(), Vec3{});
+  std::vector<long long> rowRays(s.height, 0);
+
+  tbb::parallel_for(0, s.height, [&](int y) {
+    for (int x = 0; x < s.width; ++x) {
+      const std::size_t k = std::size_t(y) * s.width + x;
+      Rng rng(s.seed, k, 1);
+      Vec3 sum, sumSq;
+      for (int i = 0; i < n; ++i) {
+        const double jx = rng.uniform(), jy = rng.uniform();
+        const Vec3 l =
+            twoPassRadiance(scene, lighting, cam.origin(), cam.direction(x + jx, y + jy), rng, s, rowRays[y]);
+        sum += l;
+        sumSq += mul(l, l);
+      }
+      const Vec3 mean = sum / n;
+      img.radiance[k] = mean;
+      if (n > 1) {
+        const Vec3 v = (sumSq - mul(mean, mean) * n) / (double(n - 1) * n);
+        out.varianceOfMean[k] = {std::max(0.0, v.x), std::max(0.0, v.y), std::max(0.0, v.z)};
+      }
+      if (auto hit = scene.rays().closestHit(cam.origin(), cam.direction(x + 0.5, y + 0.5), 0.0))
+        img.patch[k] = hit->patch;
+    }
+  });
+  out.paths = (long long)(n) * s.width * s.height;
+  for (long long r : rowRays) out.rays += r;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace radkit

@@ -1,0 +1,88 @@
+// ShadingScene: what the Monte Carlo image modes (path tracing, two-pass Phong and
+// Cook-Torrance) share: a BSDF per material, emission and sidedness per patch, emitter
+// sampling, and the two estimators every mode uses, next-event estimation with multiple
+// importance sampling and the MIS weight of a BSDF-sampled ray that finds an emitter.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "geometry/patch_mesh.h"
+#include "geometry/ray_scene.h"
+#include "geometry/sampling.h"
+#include "geometry/visibility.h"
+#include "render/bsdf.h"
+#include "render/emitters.h"
+#include "render/radiosity_image.h"
+
+namespace radkit {
+
+/// Which model glossy materials are shaded with. Lambert, mirror and glass are unaffected.
+enum class GlossyModel {
+  AsDeclared,    ///< each material's own "brdf"
+  Phong,         ///< Cook-Torrance materials as Phong: n = 2/α² − 2, ks = F0 (Walter et al. 2007, eq. 35)
+  CookTorrance,  ///< Phong materials as Cook-Torrance: α = √(2/(n + 2)), f0 = ks, metallic 0
+};
+
+/// A surface point seen along a ray, in the frame in which its BSDF is evaluated.
+struct SurfaceHit {
+  int patch = -1;
+  double distance = 0;
+  Vec3 point;
+  Vec3 normal;        ///< the patch's front normal, flipped toward wo for two-sided materials
+  Frame frame{Vec3{0, 0, 1}};
+  Vec3 wo;            ///< toward the ray origin, local to `frame`
+  bool front = false; ///< wo on the side of the patch's front normal
+  const Bsdf* bsdf = nullptr;  ///< null on the back of a one-sided surface (it absorbs)
+};
+
+/// Monte Carlo image with its per-pixel error: the sample variance of each pixel's mean.
+struct MonteCarloImage {
+  RadianceImage image;
+  std::vector<Vec3> varianceOfMean;  ///< s²/n per pixel and channel, (W/m²/sr)²
+  long long paths = 0;               ///< camera samples traced
+  long long rays = 0;                ///< closest-hit and shadow rays cast
+  double seconds = 0;                ///< wall time of the render
+};
+
+class ShadingScene {
+ public:
+  /// \brief The scene and mesh must outlive this object; `rays` answers for `mesh`.
+  ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visibility& rays, const BsdfSettings& bsdf,
+               GlossyModel glossy = GlossyModel::AsDeclared);
+
+  const PatchMesh& mesh() const { return m_mesh; }
+  const Visibility& rays() const { return m_rays; }
+  const EmitterSampler& emitters() const { return m_emitters; }
+  const Bsdf& materialBsdf(int material) const { return *m_bsdfs[material]; }
+
+  /// \brief First surface along origin + t·dir (dir unit), t > tMin; its local frame.
+  std::optional<SurfaceHit> intersect(const Vec3& origin, const Vec3& dir, double tMin = 0) const;
+  /// \brief Radiance E/π leaving the front of an emitting patch; zero on the back.
+  Vec3 emitted(const SurfaceHit& hit) const;
+  /// \brief Origin for a ray leaving `hit` along world direction dir (lifted off the plane).
+  Vec3 spawn(const SurfaceHit& hit, const Vec3& dir) const;
+
+  /// \brief Next-event estimate of reflected direct light at a non-delta hit: one emitter
+  /// point, a shadow ray, weighted against BSDF sampling by the power heuristic.
+  /// \param rays incremented by the shadow rays cast
+  Vec3 directLight(const SurfaceHit& hit, Rng& rng, long long& rays) const;
+  /// \brief Solid-angle density with which directLight() would pick the emitter point hit
+  /// at `light` seen from the previous vertex (0 on the back of the emitter).
+  double lightPdf(const SurfaceHit& light) const;
+
+ private:
+  const PatchMesh& m_mesh;
+  const Visibility& m_rays;
+  EmitterSampler m_emitters;
+  std::vector<std::unique_ptr<Bsdf>> m_bsdfs;  ///< per material
+  std::vector<int> m_material;                 ///< per surface
+  std::vector<bool> m_twoSided, m_transmits;   ///< per material
+  std::vector<Vec3> m_emission;                ///< per material
+};
+
+/// \brief The BSDF a material is shaded with under `glossy` (the table of substitutions).
+std::unique_ptr<Bsdf> makeShadingBsdf(const Material& material, const BsdfSettings& settings, GlossyModel glossy);
+
+}  // namespace radkit

@@ -1,0 +1,87 @@
+// The path tracer against exact answers: the furnace (L = E / (π(1 − ρ))), determinism per
+// seed, error bars that shrink as 1/√n. The Cornell box comparison with radiosity is in
+// shading_cornell_test.cpp, beside the two-pass modes that share its radiosity solutions.
+#include "render/path_tracer.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+
+#include "geometry/ray_scene.h"
+#include "geometry/scene_loader.h"
+#include "geometry/subdivision.h"
+#include "tests/common/test_util.h"
+
+namespace radkit {
+namespace {
+
+/// Mean radiance over an image and its standard error from the per-pixel variances.
+struct RegionMean {
+  Vec3 mean, standardError;
+  int pixels = 0;
+};
+
+RegionMean regionMean(const MonteCarloImage& img, const std::vector<bool>& inside) {
+  RegionMean r;
+  Vec3 variance;
+  for (std::size_t k = 0; k < inside.size(); ++k)
+    if (inside[k]) r.mean += img.image.radiance[k], variance += img.varianceOfMean[k], ++r.pixels;
+  r.mean = r.mean / r.pixels;
+  r.standardError = {std::sqrt(variance.x) / r.pixels, std::sqrt(variance.y) / r.pixels, std::sqrt(variance.z) / r.pixels};
+  return r;
+}
+
+Camera furnaceCamera() {
+  Camera c;
+  c.position = {0.5, 0.5, 0.5};
+  c.lookAt = {0.5, 1, 0.6};
+  c.up = {0, 0, 1};
+  c.fovDeg = 100;
+  return c;
+}
+
+TEST(PathTracer, StatisticalFurnace) {
+  // Closed cube, E = 1, ρ = 0.5 everywhere: L = E / (π (1 − ρ)) = 2/π in every direction.
+  // Every path's estimate is random only through roulette and light sampling, so the image
+  // mean must meet 2/π within 4 standard errors; quadrupling spp halves the error bar.
+  Scene scene = loadScene(test::dataPath("furnace.json"));
+  PatchMesh mesh = subdivide(scene, {0.1, 0});
+  RayScene rays(mesh);
+  ShadingScene shading(scene, mesh, rays, {});
+  PathTraceSettings s;
+  s.width = s.height = 24;
+  s.samplesPerPixel = 8;
+  RegionMean small = regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(24 * 24, true));
+  s.samplesPerPixel = 32;
+  s.seed = 2;
+  RegionMean big = regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(24 * 24, true));
+  EXPECT_NEAR(big.mean.y, 2 / M_PI, 4 * big.standardError.y);
+  EXPECT_NEAR(small.mean.y, 2 / M_PI, 4 * small.standardError.y);
+  EXPECT_LT(big.standardError.y, 0.02 * big.mean.y);
+  EXPECT_NEAR(small.standardError.y / big.standardError.y, 2.0, 0.3);
+}
+
+TEST(PathTracer, ConstructDeterministicPerSeed) {
+  // Pixels draw from their own streams: the same seed gives the same image with one thread
+  // or all of them; another seed gives another image.
+  Scene scene = loadScene(test::dataPath("cornell-box.json"));
+  PatchMesh mesh = subdivide(scene, {0, 0});
+  RayScene rays(mesh);
+  ShadingScene shading(scene, mesh, rays, {});
+  PathTraceSettings s;
+  s.width = s.height = 16;
+  s.samplesPerPixel = 2;
+  MonteCarloImage a = renderPathTraced(shading, *scene.camera, s);
+  MonteCarloImage b;
+  tbb::task_arena one(1);
+  one.execute([&] { b = renderPathTraced(shading, *scene.camera, s); });
+  EXPECT_EQ(a.image.radiance, b.image.radiance);
+  EXPECT_EQ(a.rays, b.rays);
+  s.seed = 99;
+  EXPECT_NE(renderPathTraced(shading, *scene.camera, s).image.radiance, a.image.radiance);
+  EXPECT_EQ(a.paths, 16 * 16 * 2);
+}
+
+}  // namespace
+}  // namespace radkit

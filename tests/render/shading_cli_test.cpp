@@ -1,0 +1,76 @@
+// radkit render and radkit brdf end to end: files written, JSON printed, bad input refused.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include <algorithm>
+
+#include <nlohmann/json.hpp>
+
+#include "render/hdr_io.h"
+#include "tests/common/test_util.h"
+#include "util/canvas.h"
+
+namespace radkit {
+namespace {
+
+TEST(RenderCommand, WritesPngAndPfm) {
+  test::TempDir dir;
+  test::RunResult r = test::runRadkit("render --shading path-trace --spp 2 --size 24x16 --out " + dir.path("a.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  Canvas png = readPng(dir.path("a.png"));
+  EXPECT_EQ(png.width(), 24);
+  EXPECT_EQ(png.height(), 16);
+  r = test::runRadkit("render --shading path-trace --spp 1 --size 8x8 --tonemap filmic --out " + dir.path("b.pfm"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  RadianceImage hdr = readPfm(dir.path("b.pfm"));
+  EXPECT_EQ(hdr.width, 8);
+  r = test::runRadkit("render --shading cook-torrance --patches 60 --spp 1 --size 8x8 --out " + dir.path("c.png"));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  r = test::runRadkit("render --shading photon-map --patches 60 --photons 2000 --size 8x8 --out " + dir.path("d.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(readPng(dir.path("d.png")).width(), 8);
+}
+
+TEST(RenderCommand, RefusesBadInput) {
+  test::TempDir dir;
+  test::RunResult r = test::runRadkit("render --size 12by4 --out " + dir.path("a.png"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("WIDTHxHEIGHT"), std::string::npos) << r.output;
+  EXPECT_NE(test::runRadkit("render --shading toon --out " + dir.path("a.png")).exitCode, 0);
+  std::string dark = dir.file("dark.json", R"({"materials": {"m": {"reflectance": [0.5,0.5,0.5]}},
+    "surfaces": [{"name": "a", "material": "m", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})");
+  r = test::runRadkit("render '" + dark + "' --shading photon-map --size 8x8 --out " + dir.path("e.png"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("no surface emits"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("a.png")) || std::filesystem::exists(dir.path("e.png")));
+}
+
+TEST(BrdfCommand, PrintsAlbedo) {
+  test::RunResult r = test::runRadkit("brdf --model cook-torrance --alpha 1 --mu 1");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  nlohmann::json j = nlohmann::json::parse(r.output);
+  EXPECT_NEAR(j["E"].get<double>(), 0.307, 1e-3);  // brdf-and-media.md
+  EXPECT_LT(j["E_avg"].get<double>(), 1);
+  r = test::runRadkit("brdf --model cook-torrance --alpha 0.6 --mu 0.3 --g separable --compensated");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  j = nlohmann::json::parse(r.output);
+  EXPECT_NEAR(j["E"].get<double>(), 1, 3e-3);
+  EXPECT_NEAR(j["E_avg"].get<double>(), 1, 3e-3);
+  r = test::runRadkit("brdf --table");
+  ASSERT_EQ(r.exitCode, 0);
+  EXPECT_EQ(r.output.rfind("alpha,mu,E\n", 0), 0u);
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1 + 10 * 20);
+}
+
+TEST(BrdfCommand, RefusesBadInput) {
+  for (const char* args : {"brdf --alpha 0 --mu 0.5", "brdf --alpha 1.5 --mu 0.5", "brdf --alpha 0.5 --mu 0",
+                           "brdf --alpha 0.5 --mu 1.01", "brdf --model phong", "brdf --g beckmann"}) {
+    test::RunResult r = test::runRadkit(args);
+    EXPECT_NE(r.exitCode, 0) << args;
+    EXPECT_FALSE(r.output.empty()) << args;
+  }
+}
+
+}  // namespace
+}  // namespace radkit
