@@ -1,12 +1,9 @@
 #include "render/shading.h"
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 
 #include "radiosity/radiosity_solution.h"
-#include "render/camera.h"
 
 namespace radkit {
 
@@ -78,44 +75,11 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
 
 MonteCarloImage renderTwoPass(const ShadingScene& scene, const Camera& camera, const RadiosityLighting& lighting,
                               const TwoPassSettings& s) {
-  const auto start = std::chrono::steady_clock::now();
-  const PinholeCamera cam(camera, s.width, s.height);
-  const int n = std::max(1, s.samplesPerPixel);
-  MonteCarloImage out;
-  RadianceImage& img = out.image;
-  img.width = s.width;
-  img.height = s.height;
-  img.radiance.assign(std::size_t(s.width) * s.height, Vec3{});
-  img.patch.assign(img.radiance.size(), -1);
-  out.varianceOfMean.assign(img.radiance.size(), Vec3{});
-  std::vector<long long> rowRays(s.height, 0);
-
-  tbb::parallel_for(0, s.height, [&](int y) {
-    for (int x = 0; x < s.width; ++x) {
-      const std::size_t k = std::size_t(y) * s.width + x;
-      Rng rng(s.seed, k, 1);
-      Vec3 sum, sumSq;
-      for (int i = 0; i < n; ++i) {
-        const double jx = rng.uniform(), jy = rng.uniform();
-        const Vec3 l =
-            twoPassRadiance(scene, lighting, cam.origin(), cam.direction(x + jx, y + jy), rng, s, rowRays[y]);
-        sum += l;
-        sumSq += mul(l, l);
-      }
-      const Vec3 mean = sum / n;
-      img.radiance[k] = mean;
-      if (n > 1) {
-        const Vec3 v = (sumSq - mul(mean, mean) * n) / (double(n - 1) * n);
-        out.varianceOfMean[k] = {std::max(0.0, v.x), std::max(0.0, v.y), std::max(0.0, v.z)};
-      }
-      if (auto hit = scene.rays().closestHit(cam.origin(), cam.direction(x + 0.5, y + 0.5), 0.0))
-        img.patch[k] = hit->patch;
-    }
-  });
-  out.paths = (long long)(n) * s.width * s.height;
-  for (long long r : rowRays) out.rays += r;
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return out;
+  PixelSampling sampling{s.width, s.height, s.samplesPerPixel, s.seed, 1};
+  return renderCameraSamples(scene, camera, sampling,
+                             [&](const Vec3& origin, const Vec3& direction, Rng& rng, long long& rays) {
+                               return twoPassRadiance(scene, lighting, origin, direction, rng, s, rays);
+                             });
 }
 
 }  // namespace radkit

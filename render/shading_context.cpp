@@ -1,7 +1,13 @@
 #include "render/shading_context.h"
 
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+
 #include <algorithm>
 #include <cmath>
+
+#include "render/camera.h"
 
 namespace radkit {
 
@@ -87,6 +93,48 @@ double ShadingScene::lightPdf(const SurfaceHit& light) const {
   const double cosLight = std::fabs(light.wo.z);
   if (cosLight <= 0) return 0;
   return m_emitters.pdfArea(light.patch) * light.distance * light.distance / cosLight;
+}
+
+MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& camera, const PixelSampling& s,
+                                    const CameraSampleRadiance& radiance) {
+  const auto start = std::chrono::steady_clock::now();
+  const PinholeCamera cam(camera, s.width, s.height);
+  const int n = std::max(1, s.samplesPerPixel);
+  MonteCarloImage out;
+  RadianceImage& img = out.image;
+  img.width = s.width;
+  img.height = s.height;
+  img.radiance.assign(std::size_t(s.width) * s.height, Vec3{});
+  img.patch.assign(img.radiance.size(), -1);
+  out.varianceOfMean.assign(img.radiance.size(), Vec3{});
+  std::vector<long long> rowRays(s.height, 0);
+
+  tbb::parallel_for(0, s.height, [&](int y) {
+    for (int x = 0; x < s.width; ++x) {
+      const std::size_t k = std::size_t(y) * s.width + x;
+      Rng rng(s.seed, k, s.stream);
+      Vec3 sum, sumSq;
+      for (int i = 0; i < n; ++i) {
+        const double jx = rng.uniform(), jy = rng.uniform();
+        const Vec3 l = radiance(cam.origin(), cam.direction(x + jx, y + jy), rng, rowRays[y]);
+        sum += l;
+        sumSq += mul(l, l);
+      }
+      const Vec3 mean = sum / n;
+      img.radiance[k] = mean;
+      // Unbiased sample variance s² = (Σl² − n·mean²)/(n − 1); the mean's variance is s²/n.
+      if (n > 1) {
+        const Vec3 v = (sumSq - mul(mean, mean) * n) / (double(n - 1) * n);
+        out.varianceOfMean[k] = {std::max(0.0, v.x), std::max(0.0, v.y), std::max(0.0, v.z)};
+      }
+      if (auto hit = scene.rays().closestHit(cam.origin(), cam.direction(x + 0.5, y + 0.5), 0.0))
+        img.patch[k] = hit->patch;
+    }
+  });
+  out.paths = (long long)(n) * s.width * s.height;
+  for (long long r : rowRays) out.rays += r;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
 }
 
 }  // namespace radkit

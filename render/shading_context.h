@@ -4,6 +4,8 @@
 // importance sampling and the MIS weight of a BSDF-sampled ray that finds an emitter.
 #pragma once
 
+#include <functional>
+
 #include <memory>
 #include <optional>
 #include <vector>
@@ -45,6 +47,24 @@ struct MonteCarloImage {
   long long rays = 0;                ///< closest-hit and shadow rays cast
   double seconds = 0;                ///< wall time of the render
 };
+
+/// The camera-sample loop shared by the Monte Carlo image modes.
+struct PixelSampling {
+  int width = 256, height = 256;
+  int samplesPerPixel = 16;
+  std::uint64_t seed = 1;
+  std::uint64_t stream = 0;  ///< pixel (x, y) uses Rng(seed, y·width + x, stream)
+};
+
+/// Estimates the radiance along one camera ray; adds the rays it casts to `rays`.
+using CameraSampleRadiance = std::function<Vec3(const Vec3& origin, const Vec3& direction, Rng& rng, long long& rays)>;
+
+class ShadingScene;
+
+/// \brief Averages samplesPerPixel jittered camera samples per pixel (parallel over rows,
+/// deterministic), with the variance of each pixel mean and the patch seen at the pixel centre.
+MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& camera, const PixelSampling& sampling,
+                                    const CameraSampleRadiance& radiance);
 
 class ShadingScene {
  public:
