@@ -39,6 +39,7 @@ void addMeshCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
 void addPipelineCommands(CLI::App& app);
 void addBenchCommands(CLI::App& app);
+void addStudyCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addBrdfCommand(CLI::App& app);
 void addPhotonsCommand(CLI::App& app);

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   radkit::app::addPipelineCommands(app);
   radkit::app::addBenchCommands(app);
   radkit::app::addViewCommand(app);
+  radkit::app::addStudyCommand(app);
   radkit::app::addRenderCommand(app);
   radkit::app::addBrdfCommand(app);
   radkit::app::addPhotonsCommand(app);

@@ -7,7 +7,9 @@
 #include "apps/options.h"
 #include "apps/report.h"
 #include "geometry/patch_io.h"
+#include "radiosity/adaptive.h"
 #include "radiosity/form_factor_heat_map.h"
+#include "radiosity/presets.h"
 #include "radiosity/form_factor_writers.h"
 #include "render/radiosity_image.h"
 #include "util/output_folder.h"
@@ -26,7 +28,35 @@ struct PipelineCommand {
   std::string out;
   bool noRender = false, photometric = false, smooth = false, writeMatrix = false;
   int imageSize = 512;
+  std::string preset;
+  bool adaptive = false;
+  AdaptiveSettings adaptiveSettings;
+  /// Options a preset must not override when the user gave them.
+  std::vector<CLI::Option*> meshFlags, methodFlag, samplesFlag, tolFlag;
 };
+
+bool given(const std::vector<CLI::Option*>& flags) {
+  for (const CLI::Option* o : flags)
+    if (o && o->count() > 0) return true;
+  return false;
+}
+
+/// The run's settings: the preset's (if any), then every option the user gave explicitly.
+PipelineSettings pipelineSettings(const PipelineCommand& cmd) {
+  PipelineSettings explicitSettings;
+  explicitSettings.mesh = {cmd.mesh.maxArea, cmd.mesh.patches};
+  explicitSettings.formFactors = cmd.ff.settings;
+  explicitSettings.solvers = cmd.job == Job::FormFactors ? std::vector<SolverChoice>{} : cmd.solver.choices;
+  explicitSettings.stopping = cmd.solver.stopping;
+  if (cmd.preset.empty()) return explicitSettings;
+  PipelineSettings s = explicitSettings;
+  applyPreset(cmd.preset, s);
+  if (given(cmd.meshFlags)) s.mesh = explicitSettings.mesh;
+  if (given(cmd.methodFlag)) s.formFactors.method = explicitSettings.formFactors.method;
+  if (given(cmd.samplesFlag)) s.formFactors.samples = explicitSettings.formFactors.samples;
+  if (given(cmd.tolFlag)) s.stopping.tolerance = explicitSettings.stopping.tolerance;
+  return s;
+}
 
 std::string fmt(const char* f, double v) {
   char buf[64];
@@ -104,15 +134,13 @@ void runJob(PipelineCommand& cmd) {
   cmd.ff.finish();
   if (cmd.job != Job::FormFactors) cmd.solver.finish();
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
-  if (cmd.job == Job::Run && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0) cmd.mesh.patches = kDefaultRunPatches;
+  // Adaptive refinement starts coarse, at a quarter of its budget, so it has room to refine.
+  if (cmd.job == Job::Run && cmd.preset.empty() && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0)
+    cmd.mesh.patches = cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
   Scene scene = loadSceneReporting(cmd.mesh.scene);
   if (cmd.out.empty()) cmd.out = "out/" + scene.name;
 
-  PipelineSettings settings;
-  settings.mesh = {cmd.mesh.maxArea, cmd.mesh.patches};
-  settings.formFactors = cmd.ff.settings;
-  settings.solvers = cmd.job == Job::FormFactors ? std::vector<SolverChoice>{} : cmd.solver.choices;
-  settings.stopping = cmd.solver.stopping;
+  PipelineSettings settings = pipelineSettings(cmd);
   Progress progress;
   PipelineLog log;
   log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
@@ -120,7 +148,19 @@ void runJob(PipelineCommand& cmd) {
     progress.finish();
     std::fprintf(stderr, "%s\n", line.c_str());
   };
-  PipelineResult r = runPipeline(scene, settings, log);
+  nlohmann::json adaptiveJson;
+  PipelineResult r;
+  if (cmd.adaptive) {
+    AdaptiveResult a = solveAdaptive(scene, settings, cmd.adaptiveSettings, log);
+    r = std::move(a.final);
+    nlohmann::json rounds = nlohmann::json::array();
+    for (const AdaptiveRound& round : a.rounds)
+      rounds.push_back({{"patches", round.patches}, {"max_indicator", round.maxIndicator},
+                        {"shadow_patches", round.shadowPatches}, {"split", round.split}});
+    adaptiveJson = {{"rounds", rounds}, {"stop_reason", a.stopReason}, {"seconds", a.seconds}};
+  } else {
+    r = runPipeline(scene, settings, log);
+  }
   progress.finish();
 
   OutputFolder folder(cmd.out);
@@ -128,7 +168,10 @@ void runJob(PipelineCommand& cmd) {
                         {"command", cmd.job == Job::Run ? "run" : cmd.job == Job::Solvers ? "solvers" : "formfactors"},
                         {"scene", sceneJson(scene)},
                         {"mesh", meshJson(scene, r.mesh)},
-                        {"form_factors", toJson(r.formFactors->diagnostics)}};
+                        {"form_factors", toJson(r.formFactors->diagnostics)},
+                        {"warnings", r.warnings}};
+  if (!cmd.preset.empty()) report["preset"] = {{"name", cmd.preset}, {"description", describePreset(cmd.preset)}};
+  if (cmd.adaptive) report["adaptive"] = adaptiveJson;
   writePatchesCsv(folder.path("patches.csv"), scene, r.mesh, r.solves.empty() ? nullptr : &r.radiosity);
   if (cmd.job != Job::Solvers)
     writeFormFactorFiles(folder, scene, r, cmd.job == Job::FormFactors || cmd.writeMatrix || r.mesh.size() <= kMatrixFileLimit);
@@ -163,10 +206,19 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
   CLI::App* sub = app.add_subcommand(name, help);
   addMeshOptions(*sub, cmd->mesh, job != Job::Run);
   addFormFactorOptions(*sub, cmd->ff);
+  std::string presets;
+  for (const std::string& preset : presetNames()) presets += "\n  " + describePreset(preset);
+  sub->add_option("--preset", cmd->preset, "Speed-accuracy preset; options given explicitly win:" + presets)
+      ->check(CLI::IsMember(presetNames()));
+  cmd->meshFlags = {sub->get_option("--patches"), sub->get_option("--max-area")};
+  cmd->methodFlag = {sub->get_option("--ff")};
+  cmd->samplesFlag = {sub->get_option("--ff-samples")};
   // `solvers` runs past 1e-9 so report.json's table of iterations to 1e-3, 1e-6 and 1e-9 is whole.
   if (job == Job::Solvers) cmd->solver.stopping.tolerance = 1e-10;
-  if (job != Job::FormFactors)
+  if (job != Job::FormFactors) {
     addSolverOptions(*sub, cmd->solver, job == Job::Solvers ? "jacobi,gauss-seidel,sor,southwell,cg" : "gauss-seidel");
+    cmd->tolFlag = {sub->get_option("--tol")};
+  }
   auto* out = sub->add_option("--out", cmd->out, job == Job::Run ? "Output folder (default out/<scene name>)" : "Output folder");
   if (job != Job::Run) out->required();
   if (job == Job::Run) {
@@ -175,6 +227,16 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
     sub->add_flag("--smooth", cmd->smooth, "Interpolate radiosity between patches in render.png");
     sub->add_flag("--write-matrix", cmd->writeMatrix,
                   "Write formfactors.mtx even above " + std::to_string(kMatrixFileLimit) + " patches");
+    sub->add_flag("--adaptive", cmd->adaptive,
+                  "Refine patches where radiosity changes most between neighbours and across shadow boundaries, "
+                  "re-solve, repeat (starts from --patches/--max-area, else a quarter of the budget; "
+                  "docs/speed-vs-accuracy.md)");
+    sub->add_option("--adaptive-max-patches", cmd->adaptiveSettings.maxPatches, "Adaptive: patch budget")
+        ->check(CLI::PositiveNumber)->capture_default_str();
+    sub->add_option("--adaptive-tol", cmd->adaptiveSettings.tolerance, "Adaptive: stop when no patch's indicator exceeds this")
+        ->check(CLI::PositiveNumber)->capture_default_str();
+    sub->add_option("--adaptive-rounds", cmd->adaptiveSettings.maxRounds, "Adaptive: refine-and-solve rounds at most")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
     sub->add_option("--image-size", cmd->imageSize, "Side of render.png in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
   }
   sub->callback([cmd] { runJob(*cmd); });

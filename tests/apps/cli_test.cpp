@@ -186,6 +186,36 @@ TEST(RunCli, CornellBoxRenderLayout) {
   EXPECT_GT(nearLight, corner * 1.1);
 }
 
+TEST(RunCli, PresetAndExplicitOptions) {
+  test::TempDir dir;
+  // The draft preset fixes the mesh at about 1000 patches; an explicit --patches wins over it.
+  auto r = runRadkit("run --preset draft --no-render --out '" + dir.path("a") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  json a = readJson(dir.path("a/report.json"));
+  EXPECT_EQ(a["preset"]["name"], "draft");
+  EXPECT_NEAR(a["mesh"]["patches"].get<double>(), 1000, 50);
+  r = runRadkit("run --preset draft --patches 200 --no-render --out '" + dir.path("b") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NEAR(readJson(dir.path("b/report.json"))["mesh"]["patches"].get<double>(), 200, 20);
+  EXPECT_NE(runRadkit("run --preset turbo --out '" + dir.path("c") + "'").exitCode, 0);
+  EXPECT_FALSE(fs::exists(dir.path("c")));
+}
+
+TEST(RunCli, AdaptiveStaysInBudgetAndBalancesEnergy) {
+  test::TempDir dir;
+  auto r = runRadkit("run '" + dataPath("cube-one-emitter.json") + "' --adaptive --patches 24 --adaptive-max-patches 150 "
+                     "--tol 1e-9 --no-render --out '" + dir.path("a") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  json j = readJson(dir.path("a/report.json"));
+  ASSERT_GE(j["adaptive"]["rounds"].size(), 2u);
+  EXPECT_LE(j["mesh"]["patches"].get<int>(), 150);
+  EXPECT_GT(j["mesh"]["patches"].get<int>(), 24);
+  // Closed cube: nothing escapes and emitted = absorbed up to F's row-sum deviation
+  // (closed-form-radiosity.md), on a mesh with T-junctions.
+  EXPECT_LT(j["energy_balance"]["relative_imbalance"].get<double>(), 1e-4);
+  EXPECT_LT(j["energy_balance"]["escaped_W"][1].get<double>(), 1e-4 * j["energy_balance"]["emitted_W"][1].get<double>());
+}
+
 TEST(BenchCli, SolverPrintsOneJsonObject) {
   auto r = runRadkit("bench solver --n 256 --repetitions 1");
   ASSERT_EQ(r.exitCode, 0) << r.output;

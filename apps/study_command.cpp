@@ -1,0 +1,208 @@
+// radkit study: the speed-accuracy sweep of radiosity/study.h and its files: study.csv,
+// study.md, one error-versus-seconds chart per knob and the Pareto fronts.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "apps/common.h"
+#include "apps/report.h"
+#include "radiosity/study.h"
+#include "util/line_chart.h"
+#include "util/output_folder.h"
+
+namespace radkit::app {
+
+namespace {
+
+struct StudyCommand {
+  MeshOptions mesh;  // scene only: the study chooses the meshes
+  StudySettings settings;
+  std::string out;
+};
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string mib(std::size_t bytes) { return fmt("%.1f", bytes / 1048576.0); }
+
+void writeCsv(const std::string& path, const StudyResult& r) {
+  std::ostringstream o;
+  o << "knob,config,status,patches,ff_method,ff_samples,solver,tolerance,mesh_s,ray_scene_s,formfactors_s,solve_s,"
+       "results_s,total_s,estimated_s,ff_bytes,peak_bytes,iterations,converged,surface_error,patch_error,field_error,"
+       "pareto_surface,pareto_patch\n";
+  auto line = [&](const StudyRow& w, const std::string& knob) {
+    const PipelineSettings& s = w.config.settings;
+    o << knob << ",\"" << w.config.label() << "\"," << (w.ran ? "ran" : "skipped") << ',' << w.patches << ','
+      << s.formFactors.method << ',' << s.formFactors.samples << ',' << s.solvers.front().name << ','
+      << s.stopping.tolerance << ',' << w.seconds.mesh << ',' << w.seconds.rayScene << ',' << w.seconds.formFactors
+      << ',' << w.seconds.solve << ',' << w.seconds.results << ',' << w.totalSeconds << ',' << w.estimatedSeconds
+      << ',' << w.formFactorBytes << ',' << w.peakBytes << ',' << w.iterations << ',' << w.converged << ','
+      << w.surfaceError << ',' << w.patchError << ',' << w.fieldError << ',' << w.paretoSurface << ','
+      << w.paretoPatch << '\n';
+  };
+  o.precision(6);
+  for (const StudyRow& w : r.rows) line(w, studyKnobName(w.config.knob));
+  line(r.reference.row, "reference");
+  writeFileAtomically(path, o.str());
+}
+
+using Pick = double (*)(const StudyRow&);
+double totalS(const StudyRow& w) { return w.totalSeconds; }
+double solveS(const StudyRow& w) { return w.seconds.solve; }
+double patchesOf(const StudyRow& w) { return w.patches; }
+double surfaceE(const StudyRow& w) { return w.surfaceError; }
+double patchE(const StudyRow& w) { return w.patchError; }
+
+/// One series per group (method, solver), points sorted by x, plus the panel's Pareto front.
+ChartPanel panel(const std::vector<const StudyRow*>& rows, Pick x, Pick y, std::string (*group)(const StudyRow&),
+                 const std::string& title, const std::string& xLabel, const std::string& yLabel) {
+  ChartPanel p{title, xLabel, yLabel, true, true, {}};
+  std::map<std::string, std::vector<std::pair<double, double>>> groups;
+  std::vector<double> xs, ys;
+  for (const StudyRow* w : rows) {
+    groups[group(*w)].push_back({x(*w), y(*w)});
+    xs.push_back(x(*w)), ys.push_back(y(*w));
+  }
+  auto add = [&](const std::string& name, std::vector<std::pair<double, double>> pts) {
+    std::sort(pts.begin(), pts.end());
+    ChartSeries s{name, {}, {}};
+    for (auto [a, b] : pts) s.x.push_back(a), s.y.push_back(b);
+    p.series.push_back(s);
+  };
+  for (auto& [name, pts] : groups) add(name, pts);
+  std::vector<bool> front = paretoFront(xs, ys);
+  std::vector<std::pair<double, double>> fp;
+  for (std::size_t k = 0; k < xs.size(); ++k)
+    if (front[k]) fp.push_back({xs[k], ys[k]});
+  if (groups.size() > 0) add("Pareto front", fp);
+  return p;
+}
+
+std::string byMethod(const StudyRow& w) { return w.config.settings.formFactors.method; }
+std::string bySolver(const StudyRow& w) { return w.config.settings.solvers.front().name; }
+std::string byKnob(const StudyRow& w) {
+  return w.config.knob == StudyKnob::Mesh ? "uniform mesh" : studyKnobName(w.config.knob);
+}
+
+std::vector<const StudyRow*> rowsOf(const StudyResult& r, std::initializer_list<StudyKnob> knobs) {
+  std::vector<const StudyRow*> out;
+  for (const StudyRow& w : r.rows)
+    if (w.ran && std::find(knobs.begin(), knobs.end(), w.config.knob) != knobs.end()) out.push_back(&w);
+  return out;
+}
+
+void writeCharts(OutputFolder& folder, const StudyResult& r, const std::string& scene) {
+  const std::string s = "seconds (all stages)", es = "surface error (max rel.)", ep = "patch error (rel. L1)";
+  auto mesh = rowsOf(r, {StudyKnob::Mesh});
+  writeLineChartPng(folder.path("study-mesh.png"),
+                    {panel(mesh, totalS, surfaceE, byKnob, scene + ": mesh density", s, es),
+                     panel(mesh, totalS, patchE, byKnob, scene + ": mesh density", s, ep)});
+  auto ff = rowsOf(r, {StudyKnob::FormFactors});
+  writeLineChartPng(folder.path("study-formfactors.png"),
+                    {panel(ff, totalS, surfaceE, byMethod, scene + ": form factors (K along each line)", s, es),
+                     panel(ff, totalS, patchE, byMethod, scene + ": form factors (K along each line)", s, ep)});
+  auto sv = rowsOf(r, {StudyKnob::Solver});
+  writeLineChartPng(folder.path("study-solver.png"),
+                    {panel(sv, solveS, surfaceE, bySolver, scene + ": solver and tolerance", "solve seconds", es),
+                     panel(sv, solveS, patchE, bySolver, scene + ": solver and tolerance", "solve seconds", ep)});
+  auto ad = rowsOf(r, {StudyKnob::Mesh, StudyKnob::Adaptive});
+  writeLineChartPng(folder.path("study-adaptive.png"),
+                    {panel(ad, patchesOf, patchE, byKnob, scene + ": adaptive against uniform", "patches", ep),
+                     panel(ad, totalS, patchE, byKnob, scene + ": adaptive against uniform", s, ep)});
+  auto all = rowsOf(r, {StudyKnob::Mesh, StudyKnob::FormFactors, StudyKnob::Solver, StudyKnob::Adaptive});
+  writeLineChartPng(folder.path("study-pareto.png"),
+                    {panel(all, totalS, surfaceE, byKnob, scene + ": every configuration", s, es),
+                     panel(all, totalS, patchE, byKnob, scene + ": every configuration", s, ep)});
+}
+
+void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& scene, double maxSeconds) {
+  std::ostringstream o;
+  const StudyRow& ref = r.reference.row;
+  o << "# Speed-accuracy study: " << scene.name << "\n\n"
+    << "Budget " << maxSeconds << " s, study took " << fmt("%.0f", r.seconds) << " s.\n\n"
+    << "**Reference:** " << ref.patches << " patches, " << ref.config.settings.formFactors.method << " K = "
+    << ref.config.settings.formFactors.samples << ", " << ref.config.settings.solvers.front().name << " to "
+    << fmt("%.0e", ref.config.settings.stopping.tolerance) << " (" << fmt("%.1f", ref.totalSeconds) << " s, F "
+    << mib(ref.formFactorBytes) << " MiB, peak " << mib(ref.peakBytes) << " MiB). Its own error, estimated: surface "
+    << fmt("%.2e", r.reference.surfaceErrorEstimate) << ", patch " << fmt("%.2e", r.reference.patchErrorEstimate)
+    << ". " << r.reference.errorMethod << "\n\n"
+    << "Errors are relative to the reference (radiosity/study.h): surface = max over surfaces and channels; patch = "
+       "area-weighted L1 of patch means; field = area-weighted L1 of the piecewise-constant picture. P = on the Pareto "
+       "front of error against total seconds (s: surface, p: patch).\n\n"
+    << "| knob | configuration | patches | mesh s | F s | solve s | total s | F MiB | peak MiB | iterations | surface "
+       "error | patch error | field error | P |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const StudyRow& w : r.rows) {
+    if (!w.ran) continue;
+    o << "| " << studyKnobName(w.config.knob) << " | " << w.config.label() << " | " << w.patches << " | "
+      << fmt("%.2f", w.seconds.mesh) << " | " << fmt("%.2f", w.seconds.formFactors) << " | "
+      << fmt("%.3f", w.seconds.solve) << " | " << fmt("%.2f", w.totalSeconds) << " | " << mib(w.formFactorBytes)
+      << " | " << mib(w.peakBytes) << " | " << w.iterations << " | " << fmt("%.2e", w.surfaceError) << " | "
+      << fmt("%.2e", w.patchError) << " | " << fmt("%.2e", w.fieldError) << " | "
+      << (w.paretoSurface ? "s" : "") << (w.paretoPatch ? "p" : "") << " |\n";
+  }
+  o << "\nSkipped (the planner's estimate did not fit the remaining budget):\n\n";
+  for (const StudyRow& w : r.rows)
+    if (!w.ran) o << "- " << studyKnobName(w.config.knob) << " " << w.config.label() << ": " << w.note << "\n";
+  std::vector<double> n, ff, pe;
+  for (const StudyRow* w : rowsOf(r, {StudyKnob::Mesh}))
+    n.push_back(w->patches), ff.push_back(w->seconds.formFactors), pe.push_back(w->patchError);
+  o << "\nMesh ladder fits: form-factor seconds ∝ N^" << fmt("%.2f", fitExponent(n, ff)) << ", patch error ∝ N^"
+    << fmt("%.2f", fitExponent(n, pe)) << ".\n";
+  writeFileAtomically(path, o.str());
+}
+
+void runStudyCommand(StudyCommand& cmd) {
+  if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
+  Scene scene = loadSceneReporting(cmd.mesh.scene);
+  Progress progress;
+  PipelineLog log;
+  log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
+  log.message = [&](const std::string& line) {
+    progress.finish();
+    std::fprintf(stderr, "study: %s\n", line.c_str());
+  };
+  StudyResult r = runStudy(scene, cmd.settings, log);
+  progress.finish();
+  OutputFolder folder(cmd.out);
+  writeCsv(folder.path("study.csv"), r);
+  writeMarkdown(folder.path("study.md"), r, scene, cmd.settings.maxSeconds);
+  writeCharts(folder, r, scene.name);
+  folder.commit();
+  int ran = int(std::count_if(r.rows.begin(), r.rows.end(), [](const StudyRow& w) { return w.ran; }));
+  printField("scene", scene.name + " (" + scene.file + ")");
+  printField("configurations", std::to_string(ran) + " run, " + std::to_string(r.rows.size() - ran) + " skipped");
+  printField("reference", std::to_string(r.reference.row.patches) + " patches, error estimate surface " +
+                              fmt("%.2e", r.reference.surfaceErrorEstimate) + ", patch " +
+                              fmt("%.2e", r.reference.patchErrorEstimate));
+  printField("seconds", fmt("%.1f", r.seconds));
+  printField("wrote", cmd.out);
+}
+
+}  // namespace
+
+void addStudyCommand(CLI::App& app) {
+  auto cmd = std::make_shared<StudyCommand>();
+  CLI::App* sub = app.add_subcommand(
+      "study", "Speed against accuracy: sweep mesh density, form factors, solvers and adaptive meshes within a time "
+               "budget; study.csv, study.md and error-versus-seconds charts");
+  sub->add_option("scene", cmd->mesh.scene, "Scene file (default: the Cornell box)");
+  sub->add_option("--max-seconds", cmd->settings.maxSeconds, "Wall-clock budget of the whole study")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--knob-patches", cmd->settings.knobPatches,
+                  "Mesh of the form-factor and solver sweeps (a rung of the mesh ladder)")
+      ->check(CLI::IsMember({250, 500, 1000, 2000, 4000}))
+      ->capture_default_str();
+  sub->add_option("--seed", cmd->settings.baseline.formFactors.seed, "Seed of every random stream")->capture_default_str();
+  sub->add_option("--out", cmd->out, "Output folder")->required();
+  sub->callback([cmd] { runStudyCommand(*cmd); });
+}
+
+}  // namespace radkit::app

@@ -1,0 +1,64 @@
+#include "radiosity/presets.h"
+
+#include <stdexcept>
+
+namespace radkit {
+
+namespace {
+
+/// One row of the table: the settings a preset fixes and the Cornell-box figures behind it.
+struct Preset {
+  const char* name;
+  int patches;
+  int samples;
+  double tolerance;
+  const char* measured;  ///< from docs/speed-vs-accuracy.md
+};
+
+// The one table (hand-written, pbrt-v4 style). Each row is a point on or next to the Pareto
+// front of `radkit study data/cornell-box.json --max-seconds 900` (docs/speed-vs-accuracy.md):
+// errors against its 16 000-patch reference, seconds on the 2-core development machine.
+constexpr Preset kPresets[] = {
+    {"draft", 1000, 16, 1e-4, "Cornell box: ~2.4 s, surface error 1.4e-2, patch error 4.5e-3"},
+    {"balanced", 4000, 16, 1e-6, "Cornell box: ~19 s, surface error 4.1e-3, patch error 1.5e-3"},
+    {"reference", 16000, 16, 1e-9, "Cornell box: ~280 s and 2 GiB (dense F), the study's reference"},
+};
+
+const Preset& findPreset(const std::string& name) {
+  for (const Preset& p : kPresets)
+    if (name == p.name) return p;
+  std::string known;
+  for (const Preset& p : kPresets) known += std::string(known.empty() ? "" : ", ") + p.name;
+  throw std::invalid_argument("unknown preset '" + name + "'; known presets: " + known);
+}
+
+std::string format(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<std::string> presetNames() {
+  std::vector<std::string> names;
+  for (const Preset& p : kPresets) names.emplace_back(p.name);
+  return names;
+}
+
+void applyPreset(const std::string& name, PipelineSettings& settings) {
+  const Preset& p = findPreset(name);
+  settings.mesh.maxArea = 0;
+  settings.mesh.targetPatches = p.patches;
+  settings.formFactors.method = "point-polygon";
+  settings.formFactors.samples = p.samples;
+  settings.stopping.tolerance = p.tolerance;
+}
+
+std::string describePreset(const std::string& name) {
+  const Preset& p = findPreset(name);
+  return std::string(p.name) + ": about " + std::to_string(p.patches) + " patches, point-polygon K = " +
+         std::to_string(p.samples) + ", tolerance " + format("%.0e", p.tolerance) + "; " + p.measured;
+}
+
+}  // namespace radkit

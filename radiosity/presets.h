@@ -1,0 +1,25 @@
+// Named speed-accuracy presets (draft, balanced, reference): a few PipelineSettings changes
+// chosen from the Pareto front of `radkit study` on the Cornell box (docs/speed-vs-accuracy.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "radiosity/radiosity_pipeline.h"
+
+namespace radkit {
+
+/// \brief The preset names, fastest first: "draft", "balanced", "reference".
+std::vector<std::string> presetNames();
+
+/// \brief Overwrites the settings a preset fixes: mesh.targetPatches (and maxArea = 0),
+/// formFactors.method and samples, stopping.tolerance. Everything else is left alone.
+/// Apply the preset first and the user's explicit options after it, so they win.
+/// \throws std::invalid_argument for an unknown name, listing the known ones.
+void applyPreset(const std::string& name, PipelineSettings& settings);
+
+/// \brief One line: what the preset sets and what it measured on the Cornell box.
+/// \throws std::invalid_argument for an unknown name.
+std::string describePreset(const std::string& name);
+
+}  // namespace radkit
