@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <regex>
 
 #include "apps/common.h"
 #include "apps/options.h"
@@ -15,6 +14,7 @@
 #include "render/photon_map.h"
 #include "render/photon_tracer.h"
 #include "render/shading.h"
+#include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
 
 namespace radkit::app {
 
@@ -35,13 +35,6 @@ struct RenderCommand {
   bool smooth = false, compensated = false;
 };
 
-void parseSize(const std::string& text, int& width, int& height) {
-  std::smatch m;
-  if (!std::regex_match(text, m, std::regex(R"((\d{1,5})x(\d{1,5}))")) || std::stoi(m[1]) < 1 || std::stoi(m[2]) < 1)
-    throw CLI::ValidationError("--size", "\"" + text + "\" is not WIDTHxHEIGHT (for example 640x480)");
-  width = std::stoi(m[1]);
-  height = std::stoi(m[2]);
-}
 
 /// Which pixels show an emitter (left out of automatic exposure).
 std::vector<bool> pixelEmits(const Scene& scene, const PatchMesh& mesh, const RadianceImage& img) {
@@ -127,7 +120,7 @@ void runRender(RenderCommand& cmd) {
   cmd.ff.finish();
   cmd.solver.finish();
   int width = 0, height = 0;
-  parseSize(cmd.size, width, height);
+  viewer::parseSize(cmd.size, width, height, 1, 16384);  // tests render 8x8 images
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
   const Scene scene = loadSceneReporting(cmd.mesh.scene);
   std::string what;

@@ -7,7 +7,7 @@ namespace radkit {
 
 namespace {
 
-class GaussSeidelSolver final : public Solver {
+class GaussSeidelSolver final : public SorIterationSolver {
  public:
   std::string name() const override { return "gauss-seidel"; }
   std::string describe() const override {
@@ -17,14 +17,6 @@ class GaussSeidelSolver final : public Solver {
   void start(const RadiositySystem& system, const SolverSettings& settings) override {
     m_iteration.start(system, settings, {1.0, 1.0, 1.0});
   }
-  void step() override { m_iteration.step(); }
-  const Channels& radiosity() const override { return m_iteration.radiosity(); }
-  double residual() const override { return m_iteration.residual(); }
-  double unshotPower() const override { return m_iteration.unshotPower(); }
-  double sweeps() const override { return static_cast<double>(m_iteration.iterations()); }
-
- private:
-  SorIteration m_iteration;
 };
 
 }  // namespace

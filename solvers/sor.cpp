@@ -42,7 +42,7 @@ Rgb jacobiSpectralRadius(const RadiositySystem& s, int maxIterations) {
   return radius;
 }
 
-class SorSolver final : public Solver {
+class SorSolver final : public SorIterationSolver {
  public:
   SorSolver(double omega, int powerIterations)
       : m_fixedOmega(omega), m_powerIterations(powerIterations) {}
@@ -66,17 +66,11 @@ class SorSolver final : public Solver {
     }
     m_iteration.start(system, settings, m_omega);
   }
-  void step() override { m_iteration.step(); }
-  const Channels& radiosity() const override { return m_iteration.radiosity(); }
-  double residual() const override { return m_iteration.residual(); }
-  double unshotPower() const override { return m_iteration.unshotPower(); }
-  double sweeps() const override { return static_cast<double>(m_iteration.iterations()); }
 
  private:
   double m_fixedOmega;
   int m_powerIterations;
   Rgb m_omega{1.0, 1.0, 1.0};
-  SorIteration m_iteration;
 };
 
 }  // namespace

@@ -48,4 +48,18 @@ class SorIteration {
   long m_iterations = 0;
 };
 
+/// The Solver plumbing Gauss-Seidel and SOR share: both step a SorIteration and differ only
+/// in name, description and how they choose ω at start().
+class SorIterationSolver : public Solver {
+ public:
+  void step() override { m_iteration.step(); }
+  const Channels& radiosity() const override { return m_iteration.radiosity(); }
+  double residual() const override { return m_iteration.residual(); }
+  double unshotPower() const override { return m_iteration.unshotPower(); }
+  double sweeps() const override { return static_cast<double>(m_iteration.iterations()); }
+
+ protected:
+  SorIteration m_iteration;
+};
+
 }  // namespace radkit

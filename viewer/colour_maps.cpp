@@ -71,4 +71,15 @@ std::string formatNumber(double v) {
   return buf;
 }
 
+void styleScalarBar(vtkScalarBarActor* bar, int pixels) {
+  for (vtkTextProperty* t :
+       {bar->GetTitleTextProperty(), bar->GetLabelTextProperty(), bar->GetAnnotationTextProperty()}) {
+    styleText(t, pixels, false);
+    t->ShadowOff();
+    t->ItalicOff();
+    t->BoldOff();
+  }
+  bar->SetUnconstrainedFontSize(true);
+}
+
 }  // namespace radkit::viewer

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <vtkLookupTable.h>
+#include <vtkScalarBarActor.h>
 #include <vtkTextProperty.h>
 
 #include <string>
@@ -18,6 +19,9 @@ void fillLookupTable(vtkLookupTable* lut, ColourMap map, double lo, double hi, b
 
 /// \brief Light text on a translucent dark panel, `pixels` high, readable on any scene.
 void styleText(vtkTextProperty* text, int pixels, bool panel = true);
+
+/// \brief The scalar bar's title, labels and annotations in the viewer's plain text style.
+void styleScalarBar(vtkScalarBarActor* bar, int pixels);
 
 /// "%.4g" of a value, and "(r, g, b)" of a triple.
 std::string formatNumber(double v);

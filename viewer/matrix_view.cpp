@@ -157,14 +157,7 @@ void MatrixView::setFontSize(int pixels) {
     label->GetTextProperty()->SetJustificationToRight();
     label->GetTextProperty()->SetVerticalJustificationToCentered();
   }
-  for (vtkTextProperty* t : {m_scalarBar->GetTitleTextProperty(), m_scalarBar->GetLabelTextProperty(),
-                             m_scalarBar->GetAnnotationTextProperty()}) {
-    styleText(t, pixels, false);
-    t->ShadowOff();
-    t->ItalicOff();
-    t->BoldOff();
-  }
-  m_scalarBar->SetUnconstrainedFontSize(true);
+  styleScalarBar(m_scalarBar, pixels);
   m_scalarBar->SetTitle("F");
 }
 

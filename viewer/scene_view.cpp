@@ -110,14 +110,7 @@ void SceneView::setFontSize(int pixels) {
   styleText(m_info->GetTextProperty(), pixels);
   m_info->GetTextProperty()->SetVerticalJustificationToTop();
   m_info->GetTextProperty()->SetFontFamilyToCourier();  // numbers line up
-  for (vtkTextProperty* t : {m_scalarBar->GetTitleTextProperty(), m_scalarBar->GetLabelTextProperty(),
-                             m_scalarBar->GetAnnotationTextProperty()}) {
-    styleText(t, pixels, false);
-    t->ShadowOff();
-    t->ItalicOff();
-    t->BoldOff();
-  }
-  m_scalarBar->SetUnconstrainedFontSize(true);
+  styleScalarBar(m_scalarBar, pixels);
 }
 
 void SceneView::resetCamera() {

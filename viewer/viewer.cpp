@@ -72,7 +72,7 @@ void requireInputs(const RunFolder& run, const ModeChoice& mode) {
 
 }  // namespace
 
-void parseSize(const std::string& text, int& width, int& height) {
+void parseSize(const std::string& text, int& width, int& height, int minSide, int maxSide) {
   const auto x = text.find_first_of("xX");
   auto number = [&](const std::string& part) {
     if (part.empty() || part.size() > 5 || part.find_first_not_of("0123456789") != std::string::npos) return -1;
@@ -80,8 +80,9 @@ void parseSize(const std::string& text, int& width, int& height) {
   };
   const int w = x == std::string::npos ? -1 : number(text.substr(0, x));
   const int h = x == std::string::npos ? -1 : number(text.substr(x + 1));
-  if (w < 16 || h < 16 || w > 8192 || h > 8192)
-    throw InputError("--size " + text + ": expected WIDTHxHEIGHT in pixels, each 16..8192 (e.g. 1024x768)");
+  if (w < minSide || h < minSide || w > maxSide || h > maxSide)
+    throw InputError("--size " + text + ": expected WIDTHxHEIGHT in pixels, each " + std::to_string(minSide) + ".." +
+                     std::to_string(maxSide) + " (e.g. 1024x768)");
   width = w;
   height = h;
 }

@@ -31,7 +31,7 @@ int runViewer(const ViewerOptions& options);
 /// at width × height pixels, -1 for the background (VTK cell picker, the scene's camera).
 int pickPatchAt(const std::string& runFolder, int width, int height, int x, int y);
 
-/// \brief Parses "WxH" (both 16..8192). \throws radkit::InputError naming the fix.
-void parseSize(const std::string& text, int& width, int& height);
+/// \brief Parses "WxH", each side in [minSide, maxSide]. \throws radkit::InputError naming the fix.
+void parseSize(const std::string& text, int& width, int& height, int minSide = 16, int maxSide = 8192);
 
 }  // namespace radkit::viewer

@@ -19,6 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using test::dataPath;
+using test::readCsv;
 using test::runRadkit;
 
 json readJson(const std::string& path) {
@@ -26,24 +27,6 @@ json readJson(const std::string& path) {
   return json::parse(in);
 }
 
-/// Rows of a CSV file as maps from header name to text.
-std::vector<std::map<std::string, std::string>> readCsv(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  std::stringstream h(line);
-  for (std::string f; std::getline(h, f, ',');) header.push_back(f);
-  std::vector<std::map<std::string, std::string>> rows;
-  while (std::getline(in, line)) {
-    std::stringstream r(line);
-    std::map<std::string, std::string> row;
-    std::size_t k = 0;
-    for (std::string f; std::getline(r, f, ',') && k < header.size(); ++k) row[header[k]] = f;
-    rows.push_back(row);
-  }
-  return rows;
-}
 
 double surfaceFactor(const std::string& csv, const std::string& from, const std::string& to) {
   for (auto& row : readCsv(csv))

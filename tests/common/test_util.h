@@ -4,6 +4,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
 #include <random>
 #include <string>
 
@@ -50,6 +53,25 @@ inline RunResult runRadkit(const std::string& args) {
   int status = pclose(pipe);
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// Rows of a CSV file without quoted fields, each a map from header name to text.
+inline std::vector<std::map<std::string, std::string>> readCsv(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  std::stringstream h(line);
+  for (std::string f; std::getline(h, f, ',');) header.push_back(f);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream r(line);
+    std::map<std::string, std::string> row;
+    std::size_t k = 0;
+    for (std::string f; std::getline(r, f, ',') && k < header.size(); ++k) row[header[k]] = f;
+    rows.push_back(row);
+  }
+  return rows;
 }
 
 }  // namespace radkit::test

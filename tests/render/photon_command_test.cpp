@@ -26,22 +26,14 @@ std::string readText(const std::string& path) {
   return s.str();
 }
 
-/// Rows of a CSV file (no quoted fields) keyed by the first column, as maps header → text.
-std::map<std::string, std::map<std::string, std::string>> readCsv(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  std::stringstream h(line);
-  for (std::string f; std::getline(h, f, ',');) header.push_back(f);
+/// Rows of a CSV file keyed by its first column.
+std::map<std::string, std::map<std::string, std::string>> readCsvByKey(const std::string& path) {
   std::map<std::string, std::map<std::string, std::string>> rows;
-  while (std::getline(in, line)) {
-    std::stringstream r(line);
-    std::map<std::string, std::string> row;
-    std::size_t k = 0;
-    for (std::string f; std::getline(r, f, ',') && k < header.size(); ++k) row[header[k]] = f;
-    rows[row[header[0]]] = row;
-  }
+  std::ifstream in(path);
+  std::string header;
+  std::getline(in, header);
+  const std::string key = header.substr(0, header.find(','));
+  for (auto& row : test::readCsv(path)) rows[row[key]] = row;
   return rows;
 }
 
@@ -68,7 +60,7 @@ TEST(PhotonsCommand, ConstructWritesEveryFile) {
   EXPECT_GT(report["memory"]["photon_map_bytes"].get<double>(), 0);
   // The target gets about twice the light radiosity gives it (the mirror's spot): far beyond
   // its standard error.
-  auto rows = readCsv(out + "/comparison.csv");
+  auto rows = readCsvByKey(out + "/comparison.csv");
   ASSERT_TRUE(rows.count("target"));
   EXPECT_GT(std::stod(rows["target"]["z_r"]), 5);
   EXPECT_GT(std::stod(rows["target"]["rel_diff_r"]), 0.5);
@@ -97,7 +89,7 @@ TEST(PhotonsCommand, ExactCompareReadsRunFolder) {
   auto r = runRadkit("photons '" + dataPath("mirror-spot.json") + "'" + kQuick + " --compare '" + dir.path("run") +
                      "' --out '" + dir.path("out") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  auto rows = readCsv(dir.path("out/comparison.csv"));
+  auto rows = readCsvByKey(dir.path("out/comparison.csv"));
   EXPECT_EQ(std::stod(rows["target"]["radiosity_b_g"]), 0.25);
   EXPECT_EQ(std::stod(rows["mirror"]["rel_diff_r"]), 0);  // zero reference: reported as 0
 }
