@@ -162,6 +162,10 @@ void runJob(PipelineCommand& cmd) {
     r = runPipeline(scene, settings, log);
   }
   progress.finish();
+  // A run's answer must be a number: a diverged first solver leaves nothing to write.
+  if (cmd.job == Job::Run && !r.solves.empty() && r.solves.front().reason.rfind("diverged", 0) == 0)
+    throw std::runtime_error(r.solves.front().solver + " " + r.solves.front().reason +
+                             "; nothing written");
 
   OutputFolder folder(cmd.out);
   nlohmann::json report{{"radkit", RADKIT_VERSION},

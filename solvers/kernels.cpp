@@ -22,8 +22,18 @@ Channels makeChannels(int n, double value) {
 double maxAbs(const Channels& x) {
   double m = 0.0;
   for (const auto& channel : x)
-    for (double v : channel) m = std::max(m, std::fabs(v));
+    for (double v : channel) {
+      if (std::isnan(v)) return v;  // std::max would drop a NaN and hide a divergence
+      m = std::max(m, std::fabs(v));
+    }
   return m;
+}
+
+bool allFinite(const Channels& x) {
+  for (const auto& channel : x)
+    for (double v : channel)
+      if (!std::isfinite(v)) return false;
+  return true;
 }
 
 double dot(const std::vector<double>& a, const std::vector<double>& b) {

@@ -28,6 +28,9 @@ Channels makeChannels(int n, double value = 0.0);
 /// \brief max over channels and patches of |x|.
 double maxAbs(const Channels& x);
 
+/// \brief True when every entry of every channel is finite.
+bool allFinite(const Channels& x);
+
 /// \brief Σ_i a_i b_i, summed over fixed chunks (in parallel) then the chunk sums in order, so
 ///        the result does not depend on the thread count.
 double dot(const std::vector<double>& a, const std::vector<double>& b);

@@ -76,6 +76,7 @@ double residualMeasure(const RadiositySystem& system, const Channels& r, const C
   for (int c = 0; c < 3; ++c)
     for (std::size_t i = 0; i < r[c].size(); ++i) {
       const double scale = std::max(std::fabs(b[c][i]), std::fabs(b[c][i] + r[c][i]));
+      if (std::isnan(r[c][i])) return r[c][i];
       if (scale > 0.0) worst = std::max(worst, std::fabs(r[c][i]) / scale);
     }
   return worst;

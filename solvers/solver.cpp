@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -63,11 +64,17 @@ std::string number(double v) {
 
 /// Empty when the run goes on; otherwise why it stops (and result.converged is set).
 std::string stopReason(const Solver& solver, const SolverSettings& settings, long iteration,
-                       double seconds, double emissionNorm, bool& converged) {
+                       double seconds, double emissionNorm, double startResidual, bool& converged) {
   const double r = solver.residual();
   const std::string tail = " after " + std::to_string(iteration) + " iterations";
   converged = false;
-  if (!std::isfinite(r)) return "diverged: residual is not finite" + tail;
+  // Iterating B ← E + ρFB diverges when some row of ρF sums above 1 (noisy or
+  // non-physical form factors): B grows without bound and turns inf, then NaN.
+  // A million-fold growth over the starting residual is divergence too, caught long before
+  // B overflows; none of the methods grows its residual that far on a convergent system.
+  if (!std::isfinite(r) || !allFinite(solver.radiosity()) || r > 1e6 * startResidual)
+    return "diverged: the residual grew to " + number(r) + tail +
+           " (rows of rho F sum above 1: check the form factors' row sums, raise --ff-samples)";
   if (r <= settings.tolerance) {
     converged = true;
     if (emissionNorm == 0.0 && r == 0.0) return "converged: E = 0, so B = 0 is exact";
@@ -94,12 +101,13 @@ SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSet
   result.description = solver.describe();
   const double emissionNorm = system.emissionNorm();
   long iteration = 0;
+  const double startResidual = std::max(solver.residual(), std::numeric_limits<double>::min());
   for (;;) {
     const double seconds = secondsSince(t0);
     result.history.push_back(
         {iteration, seconds, solver.residual(), solver.unshotPower(), solver.sweeps()});
-    result.reason =
-        stopReason(solver, settings, iteration, seconds, emissionNorm, result.converged);
+    result.reason = stopReason(solver, settings, iteration, seconds, emissionNorm, startResidual,
+                               result.converged);
     if (!result.reason.empty()) break;
     solver.step();
     ++iteration;

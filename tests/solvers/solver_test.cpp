@@ -29,6 +29,19 @@ TEST(Solve, ExactMaxIterationsSaysNotConvergedAndWhy) {
   }
 }
 
+TEST(Solve, ExactDivergenceIsReportedNotConverged) {
+  // Two plates whose F rows sum to 1.5 (non-physical, as noisy form factors can be): ρF has
+  // spectral radius 0.9 × 1.5 = 1.35 > 1, so iterating B ← E + ρFB diverges. Every solver
+  // must stop and say so, never call a non-finite or exploding B converged.
+  Problem p = makeProblem({0.0, 1.5, 1.5, 0.0}, {1.0, 1.0}, grey({0.9, 0.9}), grey({1.0, 0.0}));
+  for (const char* name : {"jacobi", "gauss-seidel", "sor", "southwell"}) {
+    const SolveResult r = runSolver(name, p.system, 1e-9, ResidualNorm::Relative, 100000);
+    EXPECT_FALSE(r.converged) << name;
+    EXPECT_EQ(r.reason.rfind("diverged", 0), 0u) << name << ": " << r.reason;
+    EXPECT_LT(r.iterations, 1000) << name;  // caught by the residual's growth, not by overflow
+  }
+}
+
 TEST(Solve, ExactTimeLimitSaysNotConverged) {
   Problem p = cubeOneEmitter(0.99);
   SolverSettings settings;
