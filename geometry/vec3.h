@@ -38,6 +38,8 @@ inline Vec3 normalize(const Vec3& v) { return v / length(v); }
 inline bool isFinite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
+/// Luminance Y of a linear RGB triple with the Rec. 709 weights (radiometric RGB → Y).
+constexpr double luminance(const Vec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
 inline double maxComponent(const Vec3& v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
 inline double minComponent(const Vec3& v) { return std::fmin(v.x, std::fmin(v.y, v.z)); }
 

@@ -15,7 +15,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-double luminanceOf(const Vec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
 
 const Material& materialOf(const Scene& scene, const PatchMesh& mesh, int i) {
   return scene.materials[scene.surfaces[mesh.patches[i].surface].material];
@@ -70,13 +69,13 @@ std::vector<double> refinementIndicator(const Scene& scene, const PatchMesh& mes
                                         const std::vector<char>& shadowed) {
   std::vector<std::vector<int>> nb = surfaceNeighbours(mesh);
   double power = 0;  // Σ A_k Y(B_k): the scale the indicator is relative to
-  for (int i = 0; i < mesh.size(); ++i) power += mesh.patches[i].area * luminanceOf(radiosity[i]);
+  for (int i = 0; i < mesh.size(); ++i) power += mesh.patches[i].area * luminance(radiosity[i]);
   std::vector<double> ind(mesh.patches.size(), 0.0);
   if (!(power > 0)) return ind;
   for (int i = 0; i < mesh.size(); ++i) {
     if (materialOf(scene, mesh, i).emits()) continue;
-    double y = luminanceOf(radiosity[i]), delta = 0;
-    for (int j : nb[i]) delta = std::max(delta, std::fabs(y - luminanceOf(radiosity[j])));
+    double y = luminance(radiosity[i]), delta = 0;
+    for (int j : nb[i]) delta = std::max(delta, std::fabs(y - luminance(radiosity[j])));
     if (!shadowed.empty() && shadowed[i]) delta = std::max(delta, y);
     ind[i] = mesh.patches[i].area * delta / power;
   }

@@ -10,7 +10,6 @@
 namespace radkit {
 
 namespace {
-double rec709(const Vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 const Material& materialOf(const Scene& scene, const Patch& p) {
   return scene.materials[scene.surfaces[p.surface].material];
@@ -69,8 +68,8 @@ std::vector<SurfaceResult> surfaceResults(const Scene& scene, const PatchMesh& m
       r.irradiance = r.irradiance / r.area;
     }
     r.area *= m2;
-    r.luminance = kLumensPerWatt * rec709(r.radiosity) / M_PI;
-    r.illuminance = kLumensPerWatt * rec709(r.irradiance);
+    r.luminance = kLumensPerWatt * luminance(r.radiosity) / M_PI;
+    r.illuminance = kLumensPerWatt * luminance(r.irradiance);
   }
   return out;
 }

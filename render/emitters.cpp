@@ -7,10 +7,6 @@
 
 namespace radkit {
 
-namespace {
-double luminanceOf(const Vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-}  // namespace
-
 EmitterSampler::EmitterSampler(const Scene& scene, const PatchMesh& mesh)
     : m_mesh(mesh), m_probability(mesh.size(), 0.0), m_emission(mesh.size()) {
   double total = 0;
@@ -21,7 +17,7 @@ EmitterSampler::EmitterSampler(const Scene& scene, const PatchMesh& mesh)
     m_emission[i] = m.emission;
     // Weight by luminous power; an emitter with zero luminance (pure blue, say) still gets
     // its share through the channel maximum so no emitted light is unreachable.
-    double w = p.area * std::max(luminanceOf(m.emission), 1e-3 * maxComponent(m.emission));
+    double w = p.area * std::max(luminance(m.emission), 1e-3 * maxComponent(m.emission));
     if (!(w > 0)) continue;
     m_patches.push_back(i);
     weight.push_back(w);

@@ -48,7 +48,5 @@ double srgbEncode(double linear);
 std::optional<int> pickPatch(const Visibility& rays, const Camera& camera, int width, int height,
                              int x, int y);
 
-/// Rec. 709 luminance weights.
-inline double luminance(const Vec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
 
 }  // namespace radkit
