@@ -3,7 +3,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "util/output_folder.h"
+#include "util/output_folder.h"  // writeFileAtomically, csvField
 
 namespace radkit {
 
@@ -11,12 +11,6 @@ namespace {
 // Enough digits that a double read back is the same double.
 constexpr int kDigits = 17;
 
-std::string csvField(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
 
 void writeTriple(std::ostream& o, const Vec3& v) { o << ',' << v.x << ',' << v.y << ',' << v.z; }
 }  // namespace

@@ -44,14 +44,6 @@ void writeMatrixMarket(const std::string& path, const FormFactorMatrix& f,
   writeFileAtomically(path, out);
 }
 
-namespace {
-std::string csvField(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string quoted = "\"";
-  for (char c : s) quoted += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-}  // namespace
 
 void writeSurfaceFormFactors(const std::string& path, const PatchMesh& mesh,
                              const std::vector<std::string>& names, const FormFactorMatrix& f) {

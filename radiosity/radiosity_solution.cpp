@@ -81,13 +81,7 @@ void writeSurfacesCsv(const std::string& path, const Scene& scene, const std::ve
   o << std::setprecision(17) << "surface,area,b_r,b_g,b_b" << (photometric ? ",luminance_cd_m2,illuminance_lux" : "")
     << '\n';
   for (const SurfaceResult& r : results) {
-    std::string name = r.name;
-    if (name.find_first_of(",\"") != std::string::npos) {
-      std::string q = "\"";
-      for (char c : name) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
-      name = q + "\"";
-    }
-    o << name << ',' << r.area / m2 << ',' << r.radiosity.x << ',' << r.radiosity.y << ',' << r.radiosity.z;
+    o << csvField(r.name) << ',' << r.area / m2 << ',' << r.radiosity.x << ',' << r.radiosity.y << ',' << r.radiosity.z;
     if (photometric) o << ',' << r.luminance << ',' << r.illuminance;
     o << '\n';
   }

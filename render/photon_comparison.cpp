@@ -28,12 +28,6 @@ std::vector<std::string> splitCsv(const std::string& line) {
   return out;
 }
 
-std::string quoteCsv(const std::string& s) {
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
 
 double ratioOrZero(double a, double b) { return b != 0 ? a / b : 0.0; }
 
@@ -106,7 +100,7 @@ void writeComparisonCsv(const std::string& path, const std::vector<SurfaceCompar
     for (const char* c : {"_r", "_g", "_b"}) o << ',' << col << c;
   o << '\n';
   for (const SurfaceComparison& r : rows) {
-    o << quoteCsv(r.name) << ',' << r.area;
+    o << csvField(r.name) << ',' << r.area;
     for (const Vec3* v : {&r.photon, &r.radiosity, &r.relativeDifference, &r.photonError, &r.zScore})
       o << ',' << v->x << ',' << v->y << ',' << v->z;
     o << '\n';

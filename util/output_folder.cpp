@@ -48,6 +48,13 @@ std::vector<std::string> OutputFolder::commit() {
   return done;
 }
 
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
 void writeFileAtomically(const std::string& path, const std::string& text) {
   std::string tmp = path + ".tmp";
   {

@@ -29,6 +29,10 @@ class OutputFolder {
   bool m_committed = false;
 };
 
+/// A CSV field as RFC 4180 wants it: quoted, with inner quotes doubled, when it contains a
+/// comma, a quote or a line break; unchanged otherwise.
+std::string csvField(const std::string& text);
+
 /// Writes `text` to `path` through a temporary file in the same folder and a rename.
 void writeFileAtomically(const std::string& path, const std::string& text);
 
