@@ -92,11 +92,7 @@ void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult&
   for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
   Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(r.mesh.bounds());
   RadianceImage img = renderRadiosity(r.mesh, *r.rays, camera, r.radiosity, twoSided, s);
-  std::vector<bool> emits(img.patch.size(), false);
-  for (std::size_t k = 0; k < emits.size(); ++k)
-    emits[k] = img.patch[k] >= 0 &&
-               scene.materials[scene.surfaces[r.mesh.patches[img.patch[k]].surface].material].emits();
-  writePng(folder.path("render.png"), toneMap(img, autoExposure(img, emits)));
+  writePng(folder.path("render.png"), toneMap(img, autoExposure(img, scene, r.mesh)));
 }
 
 void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd, double total) {

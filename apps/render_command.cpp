@@ -36,13 +36,6 @@ struct RenderCommand {
 };
 
 
-/// Which pixels show an emitter (left out of automatic exposure).
-std::vector<bool> pixelEmits(const Scene& scene, const PatchMesh& mesh, const RadianceImage& img) {
-  std::vector<bool> emits(img.patch.size(), false);
-  for (std::size_t k = 0; k < emits.size(); ++k)
-    emits[k] = img.patch[k] >= 0 && scene.materials[scene.surfaces[mesh.patches[img.patch[k]].surface].material].emits();
-  return emits;
-}
 
 /// Radiance image of the chosen mode; `emits` marks pixels that show an emitter.
 RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, int height, std::string& what,
@@ -70,7 +63,7 @@ RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width
     RadianceImage img = renderPhotonImage(in, camera, width, height, PhotonView::FinalGather, ps);
     what = std::to_string(cmd.photons) + " photons, " + std::to_string(maps.global->size()) + " stored, " +
            std::to_string(ps.gatherRays) + " gather rays per pixel";
-    emits = pixelEmits(scene, mesh, img);
+    emits = emitterPixels(img, scene, mesh);
     return img;
   }
   if (cmd.shading == "path-trace") {
@@ -82,7 +75,7 @@ RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width
     MonteCarloImage img = renderPathTraced(shading, camera, s);
     what = std::to_string(img.paths) + " paths, " + std::to_string(img.rays) + " rays in " +
            std::to_string(img.seconds) + " s";
-    emits = pixelEmits(scene, mesh, img.image);
+    emits = emitterPixels(img.image, scene, mesh);
     return img.image;
   }
   PipelineSettings settings;
@@ -103,7 +96,7 @@ RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width
     std::vector<bool> twoSided;
     for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
     RadianceImage img = renderRadiosity(r.mesh, *r.rays, camera, r.radiosity, twoSided, s);
-    emits = pixelEmits(scene, r.mesh, img);
+    emits = emitterPixels(img, scene, r.mesh);
     return img;
   }
   const GlossyModel glossy = cmd.shading == "phong" ? GlossyModel::Phong : GlossyModel::CookTorrance;
@@ -112,7 +105,7 @@ RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width
   s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed;
   MonteCarloImage img = renderTwoPass(shading, camera, radiosityLighting(r), s);
   what += ", " + std::to_string(img.paths) + " camera samples in " + std::to_string(img.seconds) + " s";
-  emits = pixelEmits(scene, r.mesh, img.image);
+  emits = emitterPixels(img.image, scene, r.mesh);
   return img.image;
 }
 

@@ -147,11 +147,7 @@ RadianceImage renderPhotonImage(const PhotonScene& in, const Camera& camera, int
 }
 
 double photonImageExposure(const PhotonScene& in, const RadianceImage& image) {
-  std::vector<bool> emits(image.patch.size(), false);
-  for (std::size_t k = 0; k < emits.size(); ++k)
-    emits[k] = image.patch[k] >= 0 &&
-               in.scene.materials[in.scene.surfaces[in.mesh.patches[image.patch[k]].surface].material].emits();
-  return autoExposure(image, emits);
+  return autoExposure(image, in.scene, in.mesh);
 }
 
 }  // namespace radkit

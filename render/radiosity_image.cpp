@@ -107,6 +107,18 @@ double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEm
   return lum[q] > 0 ? 0.8 / lum[q] : 1;
 }
 
+std::vector<bool> emitterPixels(const RadianceImage& image, const Scene& scene, const PatchMesh& mesh) {
+  std::vector<bool> emits(image.patch.size(), false);
+  for (std::size_t k = 0; k < emits.size(); ++k)
+    emits[k] = image.patch[k] >= 0 &&
+               scene.materials[scene.surfaces[mesh.patches[image.patch[k]].surface].material].emits();
+  return emits;
+}
+
+double autoExposure(const RadianceImage& image, const Scene& scene, const PatchMesh& mesh) {
+  return autoExposure(image, emitterPixels(image, scene, mesh));
+}
+
 double srgbEncode(double v) {
   v = std::clamp(v, 0.0, 1.0);
   return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;

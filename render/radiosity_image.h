@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/patch_mesh.h"
+#include "geometry/scene.h"
 #include "geometry/visibility.h"
 #include "render/camera.h"
 #include "util/canvas.h"
@@ -39,6 +40,11 @@ std::vector<Vec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<Vec3>
 
 /// Automatic exposure: maps the 95th percentile of non-emitting pixel luminance to 0.8.
 double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEmits);
+/// The same, with the emitting pixels found from the patches the image sees.
+double autoExposure(const RadianceImage& image, const Scene& scene, const PatchMesh& mesh);
+
+/// Which pixels show an emitting patch (left out of automatic exposure).
+std::vector<bool> emitterPixels(const RadianceImage& image, const Scene& scene, const PatchMesh& mesh);
 
 /// Exposure, clamp and the sRGB transfer curve (IEC 61966-2-1).
 Canvas toneMap(const RadianceImage& image, double exposure);
