@@ -99,7 +99,8 @@ void addBenchCommands(CLI::App& app) {
   auto sweep = std::make_shared<SweepBenchmarkSettings>();
   CLI::App* s = bench->add_subcommand("solver", "Jacobi and Gauss-Seidel sweep bandwidth against a STREAM-like triad");
   s->add_option("--n", sweep->n, "Dense matrix size")->check(CLI::Range(64, 65536))->capture_default_str();
-  s->add_option("--repetitions", sweep->repetitions, "Timed sweeps (best is kept)")->check(CLI::PositiveNumber)->capture_default_str();
+  s->add_option("--repetitions", sweep->repetitions, "Timed rounds of triad, Jacobi step and Gauss-Seidel step (best of each is kept)")->check(CLI::PositiveNumber)->capture_default_str();
+  s->add_option("--threads", sweep->threads, "Threads (0: all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
   s->callback([sweep] { runSolverBench(*sweep); });
 }
 

@@ -50,14 +50,13 @@ class JacobiSolver final : public Solver {
         [&](const auto& m) {
           const auto bp = channelPointers(m_b);
           forRowBlocks(n, storedEntries(m), [&](int begin, int end) {
-            for (int i = begin; i < end; ++i) {
-              const auto fb = rowDots<3>(m, i, 0, n, bp);
+            rangeDots<3>(m, begin, end, 0, n, bp, [&](int i, const std::array<double, 3>& fb) {
               for (int c = 0; c < 3; ++c) {
                 const double g = s.emission[c][i] + s.reflectance[c][i] * fb[c];
                 m_gathered[c][i] = g;
                 m_r[c][i] = g - m_b[c][i];
               }
-            }
+            });
           });
         },
         s.matrix());

@@ -63,10 +63,9 @@ void multiply(const FormFactorMatrix& f, const Channels& x, Channels& y) {
         for (auto& channel : y) channel.resize(static_cast<std::size_t>(n));
         const auto xp = channelPointers(x);
         auto rows = [&](int begin, int end) {
-          for (int i = begin; i < end; ++i) {
-            const auto s = rowDots<3>(m, i, 0, n, xp);
+          rangeDots<3>(m, begin, end, 0, n, xp, [&](int i, const std::array<double, 3>& s) {
             for (int c = 0; c < 3; ++c) y[c][i] = s[c];
-          }
+          });
         };
         forRowBlocks(n, storedEntries(m), rows);
       },

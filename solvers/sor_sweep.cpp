@@ -9,73 +9,95 @@ namespace {
 
 /// Sums of one block's rows over the columns outside the diagonal block.
 struct OffBlockSums {
-  Channels lowNew, lowOld, high;  ///< Σ_{j<I0} F_ij B^{k+1}_j, Σ_{j<I0} F_ij B^k_j, Σ_{j>=I1} F_ij B^k_j
-  explicit OffBlockSums(int rows)
-      : lowNew(makeChannels(rows)), lowOld(makeChannels(rows)), high(makeChannels(rows)) {}
+  Channels low, high;  ///< Σ_{j<I0} F_ij B^{k+1}_j and Σ_{j>=I1} F_ij B^k_j
+  explicit OffBlockSums(int rows) : low(makeChannels(rows)), high(makeChannels(rows)) {}
 };
 
-template <typename Matrix>
-void offBlockRows(const Matrix& m, int i0, int i1, const std::array<const double*, 6>& newOld,
-                  const std::array<const double*, 3>& old, OffBlockSums& sums) {
-  const int n = m.rows();
-  auto rows = [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      const auto low = rowDots<6>(m, i, 0, i0, newOld);
-      const auto high = rowDots<3>(m, i, i1, n, old);
-      for (int c = 0; c < 3; ++c) {
-        sums.lowNew[c][i - i0] = low[c];
-        sums.lowOld[c][i - i0] = low[3 + c];
-        sums.high[c][i - i0] = high[c];
-      }
-    }
-  };
+/// Calls rows(begin, end) over [i0, i1), in parallel when the matrix is large enough; a task
+/// takes about kSerialEntries entries.
+template <typename Matrix, typename Fn>
+void forBlockRows(const Matrix& m, int i0, int i1, Fn&& rows) {
   const std::size_t entries = storedEntries(m);
   if (entries < kSerialEntries) {
     rows(i0, i1);
     return;
   }
-  const std::size_t perRow = std::max<std::size_t>(1, entries / static_cast<std::size_t>(n));
+  const std::size_t perRow = std::max<std::size_t>(1, entries / static_cast<std::size_t>(m.rows()));
   const int grain = static_cast<int>(std::max<std::size_t>(1, kSerialEntries / perRow));
   tbb::parallel_for(tbb::blocked_range<int>(i0, i1, grain),
                     [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
 }
 
 template <typename Matrix>
-void sweep(const Matrix& m, const RadiositySystem& s, const Rgb& omega, const Channels& old,
-           Channels& next, Channels& r) {
+void offBlockRows(const Matrix& m, int i0, int i1, const std::array<const double*, 3>& next,
+                  const std::array<const double*, 3>& old, OffBlockSums& sums) {
   const int n = m.rows();
-  const std::array<const double*, 6> newOld = {next[0].data(), next[1].data(), next[2].data(),
-                                               old[0].data(),  old[1].data(),  old[2].data()};
+  forBlockRows(m, i0, i1, [&](int begin, int end) {
+    rangeDots<3>(m, begin, end, 0, i0, next, [&](int i, const std::array<double, 3>& low) {
+      for (int c = 0; c < 3; ++c) sums.low[c][i - i0] = low[c];
+    });
+    rangeDots<3>(m, begin, end, i1, n, old, [&](int i, const std::array<double, 3>& high) {
+      for (int c = 0; c < 3; ++c) sums.high[c][i - i0] = high[c];
+    });
+  });
+}
+
+template <typename Matrix>
+void sweep(const Matrix& m, const RadiositySystem& s, const Rgb& omega, const Channels& old,
+           Channels& next, Channels& lower, Channels& r) {
+  const int n = m.rows();
+  const auto nextp = channelPointers(next);
   const auto oldp = channelPointers(old);
   OffBlockSums sums(kSorBlockRows);
   for (int i0 = 0; i0 < n; i0 += kSorBlockRows) {
     const int i1 = std::min(n, i0 + kSorBlockRows);
-    offBlockRows(m, i0, i1, newOld, oldp, sums);
+    offBlockRows(m, i0, i1, nextp, oldp, sums);
     for (int i = i0; i < i1; ++i) {  // diagonal block: rows in order, as Gauss-Seidel requires
-      const auto low = rowDots<6>(m, i, i0, i, newOld);
+      const auto low = rowDots<3>(m, i, i0, i, nextp);
       const auto high = rowDots<3>(m, i, i, i1, oldp);
       for (int c = 0; c < 3; ++c) {
         const double rho = s.reflectance[c][i], e = s.emission[c][i], b = old[c][i];
-        const double rest = sums.high[c][i - i0] + high[c];
-        const double fbNew = sums.lowNew[c][i - i0] + low[c] + rest;
-        const double fbOld = sums.lowOld[c][i - i0] + low[3 + c] + rest;
-        r[c][i] = e + rho * fbOld - b;
-        next[c][i] = b + omega[c] * (e + rho * fbNew - b);
+        const double upper = sums.high[c][i - i0] + high[c];  // Σ_{j>=i} F_ij B^k_j
+        const double lowerNext = sums.low[c][i - i0] + low[c];  // Σ_{j<i} F_ij B^{k+1}_j
+        r[c][i] = e + rho * (lower[c][i] + upper) - b;
+        next[c][i] = b + omega[c] * (e + rho * (lowerNext + upper) - b);
+        lower[c][i] = lowerNext;
       }
     }
   }
 }
 
+/// lower_i = Σ_{j<i} F_ij x_j, parallel over rows, summed in the sweep's two parts (left of the
+/// row's block, then inside it) so that it has the bits a sweep leaving x would have kept.
+template <typename Matrix>
+void lowerProduct(const Matrix& m, const Channels& x, Channels& lower) {
+  const auto xp = channelPointers(x);
+  forBlockRows(m, 0, m.rows(), [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      const int i0 = i / kSorBlockRows * kSorBlockRows;
+      const auto left = rowDots<3>(m, i, 0, i0, xp);
+      const auto inside = rowDots<3>(m, i, i0, i, xp);
+      for (int c = 0; c < 3; ++c) lower[c][i] = left[c] + inside[c];
+    }
+  });
+}
+
 }  // namespace
 
 void sorSweep(const RadiositySystem& system, const Rgb& omega, const Channels& old,
-              Channels& next, Channels& r) {
+              Channels& next, Channels& lower, Channels& r) {
   const int n = system.size();
   for (int c = 0; c < 3; ++c) {
     next[c].resize(static_cast<std::size_t>(n));
     r[c].resize(static_cast<std::size_t>(n));
   }
-  std::visit([&](const auto& m) { sweep(m, system, omega, old, next, r); }, system.matrix());
+  std::visit([&](const auto& m) { sweep(m, system, omega, old, next, lower, r); },
+             system.matrix());
+}
+
+void lowerTriangleProduct(const RadiositySystem& system, const Channels& x, Channels& lower) {
+  for (auto& channel : lower) channel.resize(static_cast<std::size_t>(system.size()));
+  std::visit([&](const auto& m) { lowerProduct(m, x, lower); }, system.matrix());
 }
 
 void SorIteration::start(const RadiositySystem& system, const SolverSettings& settings,
@@ -87,6 +109,7 @@ void SorIteration::start(const RadiositySystem& system, const SolverSettings& se
   m_b = system.emission;
   m_next = makeChannels(system.size());
   m_r = makeChannels(system.size());
+  lowerTriangleProduct(system, m_b, m_lower);
   m_iterations = 0;
   sweep();
 }
@@ -98,7 +121,7 @@ void SorIteration::step() {
 }
 
 void SorIteration::sweep() {
-  sorSweep(*m_system, m_omega, m_b, m_next, m_r);
+  sorSweep(*m_system, m_omega, m_b, m_next, m_lower, m_r);
   m_residual = residualMeasure(*m_system, m_r, m_b, m_norm);
   m_power = residualPower(*m_system, m_r);
 }

@@ -11,15 +11,23 @@ namespace radkit {
 ///        streaming F once. In the same pass it returns the exact residual of B^k,
 ///        r_i = E_i + ρ_i Σ_j F_ij B_j^k − B_i^k.
 ///
+/// The residual's lower part Σ_{j<i} F_ij B^k_j is the previous sweep's gathering sum, kept in
+/// `lower`, so each entry of F is multiplied with three vectors only, as in Jacobi, instead of
+/// six (B^{k+1} and B^k left of the diagonal), which had nearly doubled the loads per entry.
+///
 /// Rows are taken in blocks of kSorBlockRows: the part of each row left of the block only reads
 /// finished B^{k+1}, the part right of it only B^k, so both are computed in parallel over the
 /// block's rows; only the diagonal block (n·kSorBlockRows entries per sweep) runs sequentially.
 /// The arithmetic is the sequential sweep's, and bit-identical for any thread count.
 /// \param old   B^k (not modified)
 /// \param next  receives B^{k+1}; resized to n
+/// \param lower on entry Σ_{j<i} F_ij B^k_j, on return Σ_{j<i} F_ij B^{k+1}_j
 /// \param r     receives r(B^k); resized to n
 void sorSweep(const RadiositySystem& system, const Rgb& omega, const Channels& old,
-              Channels& next, Channels& r);
+              Channels& next, Channels& lower, Channels& r);
+
+/// \brief lower_i = Σ_{j<i} F_ij x_j, the `lower` a first sorSweep from x needs.
+void lowerTriangleProduct(const RadiositySystem& system, const Channels& x, Channels& lower);
 
 /// Rows per block of sorSweep.
 constexpr int kSorBlockRows = 128;
@@ -43,7 +51,7 @@ class SorIteration {
   const RadiositySystem* m_system = nullptr;
   ResidualNorm m_norm = ResidualNorm::Relative;
   Rgb m_omega{1.0, 1.0, 1.0};
-  Channels m_b, m_next, m_r;
+  Channels m_b, m_next, m_lower, m_r;  ///< m_lower: Σ_{j<i} F_ij B^k_j, from the last sweep
   double m_residual = 0.0, m_power = 0.0;
   long m_iterations = 0;
 };

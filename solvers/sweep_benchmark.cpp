@@ -20,43 +20,38 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// Seconds fn() takes.
 template <typename Fn>
-double bestSeconds(int repetitions, Fn&& fn) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < repetitions; ++k) {
-    const Clock::time_point t0 = Clock::now();
-    fn();
-    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  return best;
+double seconds(Fn&& fn) {
+  const Clock::time_point t0 = Clock::now();
+  fn();
+  return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// STREAM's triad a = b + s c, TBB-parallel with a static partition (the same one that first
-/// touched the arrays).
-double triadSeconds(std::size_t n, int repetitions) {
-  std::unique_ptr<double[]> a(new double[n]), b(new double[n]), c(new double[n]);
-  const tbb::blocked_range<std::size_t> all(0, n, 1 << 16);
-  tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) {
-      a[i] = 0.0;
-      b[i] = 1.0;
-      c[i] = 2.0;
-    }
-  }, tbb::static_partitioner());
-  const double s = 3.0;
-  return bestSeconds(repetitions, [&] {
-    tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i < r.end(); ++i) a[i] = b[i] + s * c[i];
+/// STREAM's triad a = b + s c over arrays first touched by the same static TBB partition.
+class Triad {
+ public:
+  explicit Triad(std::size_t n)
+      : m_a(new double[n]), m_b(new double[n]), m_c(new double[n]), m_all(0, n, 1 << 16) {
+    tbb::parallel_for(m_all, [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+        m_a[i] = 0.0;
+        m_b[i] = 1.0;
+        m_c[i] = 2.0;
+      }
     }, tbb::static_partitioner());
-  });
-}
+  }
+  void operator()() {
+    const double s = 3.0;
+    tbb::parallel_for(m_all, [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i) m_a[i] = m_b[i] + s * m_c[i];
+    }, tbb::static_partitioner());
+  }
 
-/// Best seconds per step of the named solver on the system.
-double sweepSeconds(const char* name, const RadiositySystem& system, int repetitions) {
-  std::unique_ptr<Solver> solver = makeSolver(name);
-  solver->start(system, SolverSettings{});  // also one untimed warm-up sweep
-  return bestSeconds(repetitions, [&] { solver->step(); });
-}
+ private:
+  std::unique_ptr<double[]> m_a, m_b, m_c;
+  tbb::blocked_range<std::size_t> m_all;
+};
 
 }  // namespace
 
@@ -81,9 +76,20 @@ SweepBenchmarkResult runSweepBenchmark(const SweepBenchmarkSettings& settings) {
     out.threads = arena.max_concurrency();
     out.repetitions = settings.repetitions;
     out.matrixBytes = static_cast<double>(DenseMatrix<double>::bytesFor(n));
-    out.jacobiSeconds = sweepSeconds("jacobi", system, settings.repetitions);
-    out.gaussSeidelSeconds = sweepSeconds("gauss-seidel", system, settings.repetitions);
-    out.triadSeconds = triadSeconds(settings.triadElements, settings.repetitions);
+    // Round-robin, best of each: a neighbour's load on a shared machine then slows all three
+    // kernels alike instead of whichever happened to run during it.
+    std::unique_ptr<Solver> jacobi = makeSolver("jacobi"), gaussSeidel = makeSolver("gauss-seidel");
+    jacobi->start(system, SolverSettings{});  // each start is also one untimed warm-up sweep
+    gaussSeidel->start(system, SolverSettings{});
+    Triad triad(settings.triadElements);
+    triad();
+    const double inf = std::numeric_limits<double>::infinity();
+    out.jacobiSeconds = out.gaussSeidelSeconds = out.triadSeconds = inf;
+    for (int k = 0; k < settings.repetitions; ++k) {
+      out.triadSeconds = std::min(out.triadSeconds, seconds(triad));
+      out.jacobiSeconds = std::min(out.jacobiSeconds, seconds([&] { jacobi->step(); }));
+      out.gaussSeidelSeconds = std::min(out.gaussSeidelSeconds, seconds([&] { gaussSeidel->step(); }));
+    }
   });
   out.triadBytes = 3.0 * sizeof(double) * static_cast<double>(settings.triadElements);
   out.jacobiBytesPerSecond = out.matrixBytes / out.jacobiSeconds;

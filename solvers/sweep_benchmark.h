@@ -9,7 +9,7 @@ namespace radkit {
 
 struct SweepBenchmarkSettings {
   int n = 8192;                              ///< dense n x n matrix of doubles (8192: 512 MiB)
-  int repetitions = 5;                       ///< timed passes per kernel; the best one counts
+  int repetitions = 10;                      ///< timed rounds of the three kernels; best counts
   std::size_t triadElements = std::size_t(1) << 24;  ///< per array; 3 x 128 MiB >> any cache
   int threads = 0;                           ///< 0: TBB's default (all cores)
 };
@@ -31,8 +31,8 @@ struct SweepBenchmarkResult {
 };
 
 /// \brief Builds the dense matrix (furnace-like F_ij = 1/n, ρ = 0.5) and the triad arrays,
-///        times `repetitions` steps of the registry's jacobi and gauss-seidel solvers and
-///        `repetitions` triads a = b + s c, all in one TBB arena of `threads` threads.
+///        times `repetitions` rounds of one triad a = b + s c, one step of the registry's
+///        jacobi and one of its gauss-seidel, all in one TBB arena of `threads` threads.
 ///        Allocates n² · 8 + 3 · triadElements · 8 bytes.
 SweepBenchmarkResult runSweepBenchmark(const SweepBenchmarkSettings& settings);
 

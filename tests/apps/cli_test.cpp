@@ -200,10 +200,12 @@ TEST(RunCli, AdaptiveStaysInBudgetAndBalancesEnergy) {
 }
 
 TEST(BenchCli, SolverPrintsOneJsonObject) {
-  auto r = runRadkit("bench solver --n 256 --repetitions 1");
+  auto r = runRadkit("bench solver --n 256 --repetitions 1 --threads 1");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   json j = json::parse(r.output);
+  EXPECT_EQ(j["threads"].get<int>(), 1);
   EXPECT_GT(j["ratio"]["jacobi"].get<double>(), 0);
+  EXPECT_GT(j["ratio"]["gauss_seidel"].get<double>(), 0);
   EXPECT_GT(j["reference"]["triad_bytes_per_second"].get<double>(), 0);
 }
 

@@ -53,6 +53,39 @@ TEST(Kernels, ExactSegmentsAddUpToRow) {
   EXPECT_EQ(rowSums(FormFactorMatrix(c)), (std::vector<double>{3, 0, 12}));
 }
 
+// Dense rows taken four at a time give each row exactly the one-row kernel's bits, whatever
+// the row range's start and length and the column segment's tail.
+TEST(Kernels, ExactRowGroupsMatchSingleRows) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 23;
+  DenseMatrix<double> d(n);
+  DenseMatrix<float> f(n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      d(i, j) = u(rng);
+      f(i, j) = float(u(rng));
+    }
+  Channels x = makeChannels(n);
+  for (auto& channel : x)
+    for (double& v : channel) v = u(rng) * 1e3;
+  const auto xp = channelPointers(x);
+  auto check = [&](const auto& m, int rowBegin, int rowEnd, int begin, int end) {
+    int visited = 0;
+    rangeDots<3>(m, rowBegin, rowEnd, begin, end, xp, [&](int i, const std::array<double, 3>& s) {
+      EXPECT_EQ(i, rowBegin + visited++);
+      const auto one = rowDots<3>(m, i, begin, end, xp);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(0, std::memcmp(&s[c], &one[c], sizeof(double))) << i;
+    });
+    EXPECT_EQ(visited, rowEnd - rowBegin);
+  };
+  for (auto [rowBegin, rowEnd, begin, end] :
+       {std::array<int, 4>{0, 23, 0, 23}, {1, 22, 3, 20}, {5, 8, 0, 7}, {2, 2, 0, 23}, {0, 16, 9, 9}}) {
+    check(d, rowBegin, rowEnd, begin, end);
+    check(f, rowBegin, rowEnd, begin, end);
+  }
+}
+
 TEST(Kernels, ExactDotIsDeterministic) {
   std::vector<double> a(100003), b(100003);
   for (std::size_t i = 0; i < a.size(); ++i) {
