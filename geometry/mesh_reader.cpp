@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "geometry/scene_loader.h"
+#include "geometry/text_numbers.h"
 
 namespace radkit {
 
@@ -136,6 +137,7 @@ RawMesh readMeshFile(const std::string& path) {
   if (!fs::exists(path))
     throw InputError(path + ": mesh file not found. Fix: give a path relative to the scene "
                      "file, or an absolute path.");
+  checkTextMeshNumbers(path);
   std::string ext = lowerExtension(path);
   if (ext == ".ply" || ext == ".off" || ext == ".stl") return readWithOpenMesh(path);
   if (ext == ".obj") {
@@ -152,6 +154,7 @@ RawMesh readMeshFile(const std::string& path) {
 Scene loadObjScene(const std::string& path) {
   if (!fs::exists(path))
     throw InputError(path + ": scene file not found.");
+  checkTextMeshNumbers(path);
   tinyobj::ObjReader reader = parseObj(path);
   Scene scene;
   scene.file = path;

@@ -16,8 +16,9 @@ struct RawMesh {
 };
 
 /// \brief Reads a PLY, OFF, STL or OBJ file into one mesh; throws InputError naming the file
-/// on a missing file, an unknown extension, unreadable content, or faces that break the
-/// surface (non-manifold edges or inconsistent orientation, repeated vertices).
+/// on a missing file, an unknown extension, unreadable content, a text number that is not a
+/// finite decimal (text_numbers.h), or faces that break the surface (non-manifold edges or
+/// inconsistent orientation, repeated vertices).
 RawMesh readMeshFile(const std::string& path);
 
 /// \brief Loads an OBJ with its MTL as a whole scene: each OBJ object or group is a named

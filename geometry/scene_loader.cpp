@@ -75,7 +75,8 @@ class ObjectReader {
     return v;
   }
   [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(m_file + ": " + m_where + " " + what + ".");
+    const bool stop = !what.empty() && what.back() == '.';  // a nested message ends in its own
+    throw InputError(m_file + ": " + m_where + " " + what + (stop ? "" : "."));
   }
   const std::string& where() const { return m_where; }
 

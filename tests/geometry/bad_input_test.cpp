@@ -2,6 +2,7 @@
 // output written. Run through the radkit binary as a user would.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 
@@ -31,6 +32,8 @@ BadCase bad(const char* name, std::string sceneText, std::vector<std::string> mu
             std::string extraFile = "", std::string extraText = "") {
   return BadCase{name, std::move(sceneText), std::move(mustMention), std::move(extraFile), std::move(extraText)};
 }
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
 
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 
@@ -77,6 +80,23 @@ INSTANTIATE_TEST_SUITE_P(
                 {"number overflow", "Fix"}),
         bad("NanCoordinateInMesh", sceneWith(R"({"name": "m", "material": "lamp", "mesh": "m.ply"})"),
                 {"\"m\"", "vertex 1", "NaN"}, "m.ply", binaryPlyWithNan()),
+        // Text readers would read these as 0, a truncated number or a misleading parse error.
+        bad("NanInTextOff", sceneWith(R"({"name": "m", "material": "lamp", "mesh": "n.off"})"),
+                {"\"m\"", "n.off", "line 5", "'nan'", "Fix"}, "n.off",
+                "OFF\n# a comment\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n"),
+        bad("OverflowInTextOff", sceneWith(R"({"name": "m", "material": "lamp", "mesh": "n.off"})"),
+                {"n.off", "line 3", "'1e999'"}, "n.off", "OFF 3 1 0\n0 0 0\n1 0 1e999\n0 1 0\n3 0 1 2\n"),
+        bad("CommaDecimalInAsciiPly", sceneWith(R"({"name": "m", "material": "lamp", "mesh": "c.ply"})"),
+                {"c.ply", "line 10", "'0,5'", "decimal"}, "c.ply",
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                "0,5 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+        bad("InfinityInAsciiStl", sceneWith(R"({"name": "m", "material": "lamp", "mesh": "i.stl"})"),
+                {"i.stl", "line 4", "'-inf'"}, "i.stl",
+                "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 -inf\nvertex 1 0 0\nvertex 0 1 0\n"
+                "endloop\nendfacet\nendsolid t\n"),
+        bad("NanInObjMesh", sceneWith(R"({"name": "m", "material": "lamp", "mesh": "n.obj"})"),
+                {"n.obj", "line 2", "'NaN'"}, "n.obj", "v 0 0 0\nv NaN 0 0\nv 0 1 0\nf 1 2 3\n"),
         bad("CollinearFace", sceneWith(square("sliver", "lamp", "[[0,0,0],[1,1,1],[2,2,2]]")),
                 {"sliver", "face 0", "collinear", "Fix"}),
         bad("RepeatedVertex", sceneWith(square("dup", "lamp", "[[0,0,0],[1,0,0],[1,0,0],[0,1,0]]")),
@@ -112,6 +132,40 @@ INSTANTIATE_TEST_SUITE_P(
         bad("DuplicateSurfaceName", sceneWith(square("a", "lamp", kSquare) + "," + square("a", "grey", kSquare)),
                 {"\"a\"", "used twice"})),
     [](const ::testing::TestParamInfo<BadCase>& param) { return std::string(param.param.name); });
+
+// An OBJ scene's MTL is read by the same readers: a NaN reflectance is named by MTL file and line.
+TEST(BadInputCli, NanInObjSceneMaterial) {
+  test::TempDir dir;
+  dir.file("s.mtl", "newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 nan 1\n");
+  const std::string obj = dir.file("s.obj", "mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 3\n");
+  test::RunResult r = test::runRadkit("mesh '" + obj + "' --out '" + dir.path("o") + "'");
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("s.mtl: line 3: 'nan'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.path("o")));
+}
+
+// The number check leaves binary STL alone even when its 80-byte header starts with "solid",
+// and leaves names and comments in text files alone.
+TEST(MeshCli, ReadsBinaryStlAndTextWithWordsThatAreNotNumbers) {
+  test::TempDir dir;
+  std::string stl(80, ' ');
+  stl.replace(0, 12, "solid binary");
+  const std::uint32_t count = 1;
+  stl.append(reinterpret_cast<const char*>(&count), 4);
+  const float tri[12] = {0, 0, 1, 0, 0, 0, 2, 0, 0, 0, 2, 0};  // normal, then three vertices
+  stl.append(reinterpret_cast<const char*>(tri), sizeof tri);
+  stl.append(2, '\0');
+  dir.file("b.stl", stl);
+  dir.file("t.off", "OFF # infinity is a word here\n3 1 0\n0 0 0\n2 0 0\n0 2 0\n3 0 1 2\n");
+  dir.file("t.obj", "# nan\ng infinite_plane\nv 0 0 0\nv +2.0 0 0\nv 0 2E0 0\nf 1 2 3\n");
+  const std::string scene = dir.file("scene.json", sceneWith(
+      R"({"name": "b", "material": "lamp", "mesh": "b.stl"},
+         {"name": "t", "material": "grey", "mesh": "t.off", "transform": {"translate": [0, 0, 1]}},
+         {"name": "o", "material": "grey", "mesh": "t.obj", "transform": {"translate": [0, 0, 2]}})"));
+  test::RunResult r = test::runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("total area: 6 m"), std::string::npos) << r.output;
+}
 
 TEST(BadInputCli, MissingSceneFileAndBadOptions) {
   test::TempDir dir;
