@@ -2,6 +2,7 @@
 
 #include <nanoflann.hpp>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -43,10 +44,13 @@ class FacingKnnResultSet {
     m_heap.clear();
     m_heap.reserve(k);
   }
+  /// Index of the first photon of the part being searched: parts number photons from 0.
+  void setBase(std::uint32_t base) { m_base = base; }
   std::size_t size() const { return m_heap.size(); }
   bool full() const { return m_heap.size() == m_k; }
   float worstDist() const { return full() ? m_heap.front().first : std::numeric_limits<float>::max(); }
-  bool addPoint(float distance2, std::uint32_t index) {
+  bool addPoint(float distance2, std::uint32_t local) {
+    const std::uint32_t index = m_base + local;
     const Vec3& pn = m_mesh.patches[m_photons[index].patch].normal;
     if (std::fabs(dot(pn, m_normal)) < kPhotonNormalCosine) return true;  // keep searching
     if (!full()) {
@@ -68,6 +72,7 @@ class FacingKnnResultSet {
   const PatchMesh& m_mesh;
   Vec3 m_normal;
   std::vector<Entry>& m_heap;
+  std::uint32_t m_base = 0;
 };
 
 /// Spreads the low 21 bits of v to every third bit (for 63-bit Morton codes).
@@ -81,53 +86,173 @@ std::uint64_t spreadBits(std::uint64_t v) {
   return v;
 }
 
-/// Orders photons along a Morton (Z-order) curve over their bounding box, so photons near in
-/// space sit near in memory: the kd-tree's leaves then read contiguous memory. Stable, so
-/// the order stays deterministic.
-void sortAlongMortonCurve(std::vector<Photon>& photons) {
-  if (photons.size() < 2) return;
+/// The box a map's Morton codes are taken over.
+struct MortonFrame {
   float lo[3], hi[3];
-  for (int c = 0; c < 3; ++c) lo[c] = hi[c] = photons[0].position[c];
-  for (const Photon& p : photons)
-    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], p.position[c]), hi[c] = std::max(hi[c], p.position[c]);
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> key(photons.size());
-  for (std::size_t i = 0; i < photons.size(); ++i) {
+  /// 63-bit code of p: 21 bits per axis, interleaved x, y, z from the lowest bit up.
+  std::uint64_t code(const float p[3]) const {
     std::uint64_t code = 0;
     for (int c = 0; c < 3; ++c) {
-      const double t = hi[c] > lo[c] ? (photons[i].position[c] - lo[c]) / double(hi[c] - lo[c]) : 0.0;
+      const double t = hi[c] > lo[c] ? (p[c] - lo[c]) / double(hi[c] - lo[c]) : 0.0;
       code |= spreadBits(std::uint64_t(t * 2097151.0)) << c;
     }
-    key[i] = {code, std::uint32_t(i)};
+    return code;
   }
-  std::sort(key.begin(), key.end());
+};
+
+/// Orders photons along a Morton (Z-order) curve over their bounding box, so photons near in
+/// space sit near in memory: the kd-tree's leaves then read contiguous memory (without it,
+/// queries ran at half the rate). Keys are unique (code, index) pairs, so the parallel sort gives
+/// one order whatever the threads. Returns the codes, ascending. Requires photons.
+std::vector<std::uint64_t> sortAlongMortonCurve(std::vector<Photon>& photons, MortonFrame& frame) {
+  for (int c = 0; c < 3; ++c) frame.lo[c] = frame.hi[c] = photons[0].position[c];
+  for (const Photon& p : photons)
+    for (int c = 0; c < 3; ++c) {
+      frame.lo[c] = std::min(frame.lo[c], p.position[c]);
+      frame.hi[c] = std::max(frame.hi[c], p.position[c]);
+    }
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> key(photons.size());
+  tbb::parallel_for(std::size_t(0), photons.size(), [&](std::size_t i) {
+    key[i] = {frame.code(photons[i].position), std::uint32_t(i)};
+  });
+  tbb::parallel_sort(key.begin(), key.end());
   std::vector<Photon> sorted(photons.size());
-  for (std::size_t i = 0; i < key.size(); ++i) sorted[i] = photons[key[i].second];
+  std::vector<std::uint64_t> codes(photons.size());
+  tbb::parallel_for(std::size_t(0), key.size(), [&](std::size_t i) {
+    sorted[i] = photons[key[i].second];
+    codes[i] = key[i].first;
+  });
   photons.swap(sorted);
+  return codes;
+}
+
+/// Appends the ends of the octree cells that partition codes[first, last) (one cell of `depth`,
+/// so one Morton range) to `ends`, in order: a cell of more than maxPerCell photons is replaced
+/// by its non-empty children. Cells are disjoint, so their photons' boxes are too. The cells
+/// depend on the codes and maxPerCell only, never on threads.
+void octreeCells(const std::vector<std::uint64_t>& codes, std::size_t first, std::size_t last,
+                 int depth, std::size_t maxPerCell, std::vector<std::size_t>& ends) {
+  if (last - first <= maxPerCell || depth == 21) {  // 21 levels of 3 bits: one point
+    ends.push_back(last);
+    return;
+  }
+  const int shift = 60 - 3 * depth;  // the children's three bits
+  const std::uint64_t cell = codes[first] >> (shift + 3) << (shift + 3);
+  const auto begin = codes.begin();
+  auto childFirst = begin + std::ptrdiff_t(first);
+  for (std::uint64_t child = 1; child <= 8; ++child) {
+    const auto childLast = child == 8 ? begin + std::ptrdiff_t(last)
+                                      : std::lower_bound(childFirst, begin + std::ptrdiff_t(last),
+                                                         cell | child << shift);
+    if (childLast > childFirst)
+      octreeCells(codes, std::size_t(childFirst - begin), std::size_t(childLast - begin), depth + 1,
+                  maxPerCell, ends);
+    childFirst = childLast;
+  }
 }
 
 }  // namespace
 
+/// The kd-tree over a map. nanoflann builds one tree on one thread, which took half of a
+/// 2M-photon run; so a large map is cut into octree cells (contiguous in Morton order, disjoint
+/// in space) whose trees are built in parallel. A query searches the part with the nearest
+/// box, then every other part whose box is nearer than the k-th photon found, so it returns
+/// exactly the neighbours one tree would.
 struct PhotonMap::Tree {
-  PhotonCloud cloud;
-  KdTree index;
-  explicit Tree(const std::vector<Photon>& photons)
-      : cloud{photons.data(), photons.size()}, index(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
-  std::size_t memoryBytes() { return index.usedMemory(index); }
+  struct Part {
+    PhotonCloud cloud;
+    KdTree index;
+    std::uint32_t base;
+    float lo[3], hi[3];
+    Part(const Photon* photons, std::size_t count, std::uint32_t first)
+        : cloud{photons + first, count},
+          index(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)),
+          base(first) {
+      for (int c = 0; c < 3; ++c) lo[c] = hi[c] = cloud.data[0].position[c];
+      for (std::size_t i = 0; i < count; ++i)
+        for (int c = 0; c < 3; ++c) {
+          lo[c] = std::min(lo[c], cloud.data[i].position[c]);
+          hi[c] = std::max(hi[c], cloud.data[i].position[c]);
+        }
+    }
+    float boxDistance2(const float q[3]) const {
+      float d2 = 0.f;
+      for (int c = 0; c < 3; ++c) {
+        const float d = q[c] < lo[c] ? lo[c] - q[c] : (q[c] > hi[c] ? q[c] - hi[c] : 0.f);
+        d2 += d * d;
+      }
+      return d2;
+    }
+  };
+  std::vector<std::unique_ptr<Part>> parts;
+  MortonFrame frame;  ///< the frame the photons were ordered in
+
+  /// \param ends the parts' ends in photons, ascending (empty parts are skipped)
+  Tree(const std::vector<Photon>& photons, const std::vector<std::size_t>& ends, const MortonFrame& f)
+      : frame(f) {
+    std::vector<std::size_t> firsts;
+    for (std::size_t p = 0, first = 0; p < ends.size(); first = ends[p++])
+      if (ends[p] > first) firsts.push_back(first);  // no empty parts
+    parts.resize(firsts.size());
+    tbb::parallel_for(std::size_t(0), firsts.size(), [&](std::size_t p) {
+      const std::size_t last = p + 1 < firsts.size() ? firsts[p + 1] : photons.size();
+      parts[p] = std::make_unique<Part>(photons.data(), last - firsts[p], std::uint32_t(firsts[p]));
+    });
+  }
+
+  /// Feeds every part that can hold one of the k nearest to `result`: the part whose box is
+  /// nearest first (it holds the query, or is beside it), then any other whose box is nearer
+  /// than the k-th photon found. No sort: with k = 1 lookups (final gathering) a sort of the
+  /// parts cost more than the lookup.
+  void search(FacingKnnResultSet& result, const float q[3]) const {
+    if (parts.size() == 1) {
+      parts[0]->index.findNeighbors(result, q, nanoflann::SearchParams());
+      return;
+    }
+    thread_local std::vector<float> boxDistance2;
+    boxDistance2.resize(parts.size());
+    std::size_t nearest = 0;
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      boxDistance2[p] = parts[p]->boxDistance2(q);
+      if (boxDistance2[p] < boxDistance2[nearest]) nearest = p;
+    }
+    auto visit = [&](std::size_t p) {
+      result.setBase(parts[p]->base);
+      parts[p]->index.findNeighbors(result, q, nanoflann::SearchParams());
+    };
+    visit(nearest);
+    for (std::size_t p = 0; p < parts.size(); ++p)
+      // The slack covers float rounding between a box's distance and its photons' distances.
+      if (p != nearest && (!result.full() || boxDistance2[p] <= result.worstDist() * (1.f + 1e-5f)))
+        visit(p);
+  }
+
+  std::size_t memoryBytes() const {
+    std::size_t bytes = 0;
+    for (const auto& part : parts) bytes += sizeof(Part) + part->index.usedMemory(part->index);
+    return bytes;
+  }
 };
 
 const char* filterName(IrradianceFilter filter) {
   return filter == IrradianceFilter::Cone ? "cone" : "epanechnikov";
 }
 
-PhotonMap::PhotonMap(const PatchMesh& mesh, std::vector<Photon> photons)
-    : m_mesh(&mesh), m_photons(std::move(photons)) {
-  sortAlongMortonCurve(m_photons);
-  if (!m_photons.empty()) m_tree = std::make_unique<Tree>(m_photons);
+PhotonMap::PhotonMap(const PatchMesh& mesh, std::vector<Photon> photons, std::size_t maxPhotonsPerPart)
+    : m_mesh(&mesh), m_maxPhotonsPerPart(std::max<std::size_t>(1, maxPhotonsPerPart)), m_photons(std::move(photons)) {
+  if (m_photons.empty()) return;
+  MortonFrame frame;
+  const std::vector<std::uint64_t> codes = sortAlongMortonCurve(m_photons, frame);
+  std::vector<std::size_t> ends;
+  octreeCells(codes, 0, codes.size(), 0, m_maxPhotonsPerPart, ends);
+  m_tree = std::make_unique<Tree>(m_photons, ends, frame);
 }
 
 PhotonMap::~PhotonMap() = default;
 PhotonMap::PhotonMap(PhotonMap&&) noexcept = default;
 PhotonMap& PhotonMap::operator=(PhotonMap&&) noexcept = default;
+
+std::size_t PhotonMap::kdParts() const { return m_tree ? m_tree->parts.size() : 0; }
 
 std::size_t PhotonMap::memoryBytes() const {
   std::size_t bytes = m_photons.capacity() * sizeof(Photon) + m_precomputed.capacity() * sizeof(Photon) +
@@ -145,7 +270,7 @@ void PhotonMap::nearest(const Vec3& x, const Vec3& normal, int k, std::vector<st
   const float query[3] = {float(x.x), float(x.y), float(x.z)};
   std::vector<std::pair<float, std::uint32_t>> heap;
   FacingKnnResultSet result(std::size_t(k), m_photons.data(), *m_mesh, normal, heap);
-  m_tree->index.findNeighbors(result, query, nanoflann::SearchParams());
+  m_tree->search(result, query);
   result.finish();
   for (const auto& [d2, i] : heap) {
     index.push_back(i);
@@ -188,7 +313,17 @@ void PhotonMap::precomputeIrradiance(int k, IrradianceFilter filter, int stride)
       m_precomputedRadius[i] = float(e.radius);
     }
   });
-  m_precomputedTree = count ? std::make_unique<Tree>(m_precomputed) : nullptr;
+  if (!count) {
+    m_precomputedTree = nullptr;
+    return;
+  }
+  // Every stride-th photon of a Morton order is in Morton order: its own octree cells, which
+  // are fewer than the map's (each part costs a k = 1 lookup a box test).
+  std::vector<std::uint64_t> codes(count);
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { codes[i] = m_tree->frame.code(m_precomputed[i].position); });
+  std::vector<std::size_t> ends;
+  octreeCells(codes, 0, count, 0, m_maxPhotonsPerPart, ends);
+  m_precomputedTree = std::make_unique<Tree>(m_precomputed, ends, m_tree->frame);
 }
 
 Vec3 PhotonMap::precomputedIrradiance(const Vec3& x, const Vec3& n) const {
@@ -196,7 +331,7 @@ Vec3 PhotonMap::precomputedIrradiance(const Vec3& x, const Vec3& n) const {
   const float query[3] = {float(x.x), float(x.y), float(x.z)};
   std::vector<std::pair<float, std::uint32_t>> heap;
   FacingKnnResultSet result(1, m_precomputed.data(), *m_mesh, n, heap);
-  m_precomputedTree->index.findNeighbors(result, query, nanoflann::SearchParams());
+  m_precomputedTree->search(result, query);
   if (result.size() == 0) return {};
   const auto [distance2, index] = heap.front();
   const double r = m_precomputedRadius[index];

@@ -43,13 +43,20 @@ struct IrradianceEstimate {
   int photons = 0;    ///< photons gathered
 };
 
+/// Default most photons in one kd-tree of a PhotonMap: 2^19, which cut a 3.7M-photon map into
+/// enough parts to build on two cores while a lookup still tests few part boxes.
+constexpr std::size_t kMaxPhotonsPerKdPart = std::size_t(1) << 19;
+
 /// \brief A kd-tree over photons. Queries only accept photons whose patch normal is within
 /// ~25° of the query normal, so a corner's other wall does not leak into the estimate.
 /// Queries are const and thread-safe. The mesh must outlive the map. The map reorders the
 /// photons along a Morton curve (memory locality); photons() is that order.
 class PhotonMap {
  public:
-  PhotonMap(const PatchMesh& mesh, std::vector<Photon> photons);
+  /// \param maxPhotonsPerPart a map of more photons is cut into octree cells of at most this
+  ///        many, whose kd-trees are built in parallel (queries give the same result)
+  PhotonMap(const PatchMesh& mesh, std::vector<Photon> photons,
+            std::size_t maxPhotonsPerPart = kMaxPhotonsPerKdPart);
   ~PhotonMap();
   PhotonMap(PhotonMap&&) noexcept;
   PhotonMap& operator=(PhotonMap&&) noexcept;
@@ -59,6 +66,8 @@ class PhotonMap {
   const std::vector<Photon>& photons() const { return m_photons; }
   /// Bytes of the photons plus the kd-tree nodes and index.
   std::size_t memoryBytes() const;
+  /// Kd-trees the map was cut into (1 for a small map, 0 for an empty one).
+  std::size_t kdParts() const;
 
   /// \brief Indices of (at most) k nearest photons to `x` on surfaces facing along `normal`,
   /// nearest first, with their squared distances.
@@ -81,6 +90,7 @@ class PhotonMap {
  private:
   struct Tree;
   const PatchMesh* m_mesh;
+  std::size_t m_maxPhotonsPerPart;
   std::vector<Photon> m_photons;
   std::unique_ptr<Tree> m_tree;
   std::vector<Photon> m_precomputed;  ///< position, patch and irradiance (in `power`)

@@ -26,6 +26,13 @@ Photon photonAt(const Vec3& x, double power, int patch) {
   return p;
 }
 
+/// A uniform point on patch p of the mesh (a quad).
+Vec3 pointOnPatch(const PatchMesh& mesh, int p, Rng& rng) {
+  Vec3 v[4];
+  for (int c = 0; c < 4; ++c) v[c] = mesh.vertex(mesh.patches[p], c);
+  return samplePatchUniform(v, 4, rng.uniform(), rng.uniform());
+}
+
 TEST(PhotonMap, ExactKernelWeights) {
   // Three unit photons at d = 0, 0.5, 1 on one patch: r = 1 (the third gets weight zero).
   Scene scene = loadScene(test::dataPath("parallel-squares.json"));
@@ -48,35 +55,66 @@ TEST(PhotonMap, ExactNearestMatchesBruteForce) {
   ASSERT_EQ(mesh.size(), 2);
   std::vector<Photon> photons;
   Rng rng(21, 0, 0);
-  for (int k = 0; k < 20000; ++k) {
-    const int p = k % 2;
-    Vec3 v[4];
-    for (int c = 0; c < 4; ++c) v[c] = mesh.vertex(mesh.patches[p], c);
-    photons.push_back(photonAt(samplePatchUniform(v, 4, rng.uniform(), rng.uniform()), 1, p));
-  }
-  PhotonMap map(mesh, photons);
-  photons = map.photons();  // indices refer to the map's (Morton) order
-  ASSERT_EQ(photons.size(), 20000u);
-  std::vector<std::uint32_t> index;
-  std::vector<float> d2;
-  for (int q = 0; q < 50; ++q) {
-    const Photon& at = photons[std::size_t(q) * 397 % photons.size()];
-    const Vec3 n = mesh.patches[at.patch].normal;
-    map.nearest(at.point(), n, 30, index, d2);
-    std::vector<std::pair<float, std::uint32_t>> brute;
-    for (std::uint32_t i = 0; i < photons.size(); ++i) {
-      if (photons[i].patch != at.patch) continue;  // the other square is perpendicular
-      float s = 0;
-      for (int c = 0; c < 3; ++c) s += (photons[i].position[c] - at.position[c]) * (photons[i].position[c] - at.position[c]);
-      brute.push_back({s, i});
+  for (int k = 0; k < 20000; ++k) photons.push_back(photonAt(pointOnPatch(mesh, k % 2, rng), 1, k % 2));
+  // One kd-tree, and the same photons cut into octree cells of at most 1000 (many parts, some
+  // of whose boxes lie nearer than the k-th photon): both must find exactly the brute force's.
+  for (std::size_t perPart : {kMaxPhotonsPerKdPart, std::size_t(1000)}) {
+    PhotonMap map(mesh, photons, perPart);
+    EXPECT_EQ(map.kdParts() > 1, perPart == 1000) << map.kdParts();
+    const std::vector<Photon> ordered = map.photons();  // indices refer to the map's (Morton) order
+    ASSERT_EQ(ordered.size(), 20000u);
+    std::vector<std::uint32_t> index;
+    std::vector<float> d2;
+    for (int q = 0; q < 50; ++q) {
+      const Photon& at = ordered[std::size_t(q) * 397 % ordered.size()];
+      const Vec3 n = mesh.patches[at.patch].normal;
+      map.nearest(at.point(), n, 30, index, d2);
+      std::vector<std::pair<float, std::uint32_t>> brute;
+      for (std::uint32_t i = 0; i < ordered.size(); ++i) {
+        if (ordered[i].patch != at.patch) continue;  // the other square is perpendicular
+        float s = 0;
+        for (int c = 0; c < 3; ++c) s += (ordered[i].position[c] - at.position[c]) * (ordered[i].position[c] - at.position[c]);
+        brute.push_back({s, i});
+      }
+      std::partial_sort(brute.begin(), brute.begin() + 30, brute.end());
+      ASSERT_EQ(index.size(), 30u);
+      for (int k = 0; k < 30; ++k) {
+        EXPECT_EQ(d2[k], brute[k].first) << "query " << q << " rank " << k;
+        EXPECT_EQ(index[k], brute[k].second) << "query " << q << " rank " << k;
+      }
     }
-    std::partial_sort(brute.begin(), brute.begin() + 30, brute.end());
-    ASSERT_EQ(index.size(), 30u);
-    for (int k = 0; k < 30; ++k) {
-      EXPECT_EQ(d2[k], brute[k].first) << "query " << q << " rank " << k;
-      EXPECT_EQ(index[k], brute[k].second) << "query " << q << " rank " << k;
-    }
   }
+}
+
+// Precomputed irradiance (every 4th photon, its own octree cells) looked up through many kd
+// parts gives the one-tree map's bits, on the photons and between them.
+TEST(PhotonMap, ExactPrecomputedLookupIndependentOfParts) {
+  Scene scene = loadScene(test::dataPath("perpendicular-squares.json"));
+  PatchMesh mesh = subdivide(scene, {10, 0});
+  std::vector<Photon> photons;
+  Rng rng(5, 0, 0);
+  for (int k = 0; k < 12000; ++k) {
+    photons.push_back(photonAt(pointOnPatch(mesh, k % 2, rng), 1 + k % 7, k % 2));
+    photons.back().path = std::uint32_t(k);
+  }
+  PhotonMap one(mesh, photons), many(mesh, photons, 500);
+  ASSERT_EQ(one.kdParts(), 1u);
+  ASSERT_GT(many.kdParts(), 8u);
+  ASSERT_EQ(one.photons().size(), many.photons().size());
+  for (std::size_t i = 0; i < one.photons().size(); ++i)  // the cut keeps the Morton order
+    ASSERT_EQ(one.photons()[i].path, many.photons()[i].path);
+  one.precomputeIrradiance(40, IrradianceFilter::Epanechnikov, 4);
+  many.precomputeIrradiance(40, IrradianceFilter::Epanechnikov, 4);
+  int nonzero = 0;
+  for (int q = 0; q < 400; ++q) {
+    const Vec3 x = pointOnPatch(mesh, q % 2, rng);
+    const Vec3 n = mesh.patches[q % 2].normal;
+    const Vec3 a = one.precomputedIrradiance(x, n), b = many.precomputedIrradiance(x, n);
+    EXPECT_EQ(a.x, b.x) << q;
+    EXPECT_EQ(a.z, b.z) << q;
+    nonzero += a.x > 0;
+  }
+  EXPECT_GT(nonzero, 390);
 }
 
 /// Relative errors of independent estimates at the point below the lamp of
