@@ -7,6 +7,8 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -65,23 +67,46 @@ RawMesh readWithOpenMesh(const std::string& path) {
   if (errors.text().find("equal vertices") != std::string::npos)
     throw InputError(path + ": a face repeats a vertex (degenerate face). Fix: remove the "
                      "repeated index from the face.");
-  RawMesh raw;
-  for (auto v : mesh.vertices()) {
-    auto p = mesh.point(v);
-    raw.vertices.push_back({p[0], p[1], p[2]});
+  // OpenMesh gives a face that cannot join the surface manifoldly (wound against a neighbour,
+  // or a third face on an edge) its own copies of the vertices and marks it. Such a face gets
+  // the file's vertices back (the first vertex at each copy's position) and the copies are
+  // dropped, so that validation can reverse a wrongly wound face or name a non-manifold edge.
+  const std::size_t n = mesh.n_vertices();
+  std::map<std::array<double, 3>, int> firstAt;
+  for (std::size_t v = 0; v < n; ++v) {
+    const auto p = mesh.point(OpenMesh::VertexHandle(int(v)));
+    firstAt.emplace(std::array<double, 3>{p[0], p[1], p[2]}, int(v));
   }
+  std::vector<std::vector<int>> faces;
+  std::vector<char> copy(n, 0), used(n, 0);
   for (auto f : mesh.faces()) {
-    // OpenMesh gives a face that cannot join the surface manifoldly (an edge used twice in
-    // the same direction, or by three faces) its own copies of the vertices and marks it.
-    if (mesh.status(f).fixed_nonmanifold())
-      throw InputError(path + ": face " + std::to_string(f.idx()) +
-                       " runs an edge in the same direction as a neighbouring face "
-                       "(inconsistent orientation) or makes an edge non-manifold. Fix: "
-                       "reverse the vertex order of the faces that are flipped so all run "
-                       "counter-clockwise seen from the front.");
-    Face face;
-    for (auto v : mesh.fv_range(f)) face.vertices.push_back(v.idx());
-    raw.faces.push_back(std::move(face));
+    const bool copies = mesh.status(f).fixed_nonmanifold();
+    std::vector<int> face;
+    for (auto v : mesh.fv_range(f)) {
+      int index = v.idx();
+      if (copies) {
+        copy[index] = 1;
+        const auto p = mesh.point(v);
+        index = firstAt.at({p[0], p[1], p[2]});
+      }
+      face.push_back(index);
+    }
+    faces.push_back(std::move(face));
+  }
+  for (const auto& face : faces)
+    for (int v : face) used[v] = 1;
+  std::vector<int> renumber(n, -1);  // file vertices keep their order; the copies go
+  RawMesh raw;
+  for (std::size_t v = 0; v < n; ++v)
+    if (!copy[v] || used[v]) {
+      renumber[v] = int(raw.vertices.size());
+      const auto p = mesh.point(OpenMesh::VertexHandle(int(v)));
+      raw.vertices.push_back({p[0], p[1], p[2]});
+    }
+  for (const auto& face : faces) {
+    Face out;
+    for (int v : face) out.vertices.push_back(renumber[v]);
+    raw.faces.push_back(std::move(out));
   }
   return raw;
 }

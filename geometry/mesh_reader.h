@@ -15,10 +15,10 @@ struct RawMesh {
   std::vector<Face> faces;
 };
 
-/// \brief Reads a PLY, OFF, STL or OBJ file into one mesh; throws InputError naming the file
-/// on a missing file, an unknown extension, unreadable content, a text number that is not a
-/// finite decimal (text_numbers.h), or faces that break the surface (non-manifold edges or
-/// inconsistent orientation, repeated vertices).
+/// \brief Reads a PLY, OFF, STL or OBJ file into one mesh, vertices in file order; throws
+/// InputError naming the file on a missing file, an unknown extension, unreadable content, a
+/// text number that is not a finite decimal (text_numbers.h) or a face repeating a vertex.
+/// Faces wound against their neighbours and non-manifold edges are left to validateScene.
 RawMesh readMeshFile(const std::string& path);
 
 /// \brief Loads an OBJ with its MTL as a whole scene: each OBJ object or group is a named

@@ -11,8 +11,10 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -103,24 +105,129 @@ void checkFace(const Surface& s, std::size_t f) {
                      "is zero. Fix: remove the face or correct its vertices.");
 }
 
-/// Within one surface every directed edge may be used once: a repeat means two faces run
-/// the edge the same way (inconsistent orientation) or three faces share it.
-void checkOrientation(const Surface& s) {
+/// Two faces of one surface running an edge the same way.
+struct EdgeClash {
+  std::size_t face = 0, other = 0;
+  std::pair<int, int> edge;
+};
+
+/// The first directed edge used twice within the surface: two faces wound against each other,
+/// or three faces on one edge.
+std::optional<EdgeClash> firstEdgeClash(const Surface& s) {
   std::map<std::pair<int, int>, std::size_t> directed;
   for (std::size_t f = 0; f < s.faces.size(); ++f) {
     const auto& v = s.faces[f].vertices;
     for (std::size_t k = 0; k < v.size(); ++k) {
-      auto edge = std::make_pair(v[k], v[(k + 1) % v.size()]);
-      auto [it, inserted] = directed.emplace(edge, f);
-      if (!inserted)
-        throw InputError(faceName(s, f) + " runs the edge between vertices " +
-                         std::to_string(edge.first) + " and " + std::to_string(edge.second) +
-                         " in the same direction as face " + std::to_string(it->second) +
-                         ": the orientation is inconsistent (or the edge is non-manifold). "
-                         "Fix: reverse the vertex order of the flipped face so that all run "
-                         "counter-clockwise seen from the front.");
+      const auto edge = std::make_pair(v[k], v[(k + 1) % v.size()]);
+      const auto [it, inserted] = directed.emplace(edge, f);
+      if (!inserted) return EdgeClash{f, it->second, edge};
     }
   }
+  return std::nullopt;
+}
+
+/// Hears from CGAL's orient_polygon_soup which polygons it reversed and which edges have more
+/// than two faces. CGAL copies the visitor, so the record lives outside it.
+struct OrientationRecord {
+  std::vector<char> reversed;
+  std::vector<std::array<std::size_t, 3>> nonManifoldEdges;  ///< vertex, vertex, faces
+};
+struct OrientationVisitor : PMP::Default_orientation_visitor {
+  OrientationRecord* record;
+  explicit OrientationVisitor(OrientationRecord* r) : record(r) {}
+  void polygon_orientation_reversed(std::size_t p) { record->reversed[p] ^= 1; }
+  void non_manifold_edge(std::size_t a, std::size_t b, std::size_t faces) {
+    record->nonManifoldEdges.push_back({a, b, faces});
+  }
+};
+
+/// Faces that share an edge (either direction), as one label per face.
+std::vector<std::size_t> edgeConnectedParts(const Surface& s) {
+  std::vector<std::size_t> parent(s.faces.size());
+  for (std::size_t f = 0; f < parent.size(); ++f) parent[f] = f;
+  auto root = [&](std::size_t f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  std::map<std::pair<int, int>, std::size_t> firstFace;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    const auto& v = s.faces[f].vertices;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const int a = v[k], b = v[(k + 1) % v.size()];
+      const auto [it, inserted] = firstFace.emplace(std::minmax(a, b), f);
+      if (!inserted) parent[root(f)] = root(it->second);
+    }
+  }
+  std::vector<std::size_t> part(s.faces.size());
+  for (std::size_t f = 0; f < part.size(); ++f) part[f] = root(f);
+  return part;
+}
+
+/// Makes the winding of each edge-connected part of a surface consistent (CGAL's
+/// orient_polygon_soup), keeping the winding most of the part's faces had (on a tie, that of
+/// its first face), and warns naming the faces reversed. Throws where no consistent winding
+/// exists: an edge shared by three or more faces, or a one-sided surface (Möbius strip).
+void repairOrientation(Surface& s, LoadReport& report) {
+  if (!firstEdgeClash(s)) return;  // the common case costs one pass over the edges
+  // A face listed twice with the same winding is a mistake, not a flipped face: reversing one
+  // copy would make a two-sided sheet nobody asked for.
+  std::map<std::vector<int>, std::size_t> byVertices;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    std::vector<int> key = s.faces[f].vertices;
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    const auto [it, inserted] = byVertices.emplace(key, f);
+    if (!inserted)
+      throw InputError(faceName(s, f) + " repeats face " + std::to_string(it->second) +
+                       " (same vertices, same winding). Fix: remove one of them (or reverse it, "
+                       "for a sheet lit from both sides).");
+  }
+  std::vector<Point3> points;
+  for (const Vec3& v : s.vertices) points.push_back(toCgal(v));
+  std::vector<std::vector<std::size_t>> polygons;
+  for (const Face& f : s.faces) polygons.emplace_back(f.vertices.begin(), f.vertices.end());
+  OrientationRecord record;
+  record.reversed.assign(polygons.size(), 0);
+  PMP::orient_polygon_soup(points, polygons, CGAL::parameters::visitor(OrientationVisitor(&record)));
+  if (!record.nonManifoldEdges.empty()) {
+    const auto& e = record.nonManifoldEdges.front();
+    throw InputError(s.source + ": the edge between vertices " + std::to_string(e[0]) + " and " +
+                     std::to_string(e[1]) + " is shared by " + std::to_string(e[2]) +
+                     " faces (non-manifold), so no side of them is the front. Fix: split the "
+                     "surface so that every edge has at most two faces.");
+  }
+  const std::vector<std::size_t> part = edgeConnectedParts(s);
+  std::map<std::size_t, std::pair<std::size_t, std::size_t>> counts;  // part: reversed, faces
+  for (std::size_t f = 0; f < part.size(); ++f) {
+    counts[part[f]].first += record.reversed[f];
+    counts[part[f]].second += 1;
+  }
+  std::map<std::size_t, bool> keepReversed;  // part: flip CGAL's choice back
+  for (std::size_t f = 0; f < part.size(); ++f) {
+    if (keepReversed.count(part[f])) continue;  // f is the part's first face
+    const auto [reversed, faces] = counts[part[f]];
+    keepReversed[part[f]] = 2 * reversed > faces || (2 * reversed == faces && record.reversed[f]);
+  }
+  std::vector<std::size_t> flipped;
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    if (bool(record.reversed[f]) != keepReversed[part[f]]) {
+      std::reverse(s.faces[f].vertices.begin(), s.faces[f].vertices.end());
+      flipped.push_back(f);
+    }
+  if (const auto clash = firstEdgeClash(s))
+    throw InputError(faceName(s, clash->face) + " and face " + std::to_string(clash->other) +
+                     " run the edge between vertices " + std::to_string(clash->edge.first) +
+                     " and " + std::to_string(clash->edge.second) + " the same way whichever "
+                     "faces are reversed: the surface has one side only (like a Möbius strip). "
+                     "Fix: cut it into surfaces that each have a front and a back.");
+  std::string list;
+  for (std::size_t k = 0; k < flipped.size() && k < 10; ++k) list += (k ? ", " : "") + std::to_string(flipped[k]);
+  if (flipped.size() > 10) list += " and " + std::to_string(flipped.size() - 10) + " more";
+  const bool one = flipped.size() == 1;
+  report.warnings.push_back(s.source + ": " + std::to_string(flipped.size()) +
+                            (one ? " face was" : " faces were") + " wound against " +
+                            (one ? "its" : "their") + " neighbours and reversed to match them (" +
+                            (one ? "face " : "faces ") + list + "). Fix: reverse " +
+                            (one ? "it" : "them") + " in the input to silence this warning.");
 }
 
 /// Drops vertices that lie exactly on the line through their neighbours (exact predicate).
@@ -267,7 +374,7 @@ void validateScene(Scene& scene, LoadReport& report) {
       if (!isFinite(s.vertices[v]))
         throw InputError(s.source + ", vertex " + std::to_string(v) + " has a NaN or infinite coordinate. Fix: correct the coordinates.");
     for (std::size_t f = 0; f < s.faces.size(); ++f) checkFace(s, f);
-    checkOrientation(s);
+    repairOrientation(s, report);
     normaliseFaces(s, report);
     if (std::size_t n = countSelfIntersections(s))
       report.warnings.push_back(s.source + " intersects itself (" + std::to_string(n) +

@@ -13,8 +13,10 @@ constexpr double kPlanarityTolerance = 1e-7;
 /// \brief Checks and normalises a scene in place; throws InputError on the first error.
 /// Errors: empty scene, no surfaces with faces, NaN/infinite coordinates, reflectance
 /// outside [0,1), negative or non-finite emission, unknown material, degenerate (collinear,
-/// exact predicate) or zero-area faces, repeated vertices, inconsistent orientation or
-/// non-manifold edges inside one surface, duplicate surface names.
+/// exact predicate) or zero-area faces, repeated vertices, non-manifold edges or a one-sided
+/// (non-orientable) surface, duplicate surface names.
+/// Repairs, with a warning: faces wound against their neighbours are reversed (CGAL's
+/// orient_polygon_soup), each edge-connected part keeping the winding most of its faces had.
 /// Normalises: polygons with more than four vertices, non-convex and non-planar quads are
 /// triangulated (non-planar ones with a warning). Warns on self-intersections (CGAL).
 void validateScene(Scene& scene, LoadReport& report);

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <sstream>
+#include <fstream>
 #include <limits>
 
 #include "tests/common/test_util.h"
@@ -104,12 +106,21 @@ INSTANTIATE_TEST_SUITE_P(
         bad("ZeroAreaMeshFace", sceneWith(R"({"name": "flat", "material": "lamp", "mesh": "f.off"})"),
                 {"\"flat\"", "face 1", "collinear"}, "f.off",
                 "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n2 0 0\n3 0 0\n3 0 1 2\n3 1 3 4\n"),
-        bad("InconsistentOrientation",
-                sceneWith(R"({"name": "folded", "material": "lamp", "polygons": [
-                  [[0,0,0],[1,0,0],[1,1,0]], [[0,0,0],[0,1,0],[1,1,0]] ]})"),
-                {"folded", "face 1", "orientation", "Fix"}),
-        bad("InconsistentOrientationInMesh", sceneWith(R"({"name": "m", "material": "lamp", "mesh": "o.off"})"),
-                {"orientation"}, "o.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 3 2\n"),
+        bad("DuplicateFace",
+                sceneWith(R"({"name": "twice", "material": "lamp", "polygons": [
+                  [[0,0,0],[1,0,0],[1,1,0]], [[1,0,0],[1,1,0],[0,0,0]] ]})"),
+                {"\"twice\"", "face 1 repeats face 0", "Fix"}),
+        bad("NonManifoldEdge",
+                sceneWith(R"({"name": "fin", "material": "lamp", "polygons": [
+                  [[0,0,0],[1,0,0],[0,1,0]], [[1,0,0],[0,0,0],[0,-1,0]], [[0,0,0],[1,0,0],[0,0,1]] ]})"),
+                {"\"fin\"", "vertices 0 and 1", "shared by 3 faces", "Fix"}),
+        // Six quads closing a loop with a half twist: no winding makes the edges consistent.
+        bad("OneSidedSurface", sceneWith(R"({"name": "strip", "material": "lamp", "mesh": "m.off"})"),
+                {"\"strip\"", "one side only", "Fix"}, "m.off",
+                "OFF\n12 6 0\n0.7 0 0\n1.3 0 0\n0.38 0.66 -0.15\n0.65 1.12 0.15\n"
+                "-0.42 0.73 -0.26\n-0.58 1.01 0.26\n-1 0 -0.3\n-1 0 0.3\n-0.58 -1.01 -0.26\n"
+                "-0.42 -0.73 0.26\n0.65 -1.12 -0.15\n0.38 -0.66 0.15\n"
+                "4 0 2 3 1\n4 2 4 5 3\n4 4 6 7 5\n4 6 8 9 7\n4 8 10 11 9\n4 10 1 0 11\n"),
         bad("ReflectanceOne",
                 R"({"materials": {"white": {"reflectance": [1.0, 0.5, 0.5], "emission": [1,1,1]}},
                     "surfaces": [{"name": "a", "material": "white", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})",
@@ -165,6 +176,46 @@ TEST(MeshCli, ReadsBinaryStlAndTextWithWordsThatAreNotNumbers) {
   test::RunResult r = test::runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("total area: 6 m"), std::string::npos) << r.output;
+}
+
+/// Normals (nx,ny,nz) of every patch in a patches.csv.
+std::vector<std::string> patchNormals(const std::string& csvPath) {
+  std::ifstream csv(csvPath);
+  std::vector<std::string> normals;
+  std::string line;
+  std::getline(csv, line);
+  while (std::getline(csv, line)) {
+    std::vector<std::string> field;
+    std::stringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) field.push_back(f);
+    normals.push_back(field.at(6) + "," + field.at(7) + "," + field.at(8));
+  }
+  return normals;
+}
+
+// A face wound against its neighbours is reversed with a warning naming it, in a JSON surface
+// and in a mesh read by OpenMesh; each connected part keeps the winding most of its faces had.
+TEST(MeshCli, RepairsFacesWoundAgainstTheirNeighbours) {
+  test::TempDir dir;
+  dir.file("o.off", "OFF\n4 2 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n3 0 1 2\n3 0 3 2\n");
+  const std::string scene = dir.file("scene.json", sceneWith(
+      R"({"name": "up", "material": "lamp", "polygons": [
+           [[0,0,0],[1,0,0],[1,1,0]], [[0,0,0],[0,1,0],[1,1,0]], [[1,0,0],[2,0,0],[2,1,0],[1,1,0]]]},
+         {"name": "down", "material": "grey", "polygons": [
+           [[0,0,2],[1,0,2],[1,1,2]], [[0,0,2],[0,1,2],[1,1,2]], [[1,0,2],[1,1,2],[2,1,2],[2,0,2]]]},
+         {"name": "m", "material": "grey", "mesh": "o.off"})"));
+  test::RunResult r = test::runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("(\"up\"): 1 face was wound against its neighbours and reversed to match them (face 1)"),
+            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(\"down\"): 1 face was wound against its neighbours and reversed to match them (face 0)"),
+            std::string::npos) << "the two faces wound downwards outvote the first:\n" << r.output;
+  EXPECT_NE(r.output.find("o.off): 1 face was wound"), std::string::npos) << r.output;
+  const std::vector<std::string> normals = patchNormals(dir.path("o/patches.csv"));
+  ASSERT_EQ(normals.size(), 8u);
+  for (std::size_t p = 0; p < 3; ++p) EXPECT_EQ(normals[p], "0,0,1") << p;
+  for (std::size_t p = 3; p < 6; ++p) EXPECT_EQ(normals[p], "0,0,-1") << p;
+  for (std::size_t p = 6; p < 8; ++p) EXPECT_EQ(normals[p], "0,0,1") << p;
 }
 
 TEST(BadInputCli, MissingSceneFileAndBadOptions) {
