@@ -4,9 +4,15 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkHardwareSelector.h>
+#include <vtkIdTypeArray.h>
+#include <vtkInformation.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkProperty.h>
+#include <vtkSelection.h>
+#include <vtkSelectionNode.h>
+#include <vtkSmartPointer.h>
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -71,6 +77,9 @@ SceneView::SceneView(const RunFolder& run) : m_run(run) {
   m_mapper->InterpolateScalarsBeforeMappingOn();  // smooth false colour follows the map
   m_actor->SetMapper(m_mapper);
   m_actor->GetProperty()->LightingOff();  // radiosity is the shading
+  // A patch's radiosity leaves its front only; its back is not drawn, so from outside a closed
+  // room one sees in, and a surface seen from behind does not show the other side's light.
+  m_actor->GetProperty()->BackfaceCullingOn();
   m_actor->GetProperty()->SetEdgeColor(0.05, 0.05, 0.05);
   m_renderer->AddActor(m_actor);
 
@@ -97,9 +106,6 @@ SceneView::SceneView(const RunFolder& run) : m_run(run) {
   m_renderer->AddActor2D(m_info);
   setFontSize(16);
 
-  m_picker->SetTolerance(0.0);
-  m_picker->PickFromListOn();
-  m_picker->AddPickList(m_actor);
   m_renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
   resetCamera();
 }
@@ -237,9 +243,25 @@ std::string SceneView::patchInfo(int i) const {
 }
 
 int SceneView::pick(double x, double y) {
-  if (!m_picker->Pick(x, y, 0, m_renderer)) return -1;
-  const vtkIdType cell = m_picker->GetCellId();
-  return cell >= 0 && cell < m_run.patches.size() ? int(cell) : -1;
+  // Picks what is drawn: a hardware selection honours back-face culling, so a click where a
+  // wall is seen from behind finds the patch seen through it (a ray picker returns the wall).
+  if (x < 0 || y < 0) return -1;
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(m_renderer);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  const auto px = static_cast<unsigned>(x), py = static_cast<unsigned>(y);
+  selector->SetArea(px, py, px, py);
+  vtkSmartPointer<vtkSelection> selection;
+  selection.TakeReference(selector->Select());
+  for (unsigned n = 0; selection && n < selection->GetNumberOfNodes(); ++n) {
+    vtkSelectionNode* node = selection->GetNode(n);
+    if (node->GetProperties()->Get(vtkSelectionNode::PROP()) != m_actor.GetPointer()) continue;
+    auto* ids = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
+    if (!ids || ids->GetNumberOfTuples() == 0) continue;
+    const vtkIdType cell = ids->GetValue(0);
+    return cell >= 0 && cell < vtkIdType(m_run.patches.size()) ? int(cell) : -1;
+  }
+  return -1;
 }
 
 }  // namespace radkit::viewer

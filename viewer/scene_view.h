@@ -3,7 +3,6 @@
 #pragma once
 
 #include <vtkActor.h>
-#include <vtkCellPicker.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -69,7 +68,6 @@ class SceneView {
   vtkNew<vtkPolyData> m_outline;
   vtkNew<vtkPolyDataMapper> m_outlineMapper;
   vtkNew<vtkActor> m_outlineActor;
-  vtkNew<vtkCellPicker> m_picker;
 };
 
 }  // namespace radkit::viewer

@@ -25,7 +25,7 @@ Scene testScene() {
   return scene;
 }
 
-PatchMesh testMesh() {
+PatchMesh testMesh(bool rightFacesAway) {
   PatchMesh m;
   // Left surface: 6 shared vertices, two patches; right: one patch.
   m.vertices = {{-1, -0.5, 0}, {-0.05, -0.5, 0}, {-0.05, 0, 0}, {-1, 0, 0},  {-0.05, 0.5, 0},
@@ -40,17 +40,17 @@ PatchMesh testMesh() {
   };
   add({0, 1, 2, 3}, 0);
   add({3, 2, 4, 5}, 0);
-  add({6, 7, 8, 9}, 1);
+  add(rightFacesAway ? std::array<int, 4>{9, 8, 7, 6} : std::array<int, 4>{6, 7, 8, 9}, 1);
   m.surfaceBegin = {0, 2, 3};
   return m;
 }
 
 }  // namespace
 
-void writeTestRun(const std::string& folder) {
+void writeTestRun(const std::string& folder, bool rightFacesAway) {
   const Scene scene = testScene();
   const std::vector<Vec3> b(std::begin(TestRun::kRadiosity), std::end(TestRun::kRadiosity));
-  writePatchesVtp(folder + "/radiosity.vtp", scene, testMesh(), &b);
+  writePatchesVtp(folder + "/radiosity.vtp", scene, testMesh(rightFacesAway), &b);
   std::ofstream(folder + "/report.json")
       << R"({"command": "run", "scene": {"name": "two-walls", "file": "two-walls.json", "units": "m",
             "surfaces": ["left wall", "right wall"],

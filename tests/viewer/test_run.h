@@ -19,7 +19,8 @@ struct TestRun {
 
 /// \brief Writes radiosity.vtp (through geometry/patch_io), report.json, formfactors.mtx,
 /// convergence.csv and surfaces.csv into `folder` (which must exist).
-void writeTestRun(const std::string& folder);
+/// \param rightFacesAway wind the right patch the other way, so the camera sees its back
+void writeTestRun(const std::string& folder, bool rightFacesAway = false);
 
 /// Pixel (x from the left, y from the top) where the test camera sees world point p on z = 0.
 void projectToPixel(const Vec3& p, int width, int height, double& x, double& y);

@@ -131,5 +131,20 @@ TEST_F(ViewerDisplay, PickReturnsThePatchUnderThePixel) {
   EXPECT_EQ(pickPatchAt(folder(), w, h, 2, 2), -1);
 }
 
+// A patch seen from behind is neither drawn nor picked: its radiosity leaves its front only.
+TEST_F(ViewerDisplay, BackOfAPatchIsNotDrawnOrPicked) {
+  test::writeTestRun(folder(), true);
+  const int w = 320, h = 240;
+  const Canvas c = shot("radiosity", w, h);
+  double x, y;
+  test::projectToPixel({0.5, -0.25, 0}, w, h, x, y);
+  const Vec3 right = meanColour(c, x, y);
+  EXPECT_LT(right.x + right.y + right.z, 3 * 60) << "the right patch's back shows the background";
+  EXPECT_EQ(pickPatchAt(folder(), w, h, int(x), int(y)), -1);
+  test::projectToPixel({-0.5, -0.25, 0}, w, h, x, y);
+  EXPECT_GT(meanColour(c, x, y).x, 100) << "the left wall still faces the camera";
+  EXPECT_EQ(pickPatchAt(folder(), w, h, int(x), int(y)), 0);
+}
+
 }  // namespace
 }  // namespace radkit::viewer
