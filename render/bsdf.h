@@ -52,6 +52,20 @@ class Bsdf {
   virtual Vec3 diffuseAlbedo() const { return {}; }
   /// One line for reports: the model and its parameters.
   virtual std::string describe() const = 0;
+
+ protected:
+  /// \brief The sample of direction wi drawn by a mixture of non-delta lobes: its density is
+  ///        the whole pdf(wo, wi) (one-sample MIS over the lobes) and its weight f cos θi / pdf.
+  ///        Nothing below the horizon or where the density vanishes.
+  std::optional<BsdfSample> mixtureSample(const Vec3& wo, const Vec3& wi) const {
+    if (wi.z <= 0) return std::nullopt;
+    BsdfSample s;
+    s.wi = wi;
+    s.pdf = pdf(wo, wi);
+    if (!(s.pdf > 0)) return std::nullopt;
+    s.weight = eval(wo, wi) * (wi.z / s.pdf);
+    return s;
+  }
 };
 
 /// \brief The BSDF a material asks for (the factory table of the five models).

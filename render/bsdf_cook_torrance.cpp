@@ -43,18 +43,9 @@ class CookTorranceBsdf final : public Bsdf {
 
   std::optional<BsdfSample> sample(const Vec3& wo, double u0, double u1, double u2) const override {
     if (wo.z <= 0) return std::nullopt;
-    BsdfSample s;
-    if (u0 < specularChance(wo)) {
-      const Vec3 m = m_ggx.sampleVisibleNormal(wo, u1, u2);
-      s.wi = m * (2 * dot(wo, m)) - wo;
-    } else {
-      s.wi = sampleCosineHemisphere(u1, u2);
-    }
-    if (s.wi.z <= 0) return std::nullopt;
-    s.pdf = pdf(wo, s.wi);
-    if (!(s.pdf > 0)) return std::nullopt;
-    s.weight = eval(wo, s.wi) * (s.wi.z / s.pdf);
-    return s;
+    if (u0 >= specularChance(wo)) return mixtureSample(wo, sampleCosineHemisphere(u1, u2));
+    const Vec3 m = m_ggx.sampleVisibleNormal(wo, u1, u2);
+    return mixtureSample(wo, m * (2 * dot(wo, m)) - wo);
   }
 
   double pdf(const Vec3& wo, const Vec3& wi) const override {

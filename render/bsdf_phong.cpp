@@ -31,20 +31,11 @@ class PhongBsdf final : public Bsdf {
 
   std::optional<BsdfSample> sample(const Vec3& wo, double u0, double u1, double u2) const override {
     if (wo.z <= 0) return std::nullopt;
-    BsdfSample s;
-    if (u0 < m_diffuseChance) {
-      s.wi = sampleCosineHemisphere(u1, u2);
-    } else {
-      // cos α = u^(1/(n+1)) has density (n + 1)/(2π) cos^n α about the mirror direction.
-      const double cosA = std::pow(u1, 1 / (m_n + 1)), sinA = std::sqrt(std::max(0.0, 1 - cosA * cosA));
-      const double phi = 2 * M_PI * u2;
-      s.wi = Frame(mirror(wo)).toWorld({sinA * std::cos(phi), sinA * std::sin(phi), cosA});
-    }
-    if (s.wi.z <= 0) return std::nullopt;
-    s.pdf = pdf(wo, s.wi);
-    if (!(s.pdf > 0)) return std::nullopt;
-    s.weight = eval(wo, s.wi) * (s.wi.z / s.pdf);
-    return s;
+    if (u0 < m_diffuseChance) return mixtureSample(wo, sampleCosineHemisphere(u1, u2));
+    // cos α = u^(1/(n+1)) has density (n + 1)/(2π) cos^n α about the mirror direction.
+    const double cosA = std::pow(u1, 1 / (m_n + 1)), sinA = std::sqrt(std::max(0.0, 1 - cosA * cosA));
+    const double phi = 2 * M_PI * u2;
+    return mixtureSample(wo, Frame(mirror(wo)).toWorld({sinA * std::cos(phi), sinA * std::sin(phi), cosA}));
   }
 
   double pdf(const Vec3& wo, const Vec3& wi) const override {
