@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -45,18 +46,25 @@ std::vector<double> rowSums(const FormFactorMatrix& f);
 /// (about a microsecond) would dominate the 6x6 test matrices iterated 1e5 times.
 constexpr std::size_t kSerialEntries = std::size_t(1) << 15;
 
-/// \brief Calls rows(begin, end) over [0, n): in parallel, about 32k matrix entries per task,
-///        when the matrix holds at least kSerialEntries entries; serially otherwise.
+/// \brief Calls rows(begin, end) over the rows [first, last) of an n-row matrix holding
+///        `entries` entries: in parallel, about kSerialEntries matrix entries per task, when the
+///        whole matrix holds at least kSerialEntries entries; serially otherwise.
 template <typename Fn>
-inline void forRowBlocks(int n, std::size_t entries, Fn&& rows) {
-  if (entries < kSerialEntries || n < 2) {
-    rows(0, n);
+inline void forRowBlocks(int first, int last, int n, std::size_t entries, Fn&& rows) {
+  if (entries < kSerialEntries || last - first < 2) {
+    rows(first, last);
     return;
   }
   const std::size_t perRow = std::max<std::size_t>(1, entries / static_cast<std::size_t>(n));
   const int grain = static_cast<int>(std::max<std::size_t>(1, kSerialEntries / perRow));
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, grain),
+  tbb::parallel_for(tbb::blocked_range<int>(first, last, grain),
                     [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
+}
+
+/// \brief forRowBlocks over all n rows.
+template <typename Fn>
+inline void forRowBlocks(int n, std::size_t entries, Fn&& rows) {
+  forRowBlocks(0, n, n, entries, std::forward<Fn>(rows));
 }
 
 // ---- row-segment dot products, the inner loops of every solver ----

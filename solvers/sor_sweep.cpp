@@ -13,26 +13,11 @@ struct OffBlockSums {
   explicit OffBlockSums(int rows) : low(makeChannels(rows)), high(makeChannels(rows)) {}
 };
 
-/// Calls rows(begin, end) over [i0, i1), in parallel when the matrix is large enough; a task
-/// takes about kSerialEntries entries.
-template <typename Matrix, typename Fn>
-void forBlockRows(const Matrix& m, int i0, int i1, Fn&& rows) {
-  const std::size_t entries = storedEntries(m);
-  if (entries < kSerialEntries) {
-    rows(i0, i1);
-    return;
-  }
-  const std::size_t perRow = std::max<std::size_t>(1, entries / static_cast<std::size_t>(m.rows()));
-  const int grain = static_cast<int>(std::max<std::size_t>(1, kSerialEntries / perRow));
-  tbb::parallel_for(tbb::blocked_range<int>(i0, i1, grain),
-                    [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
-}
-
 template <typename Matrix>
 void offBlockRows(const Matrix& m, int i0, int i1, const std::array<const double*, 3>& next,
                   const std::array<const double*, 3>& old, OffBlockSums& sums) {
   const int n = m.rows();
-  forBlockRows(m, i0, i1, [&](int begin, int end) {
+  forRowBlocks(i0, i1, n, storedEntries(m), [&](int begin, int end) {
     rangeDots<3>(m, begin, end, 0, i0, next, [&](int i, const std::array<double, 3>& low) {
       for (int c = 0; c < 3; ++c) sums.low[c][i - i0] = low[c];
     });
@@ -72,7 +57,7 @@ void sweep(const Matrix& m, const RadiositySystem& s, const Rgb& omega, const Ch
 template <typename Matrix>
 void lowerProduct(const Matrix& m, const Channels& x, Channels& lower) {
   const auto xp = channelPointers(x);
-  forBlockRows(m, 0, m.rows(), [&](int begin, int end) {
+  forRowBlocks(m.rows(), storedEntries(m), [&](int begin, int end) {
     for (int i = begin; i < end; ++i) {
       const int i0 = i / kSorBlockRows * kSorBlockRows;
       const auto left = rowDots<3>(m, i, 0, i0, xp);
