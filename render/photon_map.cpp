@@ -86,11 +86,33 @@ std::uint64_t spreadBits(std::uint64_t v) {
   return v;
 }
 
-/// The box a map's Morton codes are taken over.
-struct MortonFrame {
+/// The bounds of some photons' positions.
+struct PhotonBox {
   float lo[3], hi[3];
-  /// 63-bit code of p: 21 bits per axis, interleaved x, y, z from the lowest bit up.
-  std::uint64_t code(const float p[3]) const {
+
+  /// \brief The box of photons[0, count); count >= 1.
+  static PhotonBox of(const Photon* photons, std::size_t count) {
+    PhotonBox b;
+    for (int c = 0; c < 3; ++c) b.lo[c] = b.hi[c] = photons[0].position[c];
+    for (std::size_t i = 1; i < count; ++i)
+      for (int c = 0; c < 3; ++c) {
+        b.lo[c] = std::min(b.lo[c], photons[i].position[c]);
+        b.hi[c] = std::max(b.hi[c], photons[i].position[c]);
+      }
+    return b;
+  }
+  /// Squared distance from q to the box (0 inside).
+  float distance2(const float q[3]) const {
+    float d2 = 0.f;
+    for (int c = 0; c < 3; ++c) {
+      const float d = q[c] < lo[c] ? lo[c] - q[c] : (q[c] > hi[c] ? q[c] - hi[c] : 0.f);
+      d2 += d * d;
+    }
+    return d2;
+  }
+  /// 63-bit Morton code of p over the box: 21 bits per axis, interleaved x, y, z from the
+  /// lowest bit up.
+  std::uint64_t mortonCode(const float p[3]) const {
     std::uint64_t code = 0;
     for (int c = 0; c < 3; ++c) {
       const double t = hi[c] > lo[c] ? (p[c] - lo[c]) / double(hi[c] - lo[c]) : 0.0;
@@ -103,17 +125,13 @@ struct MortonFrame {
 /// Orders photons along a Morton (Z-order) curve over their bounding box, so photons near in
 /// space sit near in memory: the kd-tree's leaves then read contiguous memory (without it,
 /// queries ran at half the rate). Keys are unique (code, index) pairs, so the parallel sort gives
-/// one order whatever the threads. Returns the codes, ascending. Requires photons.
-std::vector<std::uint64_t> sortAlongMortonCurve(std::vector<Photon>& photons, MortonFrame& frame) {
-  for (int c = 0; c < 3; ++c) frame.lo[c] = frame.hi[c] = photons[0].position[c];
-  for (const Photon& p : photons)
-    for (int c = 0; c < 3; ++c) {
-      frame.lo[c] = std::min(frame.lo[c], p.position[c]);
-      frame.hi[c] = std::max(frame.hi[c], p.position[c]);
-    }
+/// one order whatever the threads. Returns the codes, ascending; `frame` receives the box.
+/// Requires photons.
+std::vector<std::uint64_t> sortAlongMortonCurve(std::vector<Photon>& photons, PhotonBox& frame) {
+  frame = PhotonBox::of(photons.data(), photons.size());
   std::vector<std::pair<std::uint64_t, std::uint32_t>> key(photons.size());
   tbb::parallel_for(std::size_t(0), photons.size(), [&](std::size_t i) {
-    key[i] = {frame.code(photons[i].position), std::uint32_t(i)};
+    key[i] = {frame.mortonCode(photons[i].position), std::uint32_t(i)};
   });
   tbb::parallel_sort(key.begin(), key.end());
   std::vector<Photon> sorted(photons.size());
@@ -163,40 +181,23 @@ struct PhotonMap::Tree {
     PhotonCloud cloud;
     KdTree index;
     std::uint32_t base;
-    float lo[3], hi[3];
+    PhotonBox box;
     Part(const Photon* photons, std::size_t count, std::uint32_t first)
         : cloud{photons + first, count},
           index(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)),
-          base(first) {
-      for (int c = 0; c < 3; ++c) lo[c] = hi[c] = cloud.data[0].position[c];
-      for (std::size_t i = 0; i < count; ++i)
-        for (int c = 0; c < 3; ++c) {
-          lo[c] = std::min(lo[c], cloud.data[i].position[c]);
-          hi[c] = std::max(hi[c], cloud.data[i].position[c]);
-        }
-    }
-    float boxDistance2(const float q[3]) const {
-      float d2 = 0.f;
-      for (int c = 0; c < 3; ++c) {
-        const float d = q[c] < lo[c] ? lo[c] - q[c] : (q[c] > hi[c] ? q[c] - hi[c] : 0.f);
-        d2 += d * d;
-      }
-      return d2;
-    }
+          base(first),
+          box(PhotonBox::of(photons + first, count)) {}
   };
   std::vector<std::unique_ptr<Part>> parts;
-  MortonFrame frame;  ///< the frame the photons were ordered in
+  PhotonBox frame;  ///< the box the photons' Morton codes were taken over
 
-  /// \param ends the parts' ends in photons, ascending (empty parts are skipped)
-  Tree(const std::vector<Photon>& photons, const std::vector<std::size_t>& ends, const MortonFrame& f)
+  /// \param ends the parts' ends in photons, ascending; no part is empty (octreeCells)
+  Tree(const std::vector<Photon>& photons, const std::vector<std::size_t>& ends, const PhotonBox& f)
       : frame(f) {
-    std::vector<std::size_t> firsts;
-    for (std::size_t p = 0, first = 0; p < ends.size(); first = ends[p++])
-      if (ends[p] > first) firsts.push_back(first);  // no empty parts
-    parts.resize(firsts.size());
-    tbb::parallel_for(std::size_t(0), firsts.size(), [&](std::size_t p) {
-      const std::size_t last = p + 1 < firsts.size() ? firsts[p + 1] : photons.size();
-      parts[p] = std::make_unique<Part>(photons.data(), last - firsts[p], std::uint32_t(firsts[p]));
+    parts.resize(ends.size());
+    tbb::parallel_for(std::size_t(0), ends.size(), [&](std::size_t p) {
+      const std::size_t first = p ? ends[p - 1] : 0;
+      parts[p] = std::make_unique<Part>(photons.data(), ends[p] - first, std::uint32_t(first));
     });
   }
 
@@ -213,7 +214,7 @@ struct PhotonMap::Tree {
     boxDistance2.resize(parts.size());
     std::size_t nearest = 0;
     for (std::size_t p = 0; p < parts.size(); ++p) {
-      boxDistance2[p] = parts[p]->boxDistance2(q);
+      boxDistance2[p] = parts[p]->box.distance2(q);
       if (boxDistance2[p] < boxDistance2[nearest]) nearest = p;
     }
     auto visit = [&](std::size_t p) {
@@ -241,7 +242,7 @@ const char* filterName(IrradianceFilter filter) {
 PhotonMap::PhotonMap(const PatchMesh& mesh, std::vector<Photon> photons, std::size_t maxPhotonsPerPart)
     : m_mesh(&mesh), m_maxPhotonsPerPart(std::max<std::size_t>(1, maxPhotonsPerPart)), m_photons(std::move(photons)) {
   if (m_photons.empty()) return;
-  MortonFrame frame;
+  PhotonBox frame;
   const std::vector<std::uint64_t> codes = sortAlongMortonCurve(m_photons, frame);
   std::vector<std::size_t> ends;
   octreeCells(codes, 0, codes.size(), 0, m_maxPhotonsPerPart, ends);
@@ -320,7 +321,7 @@ void PhotonMap::precomputeIrradiance(int k, IrradianceFilter filter, int stride)
   // Every stride-th photon of a Morton order is in Morton order: its own octree cells, which
   // are fewer than the map's (each part costs a k = 1 lookup a box test).
   std::vector<std::uint64_t> codes(count);
-  tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { codes[i] = m_tree->frame.code(m_precomputed[i].position); });
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { codes[i] = m_tree->frame.mortonCode(m_precomputed[i].position); });
   std::vector<std::size_t> ends;
   octreeCells(codes, 0, count, 0, m_maxPhotonsPerPart, ends);
   m_precomputedTree = std::make_unique<Tree>(m_precomputed, ends, m_tree->frame);
