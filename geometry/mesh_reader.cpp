@@ -52,6 +52,39 @@ class CapturedOpenMeshErrors {
   std::ostringstream m_text;
 };
 
+/// OpenMesh gives a face that cannot join the surface manifoldly (wound against a neighbour,
+/// or a third face on an edge) its own copies of the vertices and marks it. Such faces get the
+/// file's vertices back (the first vertex at each copy's position) and the copies are dropped,
+/// so that validation can reverse a wrongly wound face or name a non-manifold edge. The file's
+/// vertices keep their order.
+void restoreFileVertices(RawMesh& raw, const std::vector<std::size_t>& refused) {
+  const std::size_t n = raw.vertices.size();
+  std::map<std::array<double, 3>, int> firstAt;
+  for (std::size_t v = 0; v < n; ++v) {
+    const Vec3& p = raw.vertices[v];
+    firstAt.emplace(std::array<double, 3>{p.x, p.y, p.z}, int(v));
+  }
+  std::vector<char> copy(n, 0), used(n, 0);
+  for (std::size_t f : refused)
+    for (int& v : raw.faces[f].vertices) {
+      copy[v] = 1;
+      const Vec3& p = raw.vertices[v];
+      v = firstAt.at({p.x, p.y, p.z});
+    }
+  for (const Face& face : raw.faces)
+    for (int v : face.vertices) used[v] = 1;
+  std::vector<int> renumber(n, -1);
+  std::vector<Vec3> kept;
+  for (std::size_t v = 0; v < n; ++v)
+    if (!copy[v] || used[v]) {
+      renumber[v] = int(kept.size());
+      kept.push_back(raw.vertices[v]);
+    }
+  raw.vertices = std::move(kept);
+  for (Face& face : raw.faces)
+    for (int& v : face.vertices) v = renumber[v];
+}
+
 RawMesh readWithOpenMesh(const std::string& path) {
   PolyMesh mesh;
   mesh.request_face_status();
@@ -67,47 +100,19 @@ RawMesh readWithOpenMesh(const std::string& path) {
   if (errors.text().find("equal vertices") != std::string::npos)
     throw InputError(path + ": a face repeats a vertex (degenerate face). Fix: remove the "
                      "repeated index from the face.");
-  // OpenMesh gives a face that cannot join the surface manifoldly (wound against a neighbour,
-  // or a third face on an edge) its own copies of the vertices and marks it. Such a face gets
-  // the file's vertices back (the first vertex at each copy's position) and the copies are
-  // dropped, so that validation can reverse a wrongly wound face or name a non-manifold edge.
-  const std::size_t n = mesh.n_vertices();
-  std::map<std::array<double, 3>, int> firstAt;
-  for (std::size_t v = 0; v < n; ++v) {
-    const auto p = mesh.point(OpenMesh::VertexHandle(int(v)));
-    firstAt.emplace(std::array<double, 3>{p[0], p[1], p[2]}, int(v));
-  }
-  std::vector<std::vector<int>> faces;
-  std::vector<char> copy(n, 0), used(n, 0);
-  for (auto f : mesh.faces()) {
-    const bool copies = mesh.status(f).fixed_nonmanifold();
-    std::vector<int> face;
-    for (auto v : mesh.fv_range(f)) {
-      int index = v.idx();
-      if (copies) {
-        copy[index] = 1;
-        const auto p = mesh.point(v);
-        index = firstAt.at({p[0], p[1], p[2]});
-      }
-      face.push_back(index);
-    }
-    faces.push_back(std::move(face));
-  }
-  for (const auto& face : faces)
-    for (int v : face) used[v] = 1;
-  std::vector<int> renumber(n, -1);  // file vertices keep their order; the copies go
   RawMesh raw;
-  for (std::size_t v = 0; v < n; ++v)
-    if (!copy[v] || used[v]) {
-      renumber[v] = int(raw.vertices.size());
-      const auto p = mesh.point(OpenMesh::VertexHandle(int(v)));
-      raw.vertices.push_back({p[0], p[1], p[2]});
-    }
-  for (const auto& face : faces) {
-    Face out;
-    for (int v : face) out.vertices.push_back(renumber[v]);
-    raw.faces.push_back(std::move(out));
+  for (auto v : mesh.vertices()) {
+    const auto p = mesh.point(v);
+    raw.vertices.push_back({p[0], p[1], p[2]});
   }
+  std::vector<std::size_t> refused;  // faces OpenMesh gave copies of their vertices
+  for (auto f : mesh.faces()) {
+    Face face;
+    for (auto v : mesh.fv_range(f)) face.vertices.push_back(v.idx());
+    if (mesh.status(f).fixed_nonmanifold()) refused.push_back(raw.faces.size());
+    raw.faces.push_back(std::move(face));
+  }
+  if (!refused.empty()) restoreFileVertices(raw, refused);
   return raw;
 }
 
