@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "apps/common.h"
+#include "apps/hierarchical_command.h"
 #include "apps/options.h"
 #include "apps/report.h"
 #include "geometry/patch_io.h"
@@ -31,6 +32,7 @@ struct PipelineCommand {
   std::string preset;
   bool adaptive = false;
   AdaptiveSettings adaptiveSettings;
+  HierarchicalOptions hierarchical;
   /// Options a preset must not override when the user gave them.
   std::vector<CLI::Option*> meshFlags, methodFlag, samplesFlag, tolFlag;
 };
@@ -125,11 +127,41 @@ void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCom
   printField("wrote", cmd.out);
 }
 
+/// `run --method hierarchical`: the options it shares with a dense run, and a refusal of the
+/// ones that only a dense run understands.
+void runHierarchical(PipelineCommand& cmd) {
+  finishHierarchicalOptions(cmd.hierarchical);
+  std::vector<std::string> refused;
+  for (const CLI::Option* o : cmd.hierarchical.denseOnly)
+    if (o && o->count() > 0) refused.push_back(o->get_name());
+  if (!cmd.preset.empty()) refused.push_back("--preset");
+  if (cmd.adaptive) refused.push_back("--adaptive");
+  if (!refused.empty()) {
+    std::string list;
+    for (const std::string& name : refused) list += (list.empty() ? "" : ", ") + name;
+    throw CLI::ValidationError("--method hierarchical",
+                               list + " belong to the dense method; the hierarchy sets its own elements and links. "
+                                      "Use --epsilon, --min-area and --hr-rays instead");
+  }
+  HierarchicalJob job;
+  job.scene = cmd.mesh.scene;
+  job.out = cmd.out;
+  job.settings = cmd.hierarchical.settings;
+  job.settings.seed = cmd.ff.settings.seed;
+  job.settings.memoryBudget = cmd.ff.settings.memoryBudget;
+  job.settings.stopping = cmd.solver.stopping;
+  job.linkColour = cmd.hierarchical.linkColour == "power" ? LinkColour::Power : LinkColour::FormFactor;
+  job.noRender = cmd.noRender, job.photometric = cmd.photometric, job.smooth = cmd.smooth;
+  job.imageSize = cmd.imageSize;
+  runHierarchicalJob(job);
+}
+
 void runJob(PipelineCommand& cmd) {
   auto start = std::chrono::steady_clock::now();
   cmd.ff.finish();
   if (cmd.job != Job::FormFactors) cmd.solver.finish();
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
+  if (cmd.job == Job::Run && cmd.hierarchical.method == "hierarchical") return runHierarchical(cmd);
   // Adaptive refinement starts coarse, at a quarter of its budget, so it has room to refine.
   if (cmd.job == Job::Run && cmd.preset.empty() && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0)
     cmd.mesh.patches = cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
@@ -238,6 +270,11 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
     sub->add_option("--adaptive-rounds", cmd->adaptiveSettings.maxRounds, "Adaptive: refine-and-solve rounds at most")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
     sub->add_option("--image-size", cmd->imageSize, "Side of render.png in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
+    addHierarchicalOptions(*sub, cmd->hierarchical);
+    cmd->hierarchical.denseOnly = {sub->get_option("--patches"), sub->get_option("--max-area"),
+                                   sub->get_option("--ff"), sub->get_option("--ff-samples"),
+                                   sub->get_option("--ff-enforce"), sub->get_option("--ff-storage"),
+                                   sub->get_option("--solvers"), sub->get_option("--write-matrix")};
   }
   sub->callback([cmd] { runJob(*cmd); });
   return sub;

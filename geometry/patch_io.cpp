@@ -35,7 +35,7 @@ void writePatchesCsv(const std::string& path, const Scene& scene, const PatchMes
 }
 
 void writePatchesVtp(const std::string& path, const Scene& scene, const PatchMesh& mesh,
-                     const std::vector<Vec3>* radiosity) {
+                     const std::vector<Vec3>* radiosity, const std::vector<CellArray>& extra) {
   std::ostringstream o;
   o << std::setprecision(kDigits);
   o << "<?xml version=\"1.0\"?>\n"
@@ -71,6 +71,11 @@ void writePatchesVtp(const std::string& path, const Scene& scene, const PatchMes
   triples("reflectance", [&](int i) { return material(i).diffuseAlbedo(); });
   triples("emission", [&](int i) { return material(i).emission; });
   if (radiosity) triples("radiosity", [&](int i) { return (*radiosity)[i]; });
+  for (const CellArray& a : extra) {
+    o << "<DataArray type=\"Float64\" Name=\"" << a.name << "\" format=\"ascii\">\n";
+    for (double v : a.values) o << v << '\n';
+    o << "</DataArray>\n";
+  }
   o << "</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
   writeFileAtomically(path, o.str());
 }

@@ -17,7 +17,13 @@ void writePatchesCsv(const std::string& path, const Scene& scene, const PatchMes
 
 /// \brief Writes the patches as VTK XML PolyData with cell data: surface id, area,
 /// reflectance, emission, radiosity (when given).
+/// A named per-patch scalar written as cell data (hierarchical radiosity's level, links, ...).
+struct CellArray {
+  std::string name;
+  std::vector<double> values;
+};
+
 void writePatchesVtp(const std::string& path, const Scene& scene, const PatchMesh& mesh,
-                     const std::vector<Vec3>* radiosity);
+                     const std::vector<Vec3>* radiosity, const std::vector<CellArray>& extra = {});
 
 }  // namespace radkit

@@ -47,19 +47,11 @@ void writeFormFactorHeatMap(const std::string& path, const PatchMesh& mesh,
   Canvas canvas(left + side + 30 + barArea + 12, top + side + 16);
   if (!s.title.empty()) canvas.text(8, 8, s.title, fs);
 
-  // Log colour scale over whole decades: [10^lo, 10^hi].
-  double maxValue = 0, minPositive = INFINITY;
-  for (double v : value) if (v > 0) maxValue = std::max(maxValue, v), minPositive = std::min(minPositive, v);
-  int hi = maxValue > 0 ? int(std::ceil(std::log10(maxValue) - 1e-12)) : 0;
-  int lo = maxValue > 0 ? std::max(int(std::floor(std::log10(minPositive))), hi - int(s.decades)) : -1;
-  if (lo >= hi) lo = hi - 1;
-  auto colour = [&](double v) {
-    return v > 0 ? viridis((std::log10(v) - lo) / (hi - lo)) : Rgb8{225, 225, 225};
-  };
+  const LogColourScale scale(value, s.decades);
   for (int a = 0; a < cells; ++a)
     for (int b = 0; b < cells; ++b)
       canvas.fill(left + b * cellPx, top + a * cellPx, left + (b + 1) * cellPx,
-                  top + (a + 1) * cellPx, colour(value[std::size_t(a) * cells + b]));
+                  top + (a + 1) * cellPx, scale.colour(value[std::size_t(a) * cells + b]));
 
   // Surface boundaries and names: rows on the left, columns on top (vertical text).
   int lastLabel = -2 * th;
@@ -76,17 +68,33 @@ void writeFormFactorHeatMap(const std::string& path, const PatchMesh& mesh,
     lastLabel = mid;
   }
 
-  // Colour bar with a label per decade.
-  const int barX = left + side + 30;
+  scale.drawBar(canvas, left + side + 30, top, side, legend, fs);
+  writePng(path, canvas);
+}
+
+LogColourScale::LogColourScale(const std::vector<double>& values, double decades) {
+  double maxValue = 0, minPositive = INFINITY;
+  for (double v : values)
+    if (v > 0) maxValue = std::max(maxValue, v), minPositive = std::min(minPositive, v);
+  hi = maxValue > 0 ? int(std::ceil(std::log10(maxValue) - 1e-12)) : 0;
+  lo = maxValue > 0 ? std::max(int(std::floor(std::log10(minPositive))), hi - int(decades)) : -1;
+  if (lo >= hi) lo = hi - 1;
+}
+
+Rgb8 LogColourScale::colour(double v) const {
+  return v > 0 ? viridis((std::log10(v) - lo) / (hi - lo)) : Rgb8{225, 225, 225};
+}
+
+void LogColourScale::drawBar(Canvas& canvas, int x, int top, int side, const std::string& legend, int fs) const {
+  const int th = Canvas::textHeight(fs);
   for (int y = 0; y < side; ++y)
-    canvas.fill(barX, top + y, barX + 24, top + y + 1, viridis(1.0 - double(y) / std::max(1, side - 1)));
+    canvas.fill(x, top + y, x + 24, top + y + 1, viridis(1.0 - double(y) / std::max(1, side - 1)));
   for (int d = lo; d <= hi; ++d) {
     int y = top + int(std::lround(double(hi - d) / (hi - lo) * (side - 1)));
-    canvas.fill(barX - 4, y, barX, y + 1, {0, 0, 0});
-    canvas.text(barX + 28, std::clamp(y - th / 2, 0, canvas.height() - th), "1e" + std::to_string(d), fs);
+    canvas.fill(x - 4, y, x, y + 1, {0, 0, 0});
+    canvas.text(x + 28, std::clamp(y - th / 2, 0, canvas.height() - th), "1e" + std::to_string(d), fs);
   }
-  canvas.text(barX, top - 2 * th - 6, legend, fs);
-  writePng(path, canvas);
+  canvas.text(x, top - 2 * th - 6, legend, fs);
 }
 
 }  // namespace radkit

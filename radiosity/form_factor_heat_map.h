@@ -6,6 +6,7 @@
 
 #include "geometry/patch_mesh.h"
 #include "solvers/matrix.h"
+#include "util/canvas.h"
 
 namespace radkit {
 
@@ -26,5 +27,15 @@ struct HeatMapSettings {
 void writeFormFactorHeatMap(const std::string& path, const PatchMesh& mesh,
                             const std::vector<std::string>& surfaceNames,
                             const FormFactorMatrix& f, const HeatMapSettings& settings = {});
+
+/// A log10 colour scale over whole decades [10^lo, 10^hi] (viridis; zeros light grey), spanning
+/// at most `decades` below the largest value; shared by the F heat map and the link matrix.
+struct LogColourScale {
+  int lo = -1, hi = 0;
+  LogColourScale(const std::vector<double>& values, double decades);
+  Rgb8 colour(double v) const;
+  /// A vertical bar of `side` pixels at (x, top), a label per decade and the legend above.
+  void drawBar(Canvas& canvas, int x, int top, int side, const std::string& legend, int fontScale) const;
+};
 
 }  // namespace radkit

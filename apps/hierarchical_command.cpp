@@ -1,0 +1,200 @@
+#include "apps/hierarchical_command.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "apps/common.h"
+#include "apps/report.h"
+#include "geometry/patch_io.h"
+#include "hierarchy/link_matrix.h"
+#include "hierarchy/refine.h"
+#include "render/radiosity_image.h"
+#include "util/output_folder.h"
+
+namespace radkit::app {
+
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSettings& s) {
+  const Hierarchy& h = *r.hierarchy;
+  long long clusters = 0, elements = 0;
+  int deepest = 0;
+  for (int n = 0; n < h.size(); ++n) {
+    if (h[n].element) {
+      ++elements;
+      deepest = std::max(deepest, h[n].level);
+    } else {
+      ++clusters;
+    }
+  }
+  nlohmann::json kinds;
+  long long total = 0;
+  for (int k = 0; k < 4; ++k) {
+    kinds[linkKindName(static_cast<LinkKind>(k))] = r.linksByKind[k];
+    total += r.linksByKind[k];
+  }
+  nlohmann::json rounds = nlohmann::json::array();
+  for (const HierarchicalRound& round : r.rounds)
+    rounds.push_back({{"epsilon", round.epsilon}, {"links", round.links}, {"nodes", round.nodes},
+                      {"rays", round.rays}, {"sweeps", round.sweeps}, {"refine_seconds", round.refineSeconds},
+                      {"solve_seconds", round.solveSeconds}});
+  double rowMin = INFINITY, rowMax = 0;
+  for (double v : r.rowSums) rowMin = std::min(rowMin, v), rowMax = std::max(rowMax, v);
+  return {{"epsilon", s.epsilon},
+          {"threshold_power", r.threshold},
+          {"min_area", r.minArea},
+          {"rays_per_link", s.raysPerLink},
+          {"gather", s.order == GatherOrder::Jacobi ? "jacobi" : "gauss-seidel"},
+          {"input_faces", h.base().size()},
+          {"nodes", h.size()},
+          {"clusters", clusters},
+          {"elements", elements},
+          {"leaves", r.leaves.size()},
+          {"deepest_element_level", deepest},
+          {"links", total},
+          {"links_by_kind", kinds},
+          {"rays", r.raysCast},
+          {"row_sum_min", rowMin},
+          {"row_sum_max", rowMax},
+          {"row_sum_largest_error_before_scaling", r.system->largestRowSumError()},
+          {"leaves_closed_row_sum_normalised", r.system->normalisedLeaves()},
+          {"leaves_open_row_sum_capped", r.system->clampedLeaves()},
+          {"hierarchy_bytes", r.hierarchyBytes},
+          {"link_bytes", r.linkBytes},
+          {"rounds", rounds}};
+}
+
+void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalResult& r, const HierarchicalJob& job) {
+  ImageSettings s;
+  s.width = s.height = job.imageSize;
+  s.smooth = job.smooth;
+  std::vector<bool> twoSided;
+  for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
+  Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(r.leaves.bounds());
+  RayScene rays(r.leaves);  // the image needs the leaf under each pixel
+  RadianceImage img = renderRadiosity(r.leaves, rays, camera, r.radiosity, twoSided, s);
+  writePng(folder.path("render.png"), toneMap(img, autoExposure(img, scene, r.leaves)));
+}
+
+void printSummary(const Scene& scene, const HierarchicalResult& r, const HierarchicalJob& job, double total) {
+  std::printf("\n");
+  printField("scene", scene.name + " (" + scene.file + ")");
+  printField("method", "hierarchical, epsilon " + fmt("%.3g", job.settings.epsilon) + ", min area " +
+                           fmt("%.3g", r.minArea) + " " + scene.units + "^2");
+  printField("hierarchy", std::to_string(r.hierarchy->base().size()) + " input faces, " +
+                              std::to_string(r.hierarchy->size()) + " nodes, " + std::to_string(r.leaves.size()) +
+                              " leaves");
+  long long links = 0;
+  for (long long k : r.linksByKind) links += k;
+  printField("links", std::to_string(links) + " (" + std::to_string(r.linksByKind[0]) + " element-element), " +
+                          std::to_string(r.raysCast) + " rays");
+  printField("seconds", "hierarchy " + fmt("%.2f", r.seconds.hierarchy) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
+                            ", links " + fmt("%.2f", r.seconds.refine) + ", solve " + fmt("%.2f", r.seconds.solve) +
+                            ", total " + fmt("%.2f", total));
+  printField(r.solve.solver, std::to_string(r.solve.iterations) + " sweeps, change " +
+                                 fmt("%.2e", r.solve.residual) + (r.solve.converged ? "" : "  NOT CONVERGED: " + r.solve.reason));
+  printField("energy balance", "emitted " + fmt("%.4g W", luminance(r.energy.emitted)) + " = absorbed " +
+                                   fmt("%.4g", luminance(r.energy.absorbed)) + " + escaped " +
+                                   fmt("%.4g", luminance(r.energy.escaped)) + " (Y), imbalance " +
+                                   fmt("%.2e", r.energy.relativeImbalance));
+  for (const SurfaceResult& s : r.surfaces) {
+    std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) + fmt(" %10.4f W/m²", s.radiosity.z);
+    if (job.photometric) line += fmt("  %9.2f cd/m²", s.luminance) + fmt("  %9.1f lux", s.illuminance);
+    printField(s.name, line);
+  }
+  printField("peak memory", fmt("%.0f MiB", peakMemoryBytes() / 1048576.0));
+  printField("wrote", job.out);
+}
+
+}  // namespace
+
+void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& o) {
+  run.add_option("--method", o.method, "dense: F for every patch pair; hierarchical: links between clusters and "
+                                       "elements refined to --epsilon (docs/hierarchical.md)")
+      ->check(CLI::IsMember({"dense", "hierarchical"}))
+      ->capture_default_str();
+  run.add_option("--epsilon", o.settings.epsilon,
+                 "Hierarchical: largest error a link may carry, as a fraction of the emitted power")
+      ->capture_default_str();
+  run.add_option("--min-area", o.settings.minArea,
+                 "Hierarchical: smallest element (scene units²); 0: " + fmt("%g", kDefaultMinAreaFraction) +
+                     " of the scene's area")
+      ->capture_default_str();
+  run.add_option("--hr-rays", o.settings.raysPerLink, "Hierarchical: visibility rays per link")->capture_default_str();
+  run.add_option("--hr-rounds", o.settings.rounds,
+                 "Hierarchical: refine-and-solve rounds, from epsilon·4^(rounds−1) down to epsilon")
+      ->capture_default_str();
+  run.add_option("--gather", o.gather, "Hierarchical: gather ordering, jacobi or gauss-seidel")->capture_default_str();
+  run.add_option("--link-colour", o.linkColour, "Hierarchical: colour links.png by F or by power")
+      ->check(CLI::IsMember({"F", "power"}))
+      ->capture_default_str();
+}
+
+void finishHierarchicalOptions(HierarchicalOptions& o) {
+  o.settings.order = parseGatherOrder(o.gather);
+}
+
+void runHierarchicalJob(HierarchicalJob job) {
+  auto start = std::chrono::steady_clock::now();
+  validateHierarchicalSettings(job.settings);
+  Scene scene = loadSceneReporting(job.scene);
+  if (job.out.empty()) job.out = "out/" + scene.name;
+  Progress progress;
+  PipelineLog log;
+  log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
+  log.message = [&](const std::string& line) {
+    progress.finish();
+    std::fprintf(stderr, "%s\n", line.c_str());
+  };
+  HierarchicalResult r = solveHierarchical(scene, job.settings, log);
+  progress.finish();
+  if (r.solve.reason.rfind("diverged", 0) == 0)
+    throw std::runtime_error("hierarchical solve " + r.solve.reason + "; nothing written");
+
+  OutputFolder folder(job.out);
+  writePatchesCsv(folder.path("patches.csv"), scene, r.leaves, &r.radiosity);
+  std::vector<CellArray> extra{{"level", {}}, {"links", {}}, {"row_sum", r.rowSums}};
+  for (int n : r.leafNodes) {
+    extra[0].values.push_back((*r.hierarchy)[n].level);
+    extra[1].values.push_back(r.system->linkCount(n));
+  }
+  writePatchesVtp(folder.path("radiosity.vtp"), scene, r.leaves, &r.radiosity, extra);
+  writeSurfacesCsv(folder.path("surfaces.csv"), scene, r.surfaces, job.photometric);
+  writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), {r.solve});
+  LinkMatrixSettings matrix;
+  matrix.colour = job.linkColour;
+  matrix.title = scene.name + ": links as blocks of F, " + std::to_string(r.leaves.size()) + " leaves in tree order";
+  SourceState state;
+  state.radiosity.assign(r.hierarchy->size(), Vec3{});
+  for (std::size_t i = 0; i < r.leafNodes.size(); ++i) state.radiosity[r.leafNodes[i]] = r.radiosity[i];
+  state.powerVector.resize(r.hierarchy->size());
+  r.system->pull(state);
+  writeLinkMatrix(folder.path("links.png"), *r.hierarchy, r.system->links(), state, matrix);
+  if (!job.noRender) renderLeaves(folder, scene, r, job);
+
+  double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  nlohmann::json report{{"radkit", RADKIT_VERSION},
+                        {"command", "run"},
+                        {"method", "hierarchical"},
+                        {"scene", sceneJson(scene)},
+                        {"mesh", meshJson(scene, r.leaves)},
+                        {"hierarchy", hierarchyJson(r, job.settings)},
+                        {"solvers", nlohmann::json::array({solveJson(r.solve)})},
+                        {"energy_balance", energyJson(r.energy)},
+                        {"surfaces", surfacesJson(r.surfaces)}};
+  report["seconds"] = {{"hierarchy", r.seconds.hierarchy}, {"ray_scene", r.seconds.rayScene},
+                       {"links", r.seconds.refine},        {"solve", r.seconds.solve},
+                       {"results", r.seconds.results},     {"total", total}};
+  report["peak_memory_bytes"] = peakMemoryBytes();
+  writeJson(folder.path("report.json"), report);
+  folder.commit();
+  printSummary(scene, r, job, total);
+}
+
+}  // namespace radkit::app

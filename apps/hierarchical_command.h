@@ -1,0 +1,37 @@
+// `radkit run --method hierarchical`: hierarchical radiosity with clustering, writing every
+// output a dense run writes (the leaves are its patches) plus links.png.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "hierarchy/hierarchical.h"
+
+namespace radkit::app {
+
+struct HierarchicalOptions {
+  std::string method = "dense";
+  HierarchicalSettings settings;
+  std::string gather = "jacobi";
+  std::string linkColour = "F";
+  /// Options that belong to the dense method only (rejected with --method hierarchical).
+  std::vector<CLI::Option*> denseOnly;
+};
+
+void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& options);
+
+/// What the run command passes on: the scene, the output folder and the shared options.
+struct HierarchicalJob {
+  std::string scene, out;
+  HierarchicalSettings settings;
+  LinkColour linkColour = LinkColour::FormFactor;
+  bool noRender = false, photometric = false, smooth = false;
+  int imageSize = 512;
+};
+
+/// Parses --gather and --link-colour, refuses dense-only options; throws CLI::ValidationError.
+void finishHierarchicalOptions(HierarchicalOptions& options);
+
+void runHierarchicalJob(HierarchicalJob job);
+
+}  // namespace radkit::app

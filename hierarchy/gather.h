@@ -1,0 +1,95 @@
+// The hierarchical solve: gather over links, then push-pull (Hanrahan et al. 1991, §4).
+// Gathering at a cluster keeps the irradiance as a sum and a vector per channel (the light's
+// directions), so each element below takes what its own normal sees when it is pushed down.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "hierarchy/links.h"
+
+namespace radkit {
+
+/// Gather orderings. Jacobi gathers every link from the last sweep's radiosity; Gauss-Seidel
+/// sweeps the tree in fixed blocks (subtrees) and each block gathers from the radiosity the
+/// blocks before it already updated. Both give the same bits for any thread count.
+enum class GatherOrder { Jacobi, GaussSeidel };
+
+class HierarchicalSystem {
+ public:
+  /// Links are sorted by receiver (then source) so every gather sums in one fixed order.
+  /// `closed[n]` marks leaves whose whole hemisphere is covered by the scene: there the
+  /// enclosure rule Σ_j F_ij = 1 holds exactly (Siegel & Howell), and the leaf's irradiance is
+  /// divided by the row sum its links add up to, which removes the error of gathering at a
+  /// coarser receiver from the leaf's total. Empty: no leaf is taken as closed.
+  HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links, GatherOrder order,
+                     const std::vector<char>& closed = {});
+
+  const std::vector<HLink>& links() const { return m_links; }
+  /// Links gathered by node n.
+  int linkCount(int n) const { return m_begin[n + 1] - m_begin[n]; }
+
+  /// How much the leaves' radiosity changed in a sweep.
+  struct Change {
+    double max = 0;    ///< max over leaves and channels of |B_new − B_old|, W/m²
+    double power = 0;  ///< Σ_leaves A Σ_c |B_new − B_old| (scene units² · W/m²)
+    void add(const Change& o) { max = std::max(max, o.max), power += o.power; }
+  };
+  /// \brief One sweep: gather, push down to the leaves (B = E + ρH there), pull up.
+  Change sweep(SourceState& state);
+  /// \brief Recomputes every inner node's radiosity and power vector from the leaves.
+  void pull(SourceState& state) const;
+  /// \brief Irradiance H at every leaf (indexed by node) that the links deliver from `state`,
+  /// without changing it. With B = 1 everywhere this is the row sum Σ_j F_ij of each leaf.
+  std::vector<Vec3> leafIrradiance(const SourceState& state);
+  /// \brief A state with B = 1 on every node (for row sums).
+  SourceState unitState() const;
+  /// Open leaves whose links add up to a row sum so far above 1 that ρ·(row sum) > (1 + ρ)/2,
+  /// and the largest deviation |row sum − 1| of any leaf before scaling. Such an open leaf's
+  /// irradiance is scaled down to that cap, so coarse links between nearby clusters can never
+  /// make a sweep grow (with ρ near 1 the solve would diverge); report.json counts them.
+  int clampedLeaves() const { return m_clamped; }
+  int normalisedLeaves() const { return m_normalised; }
+  double largestRowSumError() const { return m_largestRowSumError; }
+
+ private:
+  struct Accumulator {
+    Vec3 sum;                   ///< elements: irradiance H
+    std::array<Vec3, 3> vec{};  ///< clusters: Σ e·ω per channel
+    void add(const Accumulator& o) {
+      sum += o.sum;
+      for (int c = 0; c < 3; ++c) vec[c] += o.vec[c];
+    }
+  };
+  /// What node n gathered itself plus what its incoherent ancestors gathered for it.
+  Accumulator gathered(int n) const;
+  void gather(int r, const SourceState& state);
+  /// Push-pull below `node` with what its ancestors gathered: records each leaf's H and, with a
+  /// state, sets its B = E + ρH and pulls up; returns the largest change of a leaf's B.
+  Change pushPull(int node, const Accumulator& inherited, SourceState* state);
+  void pullNode(int node, SourceState& state) const;
+  void gatherList(const std::vector<int>& receivers, const SourceState& state);
+
+  const Hierarchy& m_h;
+  std::vector<HLink> m_links;
+  std::vector<int> m_begin;
+  std::vector<Accumulator> m_acc;
+  /// A cluster whose normals disagree gathers each link for its coherent parts apart (so a
+  /// part's faces are not handed light from behind them): slots [m_slotBegin[r], ...) of r,
+  /// each for node m_slotTarget[k]; m_incoming lists, per node, the slots meant for it.
+  std::vector<int> m_slotBegin, m_slotTarget, m_incomingBegin, m_incoming;
+  std::vector<Accumulator> m_slots;
+  std::vector<Vec3> m_leafIrradiance;
+  std::vector<double> m_rowScale;  ///< per node: 1 / max(1, row sum) at leaves
+  int m_clamped = 0, m_normalised = 0;
+  double m_largestRowSumError = 0;
+  /// Blocks in sweep order (Jacobi: the root alone), the receivers inside each, and those
+  /// above every block.
+  std::vector<int> m_blocks;
+  std::vector<std::vector<int>> m_blockReceivers;
+  std::vector<int> m_aboveReceivers;
+  std::vector<int> m_aboveClusters;  ///< clusters above the blocks, parents before children
+};
+
+}  // namespace radkit

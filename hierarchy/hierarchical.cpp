@@ -1,0 +1,310 @@
+#include "hierarchy/hierarchical.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include <tbb/parallel_for.h>
+
+#include "geometry/sampling.h"
+#include "geometry/subdivision.h"
+#include "hierarchy/refine.h"
+
+namespace radkit {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(3);
+  s << v;
+  return s.str();
+}
+
+/// Intermediate rounds only steer refinement: their radiosity need not be closer than this.
+constexpr double kRoundTolerance = 1e-3;
+
+/// Leaf elements as patches; vertices are shared within a surface where their coordinates are
+/// identical (midpoints of a shared edge are computed from the same two points), so smooth
+/// shading can average across element boundaries.
+PatchMesh leafMesh(const Hierarchy& h, const std::vector<int>& leaves) {
+  PatchMesh mesh;
+  const int surfaces = static_cast<int>(h.base().surfaceBegin.size()) - 1;
+  mesh.surfaceBegin.assign(surfaces + 1, 0);
+  struct Key {
+    double x, y, z;
+    bool operator==(const Key& o) const { return std::memcmp(this, &o, sizeof(Key)) == 0; }
+  };
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      std::uint64_t a, b, c;
+      std::memcpy(&a, &k.x, 8), std::memcpy(&b, &k.y, 8), std::memcpy(&c, &k.z, 8);
+      return a * 0x9e3779b97f4a7c15ULL ^ (b + 0x7f4a7c159e3779b9ULL) * 31 ^ c;
+    }
+  };
+  std::unordered_map<Key, int, Hash> index;
+  int current = -1;
+  mesh.patches.reserve(leaves.size());
+  for (int n : leaves) {
+    int s = h.surfaceOf(n);
+    if (s != current) index.clear(), current = s;
+    const HPolygon& poly = h.polygon(n);
+    Patch p;
+    p.vertexCount = poly.count;
+    p.surface = s;
+    for (int k = 0; k < poly.count; ++k) {
+      Key key{poly.v[k].x, poly.v[k].y, poly.v[k].z};
+      auto [it, added] = index.emplace(key, static_cast<int>(mesh.vertices.size()));
+      if (added) mesh.vertices.push_back(poly.v[k]);
+      p.vertex[k] = it->second;
+    }
+    p.normal = poly.normal;
+    p.centroid = h[n].centre;
+    p.area = h[n].area;
+    mesh.patches.push_back(p);
+    ++mesh.surfaceBegin[s + 1];
+  }
+  for (int s = 0; s < surfaces; ++s) mesh.surfaceBegin[s + 1] += mesh.surfaceBegin[s];
+  return mesh;
+}
+
+/// Rays per leaf for the enclosure test.
+constexpr int kClosureRays = 32;
+
+/// Marks leaves (not yet tested) whose hemisphere is closed: every one of K stratified,
+/// cosine-distributed rays from the leaf hits the front of a face. Closed leaves obey
+/// Σ_j F_ij = 1 exactly, which the solve then enforces (HierarchicalSystem).
+void markClosedLeaves(const Hierarchy& h, const RayScene& rays, std::uint64_t seed, std::vector<char>& closed,
+                      std::vector<char>& tested) {
+  closed.resize(h.size(), 0);
+  tested.resize(h.size(), 0);
+  std::vector<int> todo;
+  for (int n = 0; n < h.size(); ++n)
+    if (h[n].element && h[n].isLeaf() && !tested[n]) todo.push_back(n);
+  const PatchMesh& base = h.base();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<double> u;
+    std::vector<int> scratch;
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const int n = todo[i];
+      const HPolygon& p = h.polygon(n);
+      Rng rng(seed, h[n].key, 0x636c6f736564ULL);
+      latinHypercube(kClosureRays, 4, rng, u, scratch);
+      Frame frame(p.normal);
+      bool all = true;
+      for (int k = 0; k < kClosureRays && all; ++k) {
+        const double* q = &u[std::size_t(k) * 4];
+        Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
+        Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
+        std::optional<RayHit> hit = rays.closestHit(x, d, 0.0);
+        all = hit && dot(base.patches[hit->patch].normal, d) < 0;
+      }
+      closed[n] = all;
+      tested[n] = 1;
+    }
+  });
+}
+
+}  // namespace
+
+GatherOrder parseGatherOrder(const std::string& name) {
+  if (name == "jacobi") return GatherOrder::Jacobi;
+  if (name == "gauss-seidel") return GatherOrder::GaussSeidel;
+  throw std::invalid_argument("--gather '" + name + "' is not an ordering: use jacobi or gauss-seidel");
+}
+
+void validateHierarchicalSettings(const HierarchicalSettings& s) {
+  if (!(s.epsilon > 0) || !std::isfinite(s.epsilon) || s.epsilon >= 1)
+    throw std::invalid_argument("--epsilon " + num(s.epsilon) +
+                                " is not a link error threshold: use a number in (0, 1), for example 1e-4 "
+                                "(smaller is more accurate and slower)");
+  if (!(s.minArea >= 0) || !std::isfinite(s.minArea))
+    throw std::invalid_argument("--min-area " + num(s.minArea) +
+                                " is not an area: use a positive area in scene units², or 0 for the default");
+  if (s.raysPerLink < 1 || s.raysPerLink > 4096)
+    throw std::invalid_argument("--hr-rays " + std::to_string(s.raysPerLink) + " must be between 1 and 4096 (default 8)");
+  if (s.rounds < 1 || s.rounds > 8)
+    throw std::invalid_argument("--hr-rounds " + std::to_string(s.rounds) + " must be between 1 and 8 (default 3)");
+  if (!(s.stopping.tolerance > 0) || !std::isfinite(s.stopping.tolerance))
+    throw std::invalid_argument("--tol " + num(s.stopping.tolerance) + " must be a positive number, e.g. 1e-6");
+}
+
+HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSettings& settings, const PipelineLog& log) {
+  std::vector<SurfaceRadiometry> radiometry;
+  for (const Surface& s : scene.surfaces) {
+    const Material& m = scene.materials[s.material];
+    radiometry.push_back({m.diffuseAlbedo(), m.emission});
+  }
+  validateHierarchicalSettings(settings);
+  Clock::time_point start = Clock::now();
+  PatchMesh base = subdivide(scene, SubdivisionSettings{});
+  double meshSeconds = since(start);
+  HierarchicalResult r = solveHierarchical(base, std::move(radiometry), settings, log);
+  r.seconds.hierarchy += meshSeconds;
+  start = Clock::now();
+  r.surfaces = surfaceResults(scene, r.leaves, r.radiosity, r.irradiance);
+  // Power bookkeeping as for a dense run, with each leaf's row sum from the links.
+  const double m2 = scene.metresPerUnit() * scene.metresPerUnit();
+  EnergyBalance& e = r.energy;
+  for (int i = 0; i < r.leaves.size(); ++i) {
+    const Patch& p = r.leaves.patches[i];
+    const Material& m = scene.materials[scene.surfaces[p.surface].material];
+    double a = p.area * m2;
+    e.emitted += m.emission * a;
+    e.absorbed += mul(Vec3{1, 1, 1} - m.diffuseAlbedo(), r.irradiance[i]) * a;
+    e.escaped += r.radiosity[i] * (a * std::max(0.0, 1 - r.rowSums[i]));
+  }
+  for (int c = 0; c < 3; ++c)
+    if (e.emitted[c] > 0)
+      e.relativeImbalance =
+          std::max(e.relativeImbalance, std::fabs(e.emitted[c] - e.absorbed[c] - e.escaped[c]) / e.emitted[c]);
+  r.seconds.results += since(start);
+  return r;
+}
+
+HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces,
+                                     const HierarchicalSettings& settings, const PipelineLog& log) {
+  validateHierarchicalSettings(settings);
+  HierarchicalResult r;
+  auto say = [&](const std::string& line) {
+    if (log.message) log.message(line);
+  };
+  double totalArea = 0, emitted = 0, emissionNorm = 0;
+  for (const Patch& p : base.patches) {
+    const SurfaceRadiometry& s = surfaces[p.surface];
+    totalArea += p.area;
+    emitted += p.area * maxComponent(s.emission);
+    emissionNorm = std::max(emissionNorm, maxComponent(s.emission));
+  }
+  if (!(emitted > 0))
+    throw std::invalid_argument("the scene emits no light: give at least one material an \"emission\" above 0");
+  r.minArea = settings.minArea > 0 ? settings.minArea : kDefaultMinAreaFraction * totalArea;
+  if (r.minArea > totalArea)
+    throw std::invalid_argument("--min-area " + num(r.minArea) + " is larger than the whole scene (" + num(totalArea) +
+                                " scene units²): use at most " + num(totalArea * 1e-3) +
+                                ", or 0 for the default (" + num(kDefaultMinAreaFraction) + " of the scene's area)");
+
+  Clock::time_point t = Clock::now();
+  r.hierarchy = std::make_unique<Hierarchy>(base, std::move(surfaces));
+  Hierarchy& h = *r.hierarchy;
+  r.seconds.hierarchy = since(t);
+  t = Clock::now();
+  r.rays = std::make_unique<RayScene>(base);
+  r.seconds.rayScene = since(t);
+
+  // Start from B = E at the input faces.
+  SourceState state;
+  state.radiosity.resize(h.size());
+  state.powerVector.resize(h.size());
+  for (int n = 0; n < h.size(); ++n)
+    if (h[n].element) state.radiosity[n] = h.radiometry(n).emission;
+
+  RefineSettings rs;
+  rs.minArea = r.minArea;
+  rs.raysPerLink = settings.raysPerLink;
+  rs.seed = settings.seed;
+  rs.memoryBudget = settings.memoryBudget;
+  // The input mesh (twice: ours and Embree's, ~ 64 B per triangle in its BVH) stays resident.
+  rs.fixedBytes = std::size_t(base.size()) * (sizeof(Patch) + 3 * sizeof(Vec3) + 64);
+  std::vector<HLink> links;
+  std::vector<char> closed, tested;
+  r.solve.solver = "hierarchical";
+  r.solve.description = std::string("hierarchical radiosity with clustering, ") +
+                        (settings.order == GatherOrder::Jacobi ? "Jacobi" : "Gauss-Seidel") +
+                        " gather, push-pull, epsilon " + num(settings.epsilon) + ", min area " + num(r.minArea) +
+                        ", K=" + std::to_string(settings.raysPerLink) + " rays per link, seed " +
+                        std::to_string(settings.seed);
+  Clock::time_point solveStart = Clock::now();
+  long iteration = 0;
+  for (int round = 0; round < settings.rounds; ++round) {
+    HierarchicalRound info;
+    info.epsilon = settings.epsilon * std::pow(4.0, settings.rounds - 1 - round);
+    rs.threshold = info.epsilon * emitted;
+    t = Clock::now();
+    Refiner refiner(h, *r.rays, rs);
+    if (links.empty()) {
+      HierarchicalSystem(h, {}, settings.order).pull(state);
+      links = refiner.rootLinks();
+    }
+    RefineStats stats = refiner.refine(links, state, [&](long long settled) {
+      if (log.progress) log.progress("links, epsilon " + num(info.epsilon), std::min(0.99, settled / 1e7));
+    });
+    markClosedLeaves(h, *r.rays, settings.seed, closed, tested);
+    r.system.reset();
+    r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed);
+    r.system->pull(state);
+    info.refineSeconds = since(t);
+    info.rays = stats.rays;
+    info.links = static_cast<long long>(r.system->links().size());
+    info.nodes = h.size();
+    r.raysCast += stats.rays;
+
+    t = Clock::now();
+    const bool last = round + 1 == settings.rounds;
+    const double tolerance = last ? settings.stopping.tolerance : std::max(settings.stopping.tolerance, kRoundTolerance);
+    const long maxSweeps = last ? settings.stopping.maxIterations : 1000;
+    for (long sweep = 0;; ++sweep) {
+      if (sweep >= maxSweeps) {
+        if (last) r.solve.reason = "stopped at the sweep limit " + std::to_string(maxSweeps) + " before --tol";
+        break;
+      }
+      HierarchicalSystem::Change c = r.system->sweep(state);
+      ++iteration, ++info.sweeps;
+      double residual = c.max / emissionNorm;
+      r.solve.history.push_back({iteration, since(solveStart), residual, c.power, double(iteration)});
+      if (log.progress)
+        log.progress("solve, epsilon " + num(info.epsilon),
+                     std::clamp(std::log(residual) / std::log(tolerance), 0.0, 1.0));
+      if (!std::isfinite(residual) || residual > 1e12) {
+        r.solve.reason = "diverged: the change grew to " + num(residual);
+        break;
+      }
+      if (residual <= tolerance) {
+        if (last) r.solve.converged = true, r.solve.reason = "converged";
+        break;
+      }
+    }
+    info.solveSeconds = since(t);
+    r.seconds.refine += info.refineSeconds;
+    r.seconds.solve += info.solveSeconds;
+    if (round + 1 < settings.rounds) links = r.system->links();
+    r.rounds.push_back(info);
+    say("hierarchy: epsilon " + num(info.epsilon) + ", " + std::to_string(info.links) + " links, " +
+        std::to_string(info.nodes) + " nodes, " + std::to_string(info.rays) + " rays, " +
+        std::to_string(info.sweeps) + " sweeps, " + num(info.refineSeconds + info.solveSeconds) + " s");
+    if (r.solve.reason.rfind("diverged", 0) == 0) break;
+  }
+  r.threshold = settings.epsilon * emitted;
+  r.solve.iterations = iteration;
+  r.solve.seconds = since(solveStart);
+  r.solve.residual = r.solve.history.empty() ? 0 : r.solve.history.back().residual;
+  r.solve.checkedResidual = r.solve.residual;
+
+  t = Clock::now();
+  std::vector<Vec3> nodeH = r.system->leafIrradiance(state);
+  std::vector<Vec3> nodeRows = r.system->leafIrradiance(r.system->unitState());
+  r.leafNodes = h.leavesByFace();
+  r.leaves = leafMesh(h, r.leafNodes);
+  for (int n : r.leafNodes) {
+    r.radiosity.push_back(state.radiosity[n]);
+    r.irradiance.push_back(nodeH[n]);
+    r.rowSums.push_back(nodeRows[n].x);
+  }
+  for (const HLink& l : r.system->links()) ++r.linksByKind[static_cast<int>(linkKind(h, l))];
+  r.hierarchyBytes = h.bytes() + state.radiosity.capacity() * sizeof(Vec3) * 4;
+  r.linkBytes = r.system->links().capacity() * sizeof(HLink);
+  for (int c = 0; c < 3; ++c) {
+    r.solve.radiosity[c].resize(r.radiosity.size());
+    for (std::size_t i = 0; i < r.radiosity.size(); ++i) r.solve.radiosity[c][i] = r.radiosity[i][c];
+  }
+  r.seconds.results = since(t);
+  return r;
+}
+
+}  // namespace radkit

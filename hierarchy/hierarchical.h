@@ -1,0 +1,82 @@
+// Hierarchical radiosity with clustering as one call: the cluster tree over the input faces,
+// link refinement against an error threshold ε, and the gather/push-pull solve, repeated from
+// a coarse ε to the requested one (multigridding). The leaves come back as a PatchMesh, so
+// every per-patch output of a dense run (patches.csv, radiosity.vtp, surfaces.csv, the image)
+// is written by the same code.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hierarchy/gather.h"
+#include "radiosity/radiosity_pipeline.h"
+
+namespace radkit {
+
+struct HierarchicalSettings {
+  /// A link may carry an estimated error of at most ε times the power the scene emits.
+  double epsilon = 1e-4;
+  /// Elements are not split below this area (scene units²); 0: kDefaultMinAreaFraction of the
+  /// scene's area.
+  double minArea = 0;
+  int raysPerLink = 8;  ///< K visibility rays per link
+  /// Refine-and-solve rounds: ε·4^(rounds−1), …, 4ε, ε (each round warm-starts the next).
+  int rounds = 3;
+  GatherOrder order = GatherOrder::Jacobi;
+  std::uint64_t seed = 1;
+  std::size_t memoryBudget = std::size_t(8) << 30;
+  SolverSettings stopping;  ///< tolerance on max|ΔB|/‖E‖∞ and the sweep limit of the last round
+};
+
+/// The default smallest element, as a fraction of the scene's surface area.
+constexpr double kDefaultMinAreaFraction = 2e-6;
+
+/// \brief Throws std::invalid_argument naming the option when a setting is unusable.
+void validateHierarchicalSettings(const HierarchicalSettings& s);
+
+struct HierarchicalRound {
+  double epsilon = 0;
+  long long links = 0, leaves = 0, nodes = 0, rays = 0, sweeps = 0;
+  double refineSeconds = 0, solveSeconds = 0;
+};
+
+struct HierarchicalResult {
+  std::unique_ptr<Hierarchy> hierarchy;
+  std::unique_ptr<HierarchicalSystem> system;
+  std::unique_ptr<RayScene> rays;  ///< over the input faces
+  PatchMesh leaves;                ///< leaf elements in output order (grouped by surface)
+  std::vector<int> leafNodes;      ///< node of each leaf patch
+  std::vector<Vec3> radiosity;     ///< B per leaf, W/m²
+  std::vector<Vec3> irradiance;    ///< H per leaf, W/m²
+  std::vector<double> rowSums;     ///< Σ_j F_ij of each leaf as the links see it
+  SolveResult solve;               ///< convergence of every round, one history
+  std::vector<HierarchicalRound> rounds;
+  std::array<long long, 4> linksByKind{};  ///< LinkKind order
+  long long raysCast = 0;
+  double minArea = 0;    ///< used (scene units²)
+  double threshold = 0;  ///< τ = ε · emitted power of the last round
+  std::size_t hierarchyBytes = 0, linkBytes = 0;
+  struct Seconds {
+    double hierarchy = 0, rayScene = 0, refine = 0, solve = 0, results = 0;
+  } seconds;
+  std::vector<SurfaceResult> surfaces;
+  EnergyBalance energy;
+};
+
+/// \brief Solves a loaded scene. Throws std::invalid_argument for bad settings or a scene that
+/// emits nothing, HierarchyMemoryError when the links outgrow settings.memoryBudget.
+HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSettings& settings,
+                                     const PipelineLog& log = {});
+
+/// \brief The same on input faces made elsewhere (tests): `base` has one patch per input face,
+/// `surfaces` one entry per surface index.
+HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces,
+                                     const HierarchicalSettings& settings, const PipelineLog& log = {});
+
+/// "jacobi" or "gauss-seidel"; throws std::invalid_argument otherwise.
+GatherOrder parseGatherOrder(const std::string& name);
+
+}  // namespace radkit

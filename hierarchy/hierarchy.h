@@ -1,0 +1,106 @@
+// The hierarchy of hierarchical radiosity with clustering: a binary cluster tree (BVH) over
+// the input faces, and below each face a quadtree of elements made on demand (Hanrahan,
+// Salzman & Aupperle 1991; clusters after Smits, Arvo & Greenberg 1994 and Sillion 1995).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/patch_mesh.h"
+#include "geometry/vec3.h"
+
+namespace radkit {
+
+/// One node. Clusters hold surfaces of many input faces; elements are planar polygons (an input
+/// face or a quarter of an element). Every node carries what the link oracle bounds with: a
+/// bounding sphere, its area, its area-weighted normal sum and a cone holding every normal.
+struct HNode {
+  Vec3 centre;              ///< bounding-sphere centre (element: area centroid)
+  double radius = 0;        ///< bounding-sphere radius
+  double area = 0;          ///< surface area below this node (scene units²)
+  Vec3 areaNormal;          ///< Σ A_k n_k over the elements below (|·| = area when all coplanar)
+  Vec3 coneAxis;            ///< unit axis of the normal cone
+  double coneAngle = 0;     ///< every normal below lies within this angle (radians) of coneAxis
+  double reflectanceMax = 0;  ///< largest ρ (any channel) below: the oracle's worst case
+  int parent = -1;
+  int firstChild = -1;      ///< an element's four children are contiguous from here
+  int rightChild = -1;      ///< a cluster's second child (its left subtree lies in between)
+  int childCount = 0;       ///< 2 for clusters, 4 for split elements, 0 for leaves
+  int level = 0;            ///< elements: splits below the input face; clusters: depth in the tree
+  int face = -1;            ///< elements: the input face (patch of the base mesh); clusters: -1
+  int polygon = -1;         ///< elements: index into Hierarchy::polygons
+  std::uint64_t key = 0;    ///< stable identity, independent of creation order: seeds rays
+  bool element = false;
+
+  bool isLeaf() const { return childCount == 0; }
+};
+
+/// An element's polygon: 3 or 4 vertices, counter-clockwise seen from the front.
+struct HPolygon {
+  Vec3 v[4];
+  int count = 0;
+  Vec3 normal;
+};
+
+/// Per-surface material data the hierarchy needs (radiosity uses only the diffuse part).
+struct SurfaceRadiometry {
+  Vec3 reflectance;  ///< ρ per channel in [0, 1)
+  Vec3 emission;     ///< E per channel, W/m²
+};
+
+class Hierarchy {
+ public:
+  /// \brief Builds the cluster tree over the faces of `base` (one patch per input face).
+  /// Deterministic: the same input gives the same node numbering whatever the thread count.
+  Hierarchy(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces);
+
+  const PatchMesh& base() const { return m_base; }
+  int root() const { return 0; }
+  int size() const { return static_cast<int>(m_nodes.size()); }
+  const HNode& operator[](int i) const { return m_nodes[i]; }
+  const HPolygon& polygon(int node) const { return m_polygons[m_nodes[node].polygon]; }
+  const SurfaceRadiometry& radiometry(int node) const {
+    return m_surfaces[m_base.patches[m_nodes[node].face].surface];
+  }
+  /// Child k of a node (k < childCount).
+  int child(int node, int k) const {
+    const HNode& n = m_nodes[node];
+    return n.element ? n.firstChild + k : (k == 0 ? n.firstChild : n.rightChild);
+  }
+  int surfaceOf(int node) const { return m_base.patches[m_nodes[node].face].surface; }
+  /// Node of input face f.
+  int faceNode(int f) const { return m_faceNode[f]; }
+
+  /// \brief Whether element `node` may be split: its quarters are at least minArea.
+  bool canSplit(int node, double minArea) const;
+  /// \brief Splits element `node` into four (midpoint subdivision) unless it is split already.
+  /// Not thread-safe: the refinement applies splits serially in a fixed order.
+  void split(int node);
+
+  /// Leaves in output order: by input face (so grouped by surface), quadtree order within.
+  std::vector<int> leavesByFace() const;
+  /// Leaves in tree order (depth first from the root): every node covers a contiguous range.
+  /// range[node] = {first, end} positions in that order.
+  std::vector<int> leavesInTreeOrder(std::vector<std::pair<int, int>>* range = nullptr) const;
+
+  /// \brief A uniform point on the surfaces below `node` (an element's own polygon, or a face
+  /// picked in proportion to area) and its normal; u0..u2 uniform in [0, 1).
+  Vec3 samplePoint(int node, double u0, double u1, double u2, Vec3& normal) const;
+
+  std::size_t bytes() const;
+
+ private:
+  int buildClusters(std::vector<int>& faces, int begin, int end, int parent, int level, int at);
+  void finishCluster(int node);
+
+  PatchMesh m_base;
+  std::vector<SurfaceRadiometry> m_surfaces;
+  std::vector<HNode> m_nodes;
+  std::vector<HPolygon> m_polygons;
+  std::vector<int> m_faceNode;
+};
+
+/// Stable key of child k of a node with key `parent`.
+std::uint64_t childKey(std::uint64_t parent, int k);
+
+}  // namespace radkit

@@ -1,0 +1,75 @@
+// Links of hierarchical radiosity and the light they carry. A link r ← s says that node r
+// gathers light from node s at the level of those two nodes. Between two elements it carries
+// the form factor F_rs (Lambert's contour formula integrated over r) times a visibility
+// estimate; when either end is a cluster it carries the point-to-point transfer between the
+// nodes' centres, with each end's projected area estimated from its normals (below).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "hierarchy/hierarchy.h"
+
+namespace radkit {
+
+struct HLink {
+  int receiver = -1;
+  int source = -1;
+  double formFactor = 0;      ///< element ← element: unoccluded F_rs; otherwise unused (0)
+  float visibility = 1;       ///< kernel-weighted visible fraction V̂ from K rays
+  float visibilityError = 0;  ///< its standard error (delta method); float: a diagnostic only
+};
+
+enum class LinkKind { ElementElement, ElementCluster, ClusterElement, ClusterCluster };
+/// Kind of a link by its ends, receiver first ("element ← cluster" is ElementCluster).
+LinkKind linkKind(const Hierarchy& h, const HLink& link);
+const char* linkKindName(LinkKind kind);
+
+/// Light leaving the nodes during a solve: radiosity B (area average, W/m²) per node, and for
+/// clusters the power vector Φ_c = Σ_k B_kc A_k n_k per channel (Willmott, Heckbert & Garland
+/// 1999's vector form, which makes a planar cluster's emission exact).
+struct SourceState {
+  std::vector<Vec3> radiosity;
+  std::vector<std::array<Vec3, 3>> powerVector;
+};
+
+/// \brief Σ_k X_k max(0, n_k·w) for weights X_k >= 0 and unit normals n_k, from X = Σ X_k and
+/// V = Σ X_k n_k only. Σ X_k |n_k·w| lies in [|V·w|, X]; it is taken as |V·w| + (X − |V|)/2,
+/// exact when every n_k is the same (a planar cluster or one direction) and right on average
+/// for normals spread evenly over the sphere (Σ|cos| = X/2).
+inline double projectedSum(double total, const Vec3& vector, const Vec3& w) {
+  double along = dot(vector, w);
+  double absolute = std::fabs(along) + 0.5 * (total - length(vector));
+  return std::max(0.0, 0.5 * (absolute + along));
+}
+
+/// \brief Radiant intensity (W/sr per unit of scene area) of node s toward unit direction w,
+/// per channel: Σ_k B_k A_k max(0, n_k·w)/π, by projectedSum over s's coherent parts.
+Vec3 intensityToward(const Hierarchy& h, const SourceState& state, int s, const Vec3& w);
+
+/// \brief The parts of node n that are estimated as one: n itself when it is an element or its
+/// normals lie within a narrow cone, else its children's parts, at most three levels down.
+void coherentParts(const Hierarchy& h, int n, std::vector<int>& out);
+
+/// \brief Area of node n projected onto the plane normal to unit w, counting only surfaces
+/// that face w: exact for an element; for a cluster, projectedSum over its coherent parts.
+double projectedArea(const Hierarchy& h, int n, const Vec3& w);
+
+/// Geometry of a link with a cluster at either end: the unit direction ω from r's centre to
+/// s's, and the transfer's denominator d² + P_s/π. The P_s/π term treats the source as a disk
+/// of its projected area (Wallace, Elmquist & Haines 1989: ΔF = A cosθ cosθ'/(πr² + A)): exact
+/// on the axis of a facing disk, where the point formula overestimates by (1 + R²/d²), and it
+/// keeps links between nearby or overlapping nodes finite.
+struct ClusterTransfer {
+  Vec3 w;
+  double denominator = 0;
+};
+inline ClusterTransfer clusterTransfer(const Hierarchy& h, int r, int s) {
+  Vec3 d = h[s].centre - h[r].centre;
+  double d2 = dot(d, d);
+  Vec3 w = d2 > 0 ? d / std::sqrt(d2) : h[r].coneAxis;
+  return {w, d2 + projectedArea(h, s, -w) / 3.14159265358979323846};
+}
+
+}  // namespace radkit

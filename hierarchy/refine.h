@@ -1,0 +1,77 @@
+// Link refinement: the oracle that decides whether a link is good enough, and the top-down
+// refinement that starts from the root's link to itself (Hanrahan et al. 1991's Refine, with
+// clusters; links are made only when a parent link is refined: lazy linking).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <vector>
+
+#include "geometry/visibility.h"
+#include "hierarchy/links.h"
+#include "radiosity/quadrature.h"
+
+namespace radkit {
+
+struct RefineSettings {
+  double threshold = 0;     ///< τ: the largest error a link may carry, W (scene units² · W/m²)
+  double minArea = 0;       ///< elements are not split below this area (scene units²)
+  int raysPerLink = 8;      ///< K visibility rays per new link
+  std::uint64_t seed = 1;
+  std::size_t memoryBudget = std::size_t(8) << 30;
+  std::size_t fixedBytes = 0;  ///< memory outside the hierarchy and links (mesh, Embree)
+};
+
+/// Work counters of one refinement.
+struct RefineStats {
+  long long evaluated = 0;  ///< candidate links looked at
+  long long splits = 0;     ///< links replaced by their children's links
+  long long dropped = 0;    ///< links that carry nothing (facing away, occluded)
+  long long rays = 0;
+};
+
+/// Thrown when the hierarchy and its links outgrow the memory budget.
+struct HierarchyMemoryError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Refiner {
+ public:
+  Refiner(Hierarchy& h, const Visibility& visibility, const RefineSettings& settings);
+
+  /// \brief Refines `links` (in: last round's links, or the root's self-link; out: links whose
+  /// estimated error is at most settings.threshold, or which cannot be split further) with the
+  /// sources' light in `state`; new nodes get their parent's radiosity in `state`.
+  /// \param progress called with the number of candidates settled so far
+  RefineStats refine(std::vector<HLink>& links, SourceState& state,
+                     const std::function<void(long long)>& progress = {});
+
+  /// The root's link to itself: where refinement starts.
+  std::vector<HLink> rootLinks() const;
+
+ private:
+  enum class Decision { Keep, Drop, SplitReceiver, SplitSource, SplitBoth };
+  struct Outcome {
+    Decision decision = Decision::Drop;
+    HLink link;
+    int rays = 0;
+  };
+  Outcome evaluate(const HLink& candidate, bool knownVisibility, const SourceState& state) const;
+  Decision splitLarger(int r, int s) const;
+  bool splittable(int node) const;
+  /// Unoccluded element ← element form factor by adaptive cubature over the receiver.
+  double elementFormFactor(int r, int s) const;
+  /// Kernel-weighted visible fraction from K segments between the nodes, and its error.
+  std::pair<double, double> visibleFraction(int r, int s) const;
+
+  Hierarchy& m_h;
+  const Visibility& m_visibility;
+  RefineSettings m_settings;
+  AdaptiveCubature m_cubature;
+};
+
+/// Grows `state` to the hierarchy's size: new nodes take their parent's radiosity.
+void growState(const Hierarchy& h, SourceState& state);
+
+}  // namespace radkit

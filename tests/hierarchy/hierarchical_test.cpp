@@ -1,0 +1,261 @@
+// Hierarchical radiosity against oracles nobody on the team wrote: the dense solution of the
+// same leaves, the furnace B = E/(1 − ρ) (docs/hierarchical.md), Howell's C-11 view factor
+// through cluster links, and determinism across thread counts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <tbb/global_control.h>
+
+#include "hierarchy/hierarchical.h"
+#include "hierarchy/refine.h"
+#include "hierarchy/link_matrix.h"
+#include "radiosity/contour.h"
+#include "radiosity/radiosity_pipeline.h"
+#include "tests/radiosity/test_scenes.h"
+
+namespace radkit {
+namespace {
+
+/// A scene built in code: materials by name, rectangles split into nu×nv input faces (so the
+/// cluster tree has something to group).
+struct SceneBuilder {
+  Scene scene;
+  SceneBuilder() {
+    scene.name = "test";
+    scene.file = "test.json";
+  }
+  int material(const std::string& name, Vec3 rho, Vec3 emission) {
+    Material m;
+    m.name = name, m.reflectance = rho, m.emission = emission;
+    scene.materials.push_back(m);
+    return static_cast<int>(scene.materials.size()) - 1;
+  }
+  void rectangle(const std::string& name, int material, Vec3 corner, Vec3 e1, Vec3 e2, int nu, int nv) {
+    Surface s;
+    s.name = name, s.material = material, s.source = "test: " + name;
+    for (int b = 0; b <= nv; ++b)
+      for (int a = 0; a <= nu; ++a) s.vertices.push_back(corner + e1 * (double(a) / nu) + e2 * (double(b) / nv));
+    for (int b = 0; b < nv; ++b)
+      for (int a = 0; a < nu; ++a) {
+        int v = b * (nu + 1) + a;
+        s.faces.push_back(Face{{v, v + 1, v + nu + 2, v + nu + 1}});
+      }
+    scene.surfaces.push_back(s);
+  }
+  /// The unit cube's six faces facing inwards (normal e1 × e2), n×n input faces each.
+  void cube(int n, int walls, int top) {
+    rectangle("bottom", walls, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, n, n);
+    rectangle("top", top, {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, n, n);
+    rectangle("y0", walls, {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, n, n);
+    rectangle("y1", walls, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, n, n);
+    rectangle("x0", walls, {0, 0, 0}, {0, 1, 0}, {0, 0, 1}, n, n);
+    rectangle("x1", walls, {1, 0, 0}, {0, 0, 1}, {0, 1, 0}, n, n);
+  }
+};
+
+double maxRelativeDifference(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double worst = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(a[i][c] - b[i][c]) / std::fabs(b[i][c]));
+  return worst;
+}
+
+TEST(Hierarchy, ClusterTreeBoundsEveryFaceBelowIt) {
+  SceneBuilder b;
+  int grey = b.material("grey", {0.5, 0.5, 0.5}, {});
+  b.cube(3, grey, grey);
+  PatchMesh base = subdivide(b.scene, {});
+  Hierarchy h(base, std::vector<SurfaceRadiometry>(6, {{0.5, 0.5, 0.5}, {}}));
+  ASSERT_EQ(h.size(), 2 * base.size() - 1);
+  for (int f = 0; f < base.size(); ++f) {
+    int n = h.faceNode(f);
+    EXPECT_TRUE(h[n].element);
+    // Every ancestor's sphere holds the face's vertices and its cone the face's normal.
+    for (int a = h[n].parent; a >= 0; a = h[a].parent) {
+      for (int k = 0; k < h.polygon(n).count; ++k)
+        EXPECT_LE(length(h.polygon(n).v[k] - h[a].centre), h[a].radius * (1 + 1e-12));
+      EXPECT_GE(dot(h[a].coneAxis, base.patches[f].normal), std::cos(h[a].coneAngle) - 1e-12);
+    }
+  }
+  EXPECT_NEAR(h[h.root()].area, 6.0, 1e-12);
+  // A split element's quarters tile it.
+  int face = h.faceNode(0);
+  h.split(face);
+  double quarters = 0;
+  for (int k = 0; k < 4; ++k) quarters += h[h.child(face, k)].area;
+  EXPECT_NEAR(quarters, h[face].area, 1e-15);
+}
+
+/// As ε falls, the hierarchy's answer approaches the dense solution on its own leaves: at
+/// small ε every link is a leaf-to-leaf link with the dense method's form factor.
+TEST(Hierarchical, ApproachesTheDenseSolutionOfItsLeavesAsEpsilonFalls) {
+  SceneBuilder b;
+  int walls = b.material("walls", {0.6, 0.5, 0.4}, {});
+  int lamp = b.material("lamp", {0.3, 0.3, 0.3}, {1, 1, 1});
+  b.cube(2, walls, lamp);
+  std::vector<double> errors;
+  for (double eps : {1e-3, 1e-5, 1e-7}) {
+    HierarchicalSettings s;
+    s.epsilon = eps;
+    s.minArea = 1.0 / 64;  // leaves of at least 1/8 × 1/8
+    s.stopping.tolerance = 1e-10;
+    HierarchicalResult hr = solveHierarchical(b.scene, s);
+    PipelineSettings dense;
+    dense.stopping.tolerance = 1e-10;
+    PipelineResult d = runPipeline(b.scene, hr.leaves, dense);
+    errors.push_back(maxRelativeDifference(hr.radiosity, d.radiosity));
+  }
+  EXPECT_LT(errors[1], errors[0]);
+  EXPECT_LT(errors[2], errors[1]);
+  EXPECT_LT(errors[2], 1e-3) << "at epsilon 1e-5 every link is a leaf link";
+}
+
+/// Closed cube, uniform ρ = 0.95 and E = 1, faces split into 8×8 input faces so that cluster
+/// links carry light: B = E/(1 − ρ) = 20 everywhere (Cohen & Wallace 1993; the furnace). Every
+/// leaf's hemisphere is closed, so the enclosure rule holds for each and the answer is exact to
+/// the solver's tolerance at a coarse ε too.
+TEST(Hierarchical, FurnaceWithClusters) {
+  SceneBuilder b;
+  int glow = b.material("glow", {0.95, 0.95, 0.95}, {1, 1, 1});
+  b.cube(8, glow, glow);
+  HierarchicalSettings s;
+  s.epsilon = 1e-3;
+  s.stopping.tolerance = 1e-10;
+  HierarchicalResult hr = solveHierarchical(b.scene, s);
+  EXPECT_GT(hr.linksByKind[static_cast<int>(LinkKind::ClusterCluster)], 0);
+  EXPECT_EQ(hr.system->normalisedLeaves(), hr.leaves.size());
+  EXPECT_GT(hr.system->largestRowSumError(), 1e-3) << "the links alone are not exact";
+  for (const Vec3& v : hr.radiosity) EXPECT_NEAR(v.y, 20.0, 20.0 * 1e-8);
+  EXPECT_LT(hr.energy.relativeImbalance, 1e-8);
+}
+
+/// An open scene: nothing is normalised, and a row sum far above 1 (a coarse ε between nearby
+/// clusters) is capped so the solve still converges at ρ = 0.99.
+TEST(Hierarchical, OpenSceneNearUnitReflectanceConverges) {
+  SceneBuilder b;
+  int white = b.material("white", {0.99, 0.99, 0.99}, {});
+  int lamp = b.material("lamp", {0, 0, 0}, {10, 10, 10});
+  b.rectangle("floor", white, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 8, 8);
+  b.rectangle("wall", white, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, 8, 8);
+  b.rectangle("lamp", lamp, {0.4, 0.4, 0.8}, {0, 0.2, 0}, {0.2, 0, 0}, 1, 1);
+  HierarchicalSettings s;
+  s.epsilon = 1e-2;
+  HierarchicalResult hr = solveHierarchical(b.scene, s);
+  EXPECT_TRUE(hr.solve.converged) << hr.solve.reason;
+  EXPECT_EQ(hr.system->normalisedLeaves(), 0);
+  for (const Vec3& v : hr.radiosity) EXPECT_TRUE(std::isfinite(v.x) && v.x >= 0);
+}
+
+/// Howell C-11 through cluster links: a 1×1 emitter split into 16×16 faces (a cluster) five
+/// units from a 1×1 receiver kept whole. The receiver's irradiance per unit emitter radiosity
+/// is F_12 = 2/(πXY){...} at X = Y = 0.2 (Howell's catalogue, C-11); each link gathered may err
+/// by τ/(ρ A) in irradiance (the oracle's promise), and the error falls with ε.
+TEST(Hierarchical, ViewFactorThroughClusterLinksWithinTheLinkBound) {
+  SceneBuilder b;
+  int lamp = b.material("lamp", {0, 0, 0}, {1, 1, 1});
+  int target = b.material("target", {0.5, 0.5, 0.5}, {});
+  b.rectangle("emitter", lamp, {0, 0, 5}, {0, 1, 0}, {1, 0, 0}, 16, 16);
+  b.rectangle("receiver", target, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 1);
+  const double exact = test::c11ParallelRectangles(0.2, 0.2);
+  std::vector<double> errors;
+  for (double eps : {1e-2, 1e-3, 1e-5}) {
+    HierarchicalSettings s;
+    s.epsilon = eps;
+    s.minArea = 0.5;  // the receiver stays one element
+    HierarchicalResult hr = solveHierarchical(b.scene, s);
+    ASSERT_EQ(hr.leaves.surfaceBegin[2] - hr.leaves.surfaceBegin[1], 1);
+    const int leaf = hr.leaves.surfaceBegin[1];
+    const int node = hr.leafNodes[leaf];
+    int clusterLinks = 0;
+    for (const HLink& l : hr.system->links()) clusterLinks += l.receiver == node && !(*hr.hierarchy)[l.source].element;
+    if (eps == 1e-2) EXPECT_GT(clusterLinks, 0) << "the emitter should be reached through clusters";
+    const double bound = hr.system->linkCount(node) * hr.threshold / 0.5;  // receiver area 1
+    EXPECT_NEAR(hr.irradiance[leaf].x, exact, bound) << "epsilon " << eps;
+    errors.push_back(std::fabs(hr.irradiance[leaf].x - exact) / exact);
+  }
+  EXPECT_LT(errors[2], errors[0]);
+  EXPECT_LT(errors[2], 1e-3);
+}
+
+TEST(Hierarchical, SameSeedSameBitsForAnyThreadCount) {
+  SceneBuilder b;
+  int walls = b.material("walls", {0.7, 0.6, 0.5}, {});
+  int lamp = b.material("lamp", {0.2, 0.2, 0.2}, {5, 5, 5});
+  b.cube(5, walls, lamp);
+  b.rectangle("blocker", walls, {0.3, 0.3, 0.5}, {0.4, 0, 0}, {0, 0.4, 0}, 3, 3);
+  HierarchicalSettings s;
+  s.epsilon = 1e-3;
+  s.rounds = 1;  // one set of links, so both orderings solve the same system
+  s.stopping.tolerance = 1e-9;
+  std::vector<std::vector<Vec3>> answers;
+  for (GatherOrder order : {GatherOrder::Jacobi, GatherOrder::GaussSeidel})
+    for (int threads : {1, 2}) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      s.order = order;
+      answers.push_back(solveHierarchical(b.scene, s).radiosity);
+    }
+  ASSERT_EQ(answers[0].size(), answers[1].size());
+  for (std::size_t i = 0; i < answers[0].size(); ++i) {
+    EXPECT_EQ(answers[0][i], answers[1][i]) << "Jacobi, leaf " << i;
+    EXPECT_EQ(answers[2][i], answers[3][i]) << "Gauss-Seidel, leaf " << i;
+  }
+  // Both orderings solve the same system.
+  ASSERT_EQ(answers[0].size(), answers[2].size());
+  EXPECT_LT(maxRelativeDifference(answers[2], answers[0]), 1e-7);
+}
+
+TEST(Hierarchical, GaussSeidelNeedsNoMoreSweepsThanJacobi) {
+  SceneBuilder b;
+  int walls = b.material("walls", {0.8, 0.8, 0.8}, {});
+  int lamp = b.material("lamp", {0.2, 0.2, 0.2}, {5, 5, 5});
+  b.cube(4, walls, lamp);
+  HierarchicalSettings s;
+  s.rounds = 1;
+  s.epsilon = 1e-3;
+  s.stopping.tolerance = 1e-8;
+  s.order = GatherOrder::Jacobi;
+  long jacobi = solveHierarchical(b.scene, s).solve.iterations;
+  s.order = GatherOrder::GaussSeidel;
+  long gaussSeidel = solveHierarchical(b.scene, s).solve.iterations;
+  EXPECT_LE(gaussSeidel, jacobi);
+}
+
+TEST(Hierarchical, BadSettingsNameTheOptionAndTheFix) {
+  SceneBuilder b;
+  int lamp = b.material("lamp", {0.5, 0.5, 0.5}, {1, 1, 1});
+  b.cube(1, lamp, lamp);
+  auto message = [&](HierarchicalSettings s) -> std::string {
+    try {
+      solveHierarchical(b.scene, s);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  };
+  HierarchicalSettings s;
+  s.epsilon = 0;
+  EXPECT_NE(message(s).find("--epsilon"), std::string::npos);
+  s.epsilon = NAN;
+  EXPECT_NE(message(s).find("--epsilon"), std::string::npos);
+  s = {};
+  s.minArea = 100;
+  EXPECT_NE(message(s).find("--min-area"), std::string::npos);
+  s = {};
+  s.memoryBudget = 1024;
+  std::string m = message(s);
+  EXPECT_NE(m.find("--memory-budget"), std::string::npos) << m;
+  EXPECT_NE(m.find("--epsilon"), std::string::npos) << m;
+
+  SceneBuilder dark;
+  int grey = dark.material("grey", {0.5, 0.5, 0.5}, {});
+  dark.cube(1, grey, grey);
+  try {
+    solveHierarchical(dark.scene, HierarchicalSettings{});
+    ADD_FAILURE() << "a scene without light must be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("emission"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace radkit
