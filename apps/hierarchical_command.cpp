@@ -101,7 +101,8 @@ void printSummary(const Scene& scene, const HierarchicalResult& r, const Hierarc
                                  fmt("%.2e", r.solve.residual) + (r.solve.converged ? "" : "  NOT CONVERGED: " + r.solve.reason));
   printField("energy balance", "emitted " + fmt("%.4g W", luminance(r.energy.emitted)) + " = absorbed " +
                                    fmt("%.4g", luminance(r.energy.absorbed)) + " + escaped " +
-                                   fmt("%.4g", luminance(r.energy.escaped)) + " (Y), imbalance " +
+                                   fmt("%.4g", luminance(r.energy.escaped)) + " ± " +
+                                   fmt("%.2g", luminance(r.escapedStandardError)) + " (Y), imbalance " +
                                    fmt("%.2e", r.energy.relativeImbalance));
   for (const SurfaceResult& s : r.surfaces) {
     std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) + fmt(" %10.4f W/m²", s.radiosity.z);
@@ -174,6 +175,8 @@ void runHierarchicalJob(HierarchicalJob job) {
   state.radiosity.assign(r.hierarchy->size(), Vec3{});
   for (std::size_t i = 0; i < r.leafNodes.size(); ++i) state.radiosity[r.leafNodes[i]] = r.radiosity[i];
   state.powerVector.resize(r.hierarchy->size());
+  state.radiosityMin.resize(r.hierarchy->size());
+  state.radiosityMax.resize(r.hierarchy->size());
   r.system->pull(state);
   writeLinkMatrix(folder.path("links.png"), *r.hierarchy, r.system->links(), state, matrix);
   if (!job.noRender) renderLeaves(folder, scene, r, job);
@@ -187,6 +190,10 @@ void runHierarchicalJob(HierarchicalJob job) {
                         {"hierarchy", hierarchyJson(r, job.settings)},
                         {"solvers", nlohmann::json::array({solveJson(r.solve)})},
                         {"energy_balance", energyJson(r.energy)},
+                        {"escape_estimate", {{"rays_per_leaf", 32},
+                                             {"escaped_standard_error_W",
+                                              {r.escapedStandardError.x, r.escapedStandardError.y,
+                                               r.escapedStandardError.z}}}},
                         {"surfaces", surfacesJson(r.surfaces)}};
   report["seconds"] = {{"hierarchy", r.seconds.hierarchy}, {"ray_scene", r.seconds.rayScene},
                        {"links", r.seconds.refine},        {"solve", r.seconds.solve},

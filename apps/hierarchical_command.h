@@ -6,6 +6,7 @@
 #include <string>
 
 #include "hierarchy/hierarchical.h"
+#include "hierarchy/link_matrix.h"
 
 namespace radkit::app {
 

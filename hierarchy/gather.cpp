@@ -103,7 +103,7 @@ void HierarchicalSystem::gather(int r, const SourceState& state) {
   for (int i = m_begin[r]; i < m_begin[r + 1]; ++i) {
     const HLink& l = m_links[i];
     if (R.element && m_h[l.source].element) {
-      acc.sum += state.radiosity[l.source] * (l.formFactor * l.visibility);
+      acc.sum += linkSourceRadiosity(m_h, state.radiosity, l) * (l.formFactor * l.visibility);
       continue;
     }
     // Transfer between the centres: irradiance e = I_s(−ω) V / (d² + P_s/π) on a surface
@@ -142,14 +142,19 @@ void HierarchicalSystem::gatherList(const std::vector<int>& receivers, const Sou
 
 void HierarchicalSystem::pullNode(int n, SourceState& state) const {
   const HNode& node = m_h[n];
-  if (node.isLeaf()) return;
+  if (node.isLeaf()) {
+    state.radiosityMin[n] = state.radiosityMax[n] = maxComponent(state.radiosity[n]);
+    return;
+  }
   Vec3 power;
   std::array<Vec3, 3> vec{};
+  double lo = INFINITY, hi = -INFINITY;
   for (int k = 0; k < node.childCount; ++k) {
     int c = m_h.child(n, k);
     const HNode& child = m_h[c];
     Vec3 w = state.radiosity[c] * child.area;
     power += w;
+    lo = std::min(lo, state.radiosityMin[c]), hi = std::max(hi, state.radiosityMax[c]);
     if (node.element) continue;
     if (child.element) {
       const Vec3& nrm = m_h.polygon(c).normal;
@@ -159,6 +164,7 @@ void HierarchicalSystem::pullNode(int n, SourceState& state) const {
     }
   }
   state.radiosity[n] = node.area > 0 ? power / node.area : Vec3{};
+  state.radiosityMin[n] = lo, state.radiosityMax[n] = hi;
   if (!node.element) state.powerVector[n] = vec;
 }
 
@@ -206,6 +212,7 @@ HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator
       Vec3 b = rad.emission + mul(rad.reflectance, h);
       Vec3 diff = absDiff(b, state->radiosity[n]);
       state->radiosity[n] = b;
+      state->radiosityMin[n] = state->radiosityMax[n] = maxComponent(b);
       return {maxComponent(diff), node.area * (diff.x + diff.y + diff.z)};
     }
     Accumulator down;
@@ -256,6 +263,8 @@ std::vector<Vec3> HierarchicalSystem::leafIrradiance(const SourceState& state) {
 SourceState HierarchicalSystem::unitState() const {
   SourceState s;
   s.radiosity.assign(m_h.size(), Vec3{1, 1, 1});
+  s.radiosityMin.assign(m_h.size(), 1.0);
+  s.radiosityMax.assign(m_h.size(), 1.0);
   s.powerVector.resize(m_h.size());
   for (int n = 0; n < m_h.size(); ++n)
     if (!m_h[n].element) s.powerVector[n] = {m_h[n].areaNormal, m_h[n].areaNormal, m_h[n].areaNormal};

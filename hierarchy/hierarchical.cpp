@@ -1,5 +1,6 @@
 #include "hierarchy/hierarchical.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -77,13 +78,18 @@ PatchMesh leafMesh(const Hierarchy& h, const std::vector<int>& leaves) {
 /// Rays per leaf for the enclosure test.
 constexpr int kClosureRays = 32;
 
-/// Marks leaves (not yet tested) whose hemisphere is closed: every one of K stratified,
-/// cosine-distributed rays from the leaf hits the front of a face. Closed leaves obey
+/// Marks the leaves of closed surfaces. A leaf (tested once) looks closed when every one of K
+/// stratified, cosine-distributed rays from it hits the front of a face; a surface is closed
+/// when all its leaves look closed, so one leaf that sees an opening clears the whole surface
+/// (a single leaf's K rays can miss a small opening). Leaves of closed surfaces obey
 /// Σ_j F_ij = 1 exactly, which the solve then enforces (HierarchicalSystem).
-void markClosedLeaves(const Hierarchy& h, const RayScene& rays, std::uint64_t seed, std::vector<char>& closed,
-                      std::vector<char>& tested) {
-  closed.resize(h.size(), 0);
+/// The same rays estimate each leaf's escape fraction 1 − Σ_j F_ij (the share that misses
+/// every face's front), for an energy balance that does not rely on the links.
+std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::uint64_t seed,
+                               std::vector<char>& leafClosed, std::vector<char>& tested, std::vector<float>& escape) {
+  leafClosed.resize(h.size(), 0);
   tested.resize(h.size(), 0);
+  escape.resize(h.size(), 0.0f);
   std::vector<int> todo;
   for (int n = 0; n < h.size(); ++n)
     if (h[n].element && h[n].isLeaf() && !tested[n]) todo.push_back(n);
@@ -97,18 +103,25 @@ void markClosedLeaves(const Hierarchy& h, const RayScene& rays, std::uint64_t se
       Rng rng(seed, h[n].key, 0x636c6f736564ULL);
       latinHypercube(kClosureRays, 4, rng, u, scratch);
       Frame frame(p.normal);
-      bool all = true;
-      for (int k = 0; k < kClosureRays && all; ++k) {
+      int misses = 0;
+      for (int k = 0; k < kClosureRays; ++k) {
         const double* q = &u[std::size_t(k) * 4];
         Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
         Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
         std::optional<RayHit> hit = rays.closestHit(x, d, 0.0);
-        all = hit && dot(base.patches[hit->patch].normal, d) < 0;
+        misses += !(hit && dot(base.patches[hit->patch].normal, d) < 0);
       }
-      closed[n] = all;
+      leafClosed[n] = misses == 0;
+      escape[n] = float(misses) / kClosureRays;
       tested[n] = 1;
     }
   });
+  std::vector<char> surfaceClosed(h.base().surfaceBegin.size(), 1), closed(h.size(), 0);
+  for (int n = 0; n < h.size(); ++n)
+    if (h[n].element && h[n].isLeaf() && !leafClosed[n]) surfaceClosed[h.surfaceOf(n)] = 0;
+  for (int n = 0; n < h.size(); ++n)
+    closed[n] = h[n].element && h[n].isLeaf() && surfaceClosed[h.surfaceOf(n)];
+  return closed;
 }
 
 }  // namespace
@@ -128,7 +141,7 @@ void validateHierarchicalSettings(const HierarchicalSettings& s) {
     throw std::invalid_argument("--min-area " + num(s.minArea) +
                                 " is not an area: use a positive area in scene units², or 0 for the default");
   if (s.raysPerLink < 1 || s.raysPerLink > 4096)
-    throw std::invalid_argument("--hr-rays " + std::to_string(s.raysPerLink) + " must be between 1 and 4096 (default 8)");
+    throw std::invalid_argument("--hr-rays " + std::to_string(s.raysPerLink) + " must be between 1 and 4096 (default 16)");
   if (s.rounds < 1 || s.rounds > 8)
     throw std::invalid_argument("--hr-rounds " + std::to_string(s.rounds) + " must be between 1 and 8 (default 3)");
   if (!(s.stopping.tolerance > 0) || !std::isfinite(s.stopping.tolerance))
@@ -149,17 +162,23 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
   r.seconds.hierarchy += meshSeconds;
   start = Clock::now();
   r.surfaces = surfaceResults(scene, r.leaves, r.radiosity, r.irradiance);
-  // Power bookkeeping as for a dense run, with each leaf's row sum from the links.
+  // Power bookkeeping as for a dense run, with each leaf's escape fraction measured by rays
+  // rather than taken from the links (an emitter, ρ = 0, gathers through coarse links that
+  // need not add up), so the balance checks the links' transport independently.
   const double m2 = scene.metresPerUnit() * scene.metresPerUnit();
   EnergyBalance& e = r.energy;
+  Vec3 variance;
   for (int i = 0; i < r.leaves.size(); ++i) {
     const Patch& p = r.leaves.patches[i];
     const Material& m = scene.materials[scene.surfaces[p.surface].material];
-    double a = p.area * m2;
+    double a = p.area * m2, q = r.escape[i];
     e.emitted += m.emission * a;
     e.absorbed += mul(Vec3{1, 1, 1} - m.diffuseAlbedo(), r.irradiance[i]) * a;
-    e.escaped += r.radiosity[i] * (a * std::max(0.0, 1 - r.rowSums[i]));
+    e.escaped += r.radiosity[i] * (a * q);
+    Vec3 power = r.radiosity[i] * a;
+    variance += mul(power, power) * (std::max(q * (1 - q), 0.25 / kClosureRays) / kClosureRays);
   }
+  r.escapedStandardError = {std::sqrt(variance.x), std::sqrt(variance.y), std::sqrt(variance.z)};
   for (int c = 0; c < 3; ++c)
     if (e.emitted[c] > 0)
       e.relativeImbalance =
@@ -202,6 +221,8 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   SourceState state;
   state.radiosity.resize(h.size());
   state.powerVector.resize(h.size());
+  state.radiosityMin.resize(h.size());
+  state.radiosityMax.resize(h.size());
   for (int n = 0; n < h.size(); ++n)
     if (h[n].element) state.radiosity[n] = h.radiometry(n).emission;
 
@@ -213,7 +234,8 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   // The input mesh (twice: ours and Embree's, ~ 64 B per triangle in its BVH) stays resident.
   rs.fixedBytes = std::size_t(base.size()) * (sizeof(Patch) + 3 * sizeof(Vec3) + 64);
   std::vector<HLink> links;
-  std::vector<char> closed, tested;
+  std::vector<char> leafClosed, tested;
+  std::vector<float> escape;
   r.solve.solver = "hierarchical";
   r.solve.description = std::string("hierarchical radiosity with clustering, ") +
                         (settings.order == GatherOrder::Jacobi ? "Jacobi" : "Gauss-Seidel") +
@@ -235,7 +257,12 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     RefineStats stats = refiner.refine(links, state, [&](long long settled) {
       if (log.progress) log.progress("links, epsilon " + num(info.epsilon), std::min(0.99, settled / 1e7));
     });
-    markClosedLeaves(h, *r.rays, settings.seed, closed, tested);
+    // After the last refinement every source's light is known: links still kept blocked for a
+    // dark source carry nothing.
+    if (round + 1 == settings.rounds)
+      links.erase(std::remove_if(links.begin(), links.end(), [](const HLink& l) { return !(l.visibility > 0); }),
+                  links.end());
+    std::vector<char> closed = closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape);
     r.system.reset();
     r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed);
     r.system->pull(state);
@@ -295,6 +322,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     r.radiosity.push_back(state.radiosity[n]);
     r.irradiance.push_back(nodeH[n]);
     r.rowSums.push_back(nodeRows[n].x);
+    r.escape.push_back(escape[n]);
   }
   for (const HLink& l : r.system->links()) ++r.linksByKind[static_cast<int>(linkKind(h, l))];
   r.hierarchyBytes = h.bytes() + state.radiosity.capacity() * sizeof(Vec3) * 4;

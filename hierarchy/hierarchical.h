@@ -22,7 +22,7 @@ struct HierarchicalSettings {
   /// Elements are not split below this area (scene units²); 0: kDefaultMinAreaFraction of the
   /// scene's area.
   double minArea = 0;
-  int raysPerLink = 8;  ///< K visibility rays per link
+  int raysPerLink = 16;  ///< K visibility rays per link
   /// Refine-and-solve rounds: ε·4^(rounds−1), …, 4ε, ε (each round warm-starts the next).
   int rounds = 3;
   GatherOrder order = GatherOrder::Jacobi;
@@ -52,6 +52,8 @@ struct HierarchicalResult {
   std::vector<Vec3> radiosity;     ///< B per leaf, W/m²
   std::vector<Vec3> irradiance;    ///< H per leaf, W/m²
   std::vector<double> rowSums;     ///< Σ_j F_ij of each leaf as the links see it
+  std::vector<float> escape;       ///< 1 − Σ_j F_ij of each leaf from 32 rays (float: a fraction of 32)
+  Vec3 escapedStandardError;       ///< of energy.escaped, W
   SolveResult solve;               ///< convergence of every round, one history
   std::vector<HierarchicalRound> rounds;
   std::array<long long, 4> linksByKind{};  ///< LinkKind order

@@ -19,7 +19,22 @@ struct HLink {
   double formFactor = 0;      ///< element ← element: unoccluded F_rs; otherwise unused (0)
   float visibility = 1;       ///< kernel-weighted visible fraction V̂ from K rays
   float visibilityError = 0;  ///< its standard error (delta method); float: a diagnostic only
+  /// Element ← split element: the share of F_rs each quarter of s stands for (from r's Gauss
+  /// points), so the gather weighs the quarters' radiosity instead of taking s's mean: the mean
+  /// misses that r sees the bright part of s better or worse than the dark part. Negative
+  /// first entry: not set (s unsplit). Float: shares of a sum that is itself stored in double.
+  float quarterShare[4] = {-1, 0, 0, 0};
 };
+
+/// Radiosity of source s as link l sees it: its quarters weighted by the link's shares where
+/// set, else s's mean.
+inline Vec3 linkSourceRadiosity(const Hierarchy& h, const std::vector<Vec3>& radiosity, const HLink& l) {
+  const HNode& s = h[l.source];
+  if (l.quarterShare[0] < 0 || s.childCount != 4) return radiosity[l.source];
+  Vec3 b;
+  for (int k = 0; k < 4; ++k) b += radiosity[s.firstChild + k] * double(l.quarterShare[k]);
+  return b;
+}
 
 enum class LinkKind { ElementElement, ElementCluster, ClusterElement, ClusterCluster };
 /// Kind of a link by its ends, receiver first ("element ← cluster" is ElementCluster).
@@ -32,6 +47,10 @@ const char* linkKindName(LinkKind kind);
 struct SourceState {
   std::vector<Vec3> radiosity;
   std::vector<std::array<Vec3, 3>> powerVector;
+  /// Range of the leaves' radiosity (largest channel) below each node: a link that uses the
+  /// source's mean B errs by up to this where the part the receiver sees is brighter or darker
+  /// than the rest (the lit part of a floor around a block's shadow).
+  std::vector<double> radiosityMin, radiosityMax;
 };
 
 /// \brief Σ_k X_k max(0, n_k·w) for weights X_k >= 0 and unit normals n_k, from X = Σ X_k and

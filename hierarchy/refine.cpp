@@ -14,6 +14,13 @@ namespace radkit {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+/// Relative accuracy of an element-to-element form factor's cubature.
+constexpr double kFormFactorTolerance = 1e-3;
+constexpr int kPartialRays = 4;
+/// Weight of the source's radiosity range in a link's error. The range bounds the error of
+/// using the source's mean; at weight 4 the Cornell box's worst surface moved from 2.50 % to
+/// 2.16 % of the photon reference for 12 % more time (16: 2.03 %, 38 % more).
+constexpr double kSourceSpreadWeight = 4.0;
 
 double angleBetween(const Vec3& a, const Vec3& b) {
   return std::acos(std::clamp(dot(a, b), -1.0, 1.0));
@@ -41,9 +48,12 @@ void growState(const Hierarchy& h, SourceState& state) {
   std::size_t old = state.radiosity.size();
   state.radiosity.resize(h.size());
   state.powerVector.resize(h.size());
+  state.radiosityMin.resize(h.size());
+  state.radiosityMax.resize(h.size());
   for (std::size_t n = old; n < state.radiosity.size(); ++n) {
     int parent = h[int(n)].parent;
     state.radiosity[n] = parent >= 0 ? state.radiosity[parent] : Vec3{};
+    state.radiosityMin[n] = state.radiosityMax[n] = maxComponent(state.radiosity[n]);
   }
 }
 
@@ -66,7 +76,7 @@ Refiner::Decision Refiner::splitLarger(int r, int s) const {
   return canS ? Decision::SplitSource : Decision::Keep;
 }
 
-double Refiner::elementFormFactor(int r, int s) const {
+double Refiner::elementFormFactor(int r, int s, double estimate) const {
   const HPolygon& pr = m_h.polygon(r);
   const HPolygon& ps = m_h.polygon(s);
   // Only the part of r in front of s sees s's front: integrate over that part, so the
@@ -78,12 +88,35 @@ double Refiner::elementFormFactor(int r, int s) const {
   QuadratureStats stats;
   const double area = m_h[r].area;
   TargetSphere target{m_h[s].centre, m_h[s].radius};
-  return m_cubature.integrate(domain, count, QuadratureSettings{}.tolerance * area, integrand, stats, target) /
-         area;
+  // Relative accuracy: a link's F need not be known better than the error its oracle allows,
+  // and the four-point estimate already has it to (size/distance)⁴ for distant pairs.
+  const double tolerance = std::max(kFormFactorTolerance * estimate, QuadratureSettings{}.tolerance) * area;
+  return m_cubature.integrate(domain, count, tolerance, integrand, stats, target) / area;
 }
 
-std::pair<double, double> Refiner::visibleFraction(int r, int s) const {
-  const int K = m_settings.raysPerLink;
+void Refiner::quarterShares(int r, int s, HLink& link) const {
+  link.quarterShare[0] = -1;
+  const HNode& S = m_h[s];
+  if (S.childCount != 4) return;
+  const HPolygon& pr = m_h.polygon(r);
+  PatchChart chart(pr.v, pr.count);
+  const double g[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+  double f[4] = {0, 0, 0, 0}, total = 0;
+  for (int k = 0; k < 4; ++k) {
+    const HPolygon& q = m_h.polygon(S.firstChild + k);
+    for (double a : g)
+      for (double b : g) {
+        Vec3 x = chart.point(a, b);
+        if (dot(x - m_h[S.firstChild + k].centre, q.normal) > 0)
+          f[k] += chart.jacobian(a, b) * pointToPolygonFormFactor(x, pr.normal, q.v, q.count);
+      }
+    total += f[k];
+  }
+  if (!(total > 0)) return;
+  for (int k = 0; k < 4; ++k) link.quarterShare[k] = float(f[k] / total);
+}
+
+std::pair<double, double> Refiner::visibleFraction(int r, int s, int K) const {
   Rng rng(m_settings.seed, m_h[r].key, m_h[s].key);
   std::vector<double> u;
   std::vector<int> scratch;
@@ -126,6 +159,7 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
   const double tau = m_settings.threshold;
   const double sourceRadiosity = maxComponent(state.radiosity[s]);
   double transfer = 0, errorGeometry = 0;  // W, with full visibility
+  double fMean = 0;
   const Vec3 toSource = S.centre - R.centre;
   const double dist = length(toSource);
   const bool overlapping = !(dist > R.radius + S.radius);
@@ -162,6 +196,7 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
       fMin = std::min(fMin, f), fMax = std::max(fMax, f);
     }
     double f = weight > 0 ? sum / weight : 0.0;
+    fMean = f;
     transfer = R.area * f * sourceRadiosity;
     // Neighbours (bounding spheres overlap): sample points cannot bound the variation near a
     // shared edge (F grows without bound toward it), so the largest value seen plus the mean
@@ -190,14 +225,24 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
     }
   }
 
+  // The source's own variation: the receiver may see only its brighter or darker part.
+  if (sourceRadiosity > 0)
+    errorGeometry += kSourceSpreadWeight * rho * transfer * (state.radiosityMax[s] - state.radiosityMin[s]) / sourceRadiosity;
   if (errorGeometry > tau) {
     out.decision = splitLarger(r, s);
     if (out.decision != Decision::Keep) return out;
   }
   double V = c.visibility, se = c.visibilityError;
   if (!knownVisibility) {
-    std::tie(V, se) = visibleFraction(r, s);
+    std::tie(V, se) = visibleFraction(r, s, m_settings.raysPerLink);
     out.rays = m_settings.raysPerLink;
+    // A partly blocked link gets kPartialRays times as many rays: the ratio estimate of its
+    // visible share is biased low by O(1/K) (measured: 1 % of the Cornell box floor's row
+    // sum at K = 16, gone at K = 1 024), and these links carry the shadows.
+    if (V > 0 && V < 1) {
+      std::tie(V, se) = visibleFraction(r, s, kPartialRays * m_settings.raysPerLink);
+      out.rays += kPartialRays * m_settings.raysPerLink;
+    }
     out.link.visibility = float(V);
     out.link.visibilityError = float(se);
   }
@@ -213,11 +258,15 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
       return out;
     }
   }
-  if (!(V > 0)) return out;  // Drop: blocked
+  // Blocked: dropped once its possible share is within τ. A source still dark (its light not
+  // yet known in an early round) keeps the link, so the next round can judge it.
+  if (!(V > 0) && (transfer > 0 || sourceRadiosity > 0)) return out;
   out.decision = Decision::Keep;
-  if (R.element && S.element)
-    out.link.formFactor = knownVisibility && c.formFactor > 0 ? c.formFactor : elementFormFactor(r, s);
-  if (R.element && S.element && !(out.link.formFactor > 0)) out.decision = Decision::Drop;
+  if (R.element && S.element) {
+    out.link.formFactor = knownVisibility && c.formFactor > 0 ? c.formFactor : elementFormFactor(r, s, fMean);
+    quarterShares(r, s, out.link);
+  }
+  if (R.element && S.element && !(out.link.formFactor > 0) && V > 0) out.decision = Decision::Drop;
   return out;
 }
 

@@ -17,7 +17,7 @@ namespace radkit {
 struct RefineSettings {
   double threshold = 0;     ///< τ: the largest error a link may carry, W (scene units² · W/m²)
   double minArea = 0;       ///< elements are not split below this area (scene units²)
-  int raysPerLink = 8;      ///< K visibility rays per new link
+  int raysPerLink = 16;     ///< K visibility rays per new link
   std::uint64_t seed = 1;
   std::size_t memoryBudget = std::size_t(8) << 30;
   std::size_t fixedBytes = 0;  ///< memory outside the hierarchy and links (mesh, Embree)
@@ -60,10 +60,13 @@ class Refiner {
   Outcome evaluate(const HLink& candidate, bool knownVisibility, const SourceState& state) const;
   Decision splitLarger(int r, int s) const;
   bool splittable(int node) const;
-  /// Unoccluded element ← element form factor by adaptive cubature over the receiver.
-  double elementFormFactor(int r, int s) const;
+  /// Unoccluded element ← element form factor by adaptive cubature over the receiver, to a
+  /// relative tolerance of the four-point `estimate`.
+  double elementFormFactor(int r, int s, double estimate) const;
+  /// Sets link.quarterShare from r's Gauss points when s is split into quarters.
+  void quarterShares(int r, int s, HLink& link) const;
   /// Kernel-weighted visible fraction from K segments between the nodes, and its error.
-  std::pair<double, double> visibleFraction(int r, int s) const;
+  std::pair<double, double> visibleFraction(int r, int s, int rays) const;
 
   Hierarchy& m_h;
   const Visibility& m_visibility;

@@ -94,7 +94,7 @@ TEST(Hierarchical, ApproachesTheDenseSolutionOfItsLeavesAsEpsilonFalls) {
   int lamp = b.material("lamp", {0.3, 0.3, 0.3}, {1, 1, 1});
   b.cube(2, walls, lamp);
   std::vector<double> errors;
-  for (double eps : {1e-3, 1e-5, 1e-7}) {
+  for (double eps : {1e-2, 1e-3, 1e-5}) {
     HierarchicalSettings s;
     s.epsilon = eps;
     s.minArea = 1.0 / 64;  // leaves of at least 1/8 × 1/8
@@ -105,9 +105,11 @@ TEST(Hierarchical, ApproachesTheDenseSolutionOfItsLeavesAsEpsilonFalls) {
     PipelineResult d = runPipeline(b.scene, hr.leaves, dense);
     errors.push_back(maxRelativeDifference(hr.radiosity, d.radiosity));
   }
+  for (double e : errors) std::printf("max relative difference from dense on the same leaves: %.3g\n", e);
   EXPECT_LT(errors[1], errors[0]);
   EXPECT_LT(errors[2], errors[1]);
-  EXPECT_LT(errors[2], 1e-3) << "at epsilon 1e-5 every link is a leaf link";
+  // The floor: element links integrate F to 1e-3 relative, the dense method to 1e-6 absolute.
+  EXPECT_LT(errors[2], 1e-4) << "at epsilon 1e-5 the links are leaf links";
 }
 
 /// Closed cube, uniform ρ = 0.95 and E = 1, faces split into 8×8 input faces so that cluster

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""Large scenes for hierarchical radiosity's scaling ladder (docs/hierarchical.md): a terrain of
+about N triangles (the terrain room's heightfield, finer), with boxes standing on it and a square
+area light above. Files can be large (1 M triangles: ~45 MB of OFF), so they are written where
+you say, not into data/.
+
+    python3 data/tools/make_terrain_ladder.py OUTDIR --triangles 1000000
+writes OUTDIR/terrain-<N>.off and OUTDIR/terrain-<N>.json."""
+import argparse
+import json
+import math
+import os
+
+parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+parser.add_argument("outdir")
+parser.add_argument("--triangles", type=int, default=1000000, help="about this many terrain triangles")
+args = parser.parse_args()
+
+n = max(4, int(round(math.sqrt(args.triangles / 2))))
+size = 10.0
+os.makedirs(args.outdir, exist_ok=True)
+name = "terrain-%d" % (2 * n * n)
+mesh = os.path.join(args.outdir, name + ".off")
+with open(mesh, "w") as out:
+    out.write("OFF\n%d %d 0\n" % ((n + 1) ** 2, 2 * n * n))
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, y = size * i / n, size * j / n
+            z = 0.4 * math.sin(0.9 * x) * math.cos(0.7 * y) + 0.15 * math.sin(2.3 * x + 1.1 * y)
+            out.write("%.9g %.9g %.9g\n" % (x, y, z))
+    for j in range(n):
+        for i in range(n):
+            a, b, c, d = j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1, (j + 1) * (n + 1) + i
+            out.write("3 %d %d %d\n3 %d %d %d\n" % (a, b, c, a, c, d))
+
+
+def box(x0, y0, z0, sx, sy, sz):
+    """Five outward faces of a box standing at height z0 (no bottom)."""
+    x1, y1, z1 = x0 + sx, y0 + sy, z0 + sz
+    return [
+        [[x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1]],
+        [[x0, y0, z0], [x1, y0, z0], [x1, y0, z1], [x0, y0, z1]],
+        [[x1, y1, z0], [x0, y1, z0], [x0, y1, z1], [x1, y1, z1]],
+        [[x0, y1, z0], [x0, y0, z0], [x0, y0, z1], [x0, y1, z1]],
+        [[x1, y0, z0], [x1, y1, z0], [x1, y1, z1], [x1, y0, z1]],
+    ]
+
+
+surfaces = [{"name": "terrain", "material": "ground", "mesh": os.path.basename(mesh)}]
+for k, (x, y) in enumerate([(2, 2), (7, 2.5), (3, 7), (7.5, 7)]):
+    for f, face in enumerate(box(x, y, 0.6, 0.8, 0.8, 1.2)):
+        surfaces.append({"name": "box %d face %d" % (k, f), "material": "stone", "polygon": face})
+surfaces.append({"name": "lamp", "material": "lamp", "polygon": [[4, 4, 4], [4, 6, 4], [6, 6, 4], [6, 4, 4]]})
+scene = {
+    "name": name,
+    "description": "%d-triangle terrain with four boxes under a square area light 4 m up (scaling ladder)." % (2 * n * n),
+    "units": "m",
+    "materials": {"ground": {"reflectance": [0.45, 0.4, 0.3]}, "stone": {"reflectance": [0.6, 0.6, 0.6]},
+                  "lamp": {"reflectance": [0, 0, 0], "emission": [50, 50, 50]}},
+    "surfaces": surfaces,
+    "camera": {"position": [5, -6, 6], "look_at": [5, 5, 0], "up": [0, 0, 1], "fov_deg": 50},
+}
+with open(os.path.join(args.outdir, name + ".json"), "w") as out:
+    json.dump(scene, out, indent=1)
+print(os.path.join(args.outdir, name + ".json"))

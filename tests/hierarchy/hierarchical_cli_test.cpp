@@ -1,0 +1,64 @@
+// `radkit run --method hierarchical` end to end: every output of a dense run plus links.png,
+// and bad options refused before any work with a message that names the option and the fix.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tests/common/test_util.h"
+
+namespace radkit::test {
+namespace {
+
+TEST(HierarchicalCli, CornellBoxWritesEveryOutput) {
+  TempDir dir;
+  std::string out = dir.path("run");
+  RunResult r = runRadkit("run " + dataPath("cornell-box.json") + " --method hierarchical --image-size 64 --out " + out);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* f : {"patches.csv", "surfaces.csv", "radiosity.vtp", "convergence.csv", "convergence.png", "report.json",
+                        "render.png", "links.png"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+  nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/report.json"));
+  EXPECT_EQ(report["method"], "hierarchical");
+  const auto& h = report["hierarchy"];
+  EXPECT_EQ(h["input_faces"], 24);
+  EXPECT_GT(h["links"].get<long long>(), 0);
+  long long kinds = 0;
+  for (auto& [name, count] : h["links_by_kind"].items()) kinds += count.get<long long>();
+  EXPECT_EQ(kinds, h["links"].get<long long>());
+  EXPECT_EQ(report["mesh"]["patches"], h["leaves"]);
+  EXPECT_TRUE(report["solvers"][0]["converged"].get<bool>());
+  // Leaves are patches: one row each in patches.csv.
+  EXPECT_EQ(static_cast<long long>(readCsv(out + "/patches.csv").size()), h["leaves"].get<long long>());
+  // The escape estimate makes the balance an independent check: within a few standard errors.
+  double se = report["escape_estimate"]["escaped_standard_error_W"][1];
+  double emitted = report["energy_balance"]["emitted_W"][1], absorbed = report["energy_balance"]["absorbed_W"][1],
+         escaped = report["energy_balance"]["escaped_W"][1];
+  EXPECT_LT(std::fabs(emitted - absorbed - escaped), 4 * se + 0.01 * emitted);
+}
+
+TEST(HierarchicalCli, DenseOnlyOptionsAndBadValuesAreRefused) {
+  TempDir dir;
+  std::string out = dir.path("run");
+  RunResult r = runRadkit("run " + dataPath("cornell-box.json") + " --method hierarchical --patches 100 --out " + out);
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--patches"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--epsilon"), std::string::npos) << r.output;
+  r = runRadkit("run " + dataPath("cornell-box.json") + " --method hierarchical --epsilon 0 --out " + out);
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--epsilon"), std::string::npos) << r.output;
+  r = runRadkit("run " + dataPath("cornell-box.json") + " --method hierarchical --min-area 1e12 --out " + out);
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--min-area"), std::string::npos) << r.output;
+  r = runRadkit("run " + dataPath("cornell-box.json") + " --method hierarchical --memory-budget 1MiB --out " + out);
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--memory-budget"), std::string::npos) << r.output;
+  r = runRadkit("run " + dataPath("cornell-box.json") + " --method hierarchical --gather sideways --out " + out);
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--gather"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out)) << "no partial output";
+}
+
+}  // namespace
+}  // namespace radkit::test
