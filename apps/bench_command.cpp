@@ -1,5 +1,7 @@
 // radkit bench: speed figures divided by a reference measured in the same run, as one JSON
 // object on stdout (docs/benchmarks.md records the figures).
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -10,9 +12,11 @@
 #include "apps/options.h"
 #include "apps/report.h"
 #include "geometry/ray_scene.h"
+#include "hierarchy/hierarchical.h"
 #include "radiosity/ff_benchmark.h"
 #include "render/path_benchmark.h"
 #include "solvers/sweep_benchmark.h"
+#include "util/process_memory.h"
 
 namespace radkit::app {
 
@@ -73,6 +77,49 @@ void runSolverBench(const SweepBenchmarkSettings& s) {
 
 }  // namespace
 
+struct HierarchicalBench {
+  std::string scene;
+  HierarchicalSettings settings;
+  int densePatches = 4000;
+};
+
+/// The hierarchy against a dense run of the same scene in the same process: seconds and peak
+/// memory of each (the peak reset in between), their ratios, and the largest surface difference.
+void runHierarchicalBench(HierarchicalBench& b) {
+  Scene scene = loadSceneReporting(b.scene);
+  using Clock = std::chrono::steady_clock;
+  resetPeakMemory();
+  const std::size_t baseline = peakMemory();
+  Clock::time_point t = Clock::now();
+  HierarchicalResult h = solveHierarchical(scene, b.settings);
+  const double hSeconds = std::chrono::duration<double>(Clock::now() - t).count();
+  const std::size_t hPeak = peakMemory();
+  std::vector<SurfaceResult> hSurfaces = h.surfaces;
+  long long links = static_cast<long long>(h.system->links().size()), leaves = h.leaves.size(), rays = h.raysCast;
+  h = HierarchicalResult{};
+  resetPeakMemory();
+  PipelineSettings dense;
+  dense.mesh.targetPatches = b.densePatches;
+  t = Clock::now();
+  PipelineResult d = runPipeline(scene, dense);
+  const double dSeconds = std::chrono::duration<double>(Clock::now() - t).count();
+  const std::size_t dPeak = peakMemory();
+  double worst = 0;
+  for (std::size_t s = 0; s < hSurfaces.size(); ++s)
+    for (int c = 0; c < 3; ++c)
+      if (d.surfaces[s].radiosity[c] > 0)
+        worst = std::max(worst, std::fabs(hSurfaces[s].radiosity[c] / d.surfaces[s].radiosity[c] - 1));
+  nlohmann::json j{{"scene", scene.name},
+                   {"hierarchical", {{"epsilon", b.settings.epsilon}, {"leaves", leaves}, {"links", links},
+                                     {"rays", rays}, {"seconds", hSeconds}, {"peak_bytes", hPeak}}},
+                   {"dense", {{"patches", d.mesh.size()}, {"seconds", dSeconds}, {"peak_bytes", dPeak}}},
+                   {"baseline_peak_bytes", baseline},
+                   {"time_ratio", hSeconds / dSeconds},
+                   {"memory_ratio_above_baseline", double(hPeak - baseline) / double(std::max(dPeak, baseline + 1) - baseline)},
+                   {"largest_surface_difference", worst}};
+  std::cout << j.dump(2) << std::endl;
+}
+
 void addBenchCommands(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks: one JSON object with the figure, its reference and the ratio");
   bench->require_subcommand(1);
@@ -102,6 +149,13 @@ void addBenchCommands(CLI::App& app) {
   s->add_option("--repetitions", sweep->repetitions, "Timed rounds of triad, Jacobi step and Gauss-Seidel step (best of each is kept)")->check(CLI::PositiveNumber)->capture_default_str();
   s->add_option("--threads", sweep->threads, "Threads (0: all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
   s->callback([sweep] { runSolverBench(*sweep); });
+
+  auto hier = std::make_shared<HierarchicalBench>();
+  CLI::App* h = bench->add_subcommand("hierarchical", "Hierarchical radiosity against a dense run of the same scene: time and memory ratios");
+  h->add_option("scene", hier->scene, "Scene file")->required()->check(CLI::ExistingFile);
+  h->add_option("--epsilon", hier->settings.epsilon, "Link error threshold")->capture_default_str();
+  h->add_option("--dense-patches", hier->densePatches, "Patches of the dense run")->check(CLI::PositiveNumber)->capture_default_str();
+  h->callback([hier] { runHierarchicalBench(*hier); });
 }
 
 }  // namespace radkit::app

@@ -190,7 +190,7 @@ void runHierarchicalJob(HierarchicalJob job) {
                         {"hierarchy", hierarchyJson(r, job.settings)},
                         {"solvers", nlohmann::json::array({solveJson(r.solve)})},
                         {"energy_balance", energyJson(r.energy)},
-                        {"escape_estimate", {{"rays_per_leaf", 32},
+                        {"escape_estimate", {{"rays_per_leaf", 32}, {"rays_per_emitting_leaf", 1024},
                                              {"escaped_standard_error_W",
                                               {r.escapedStandardError.x, r.escapedStandardError.y,
                                                r.escapedStandardError.z}}}},

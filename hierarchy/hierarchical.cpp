@@ -75,8 +75,11 @@ PatchMesh leafMesh(const Hierarchy& h, const std::vector<int>& leaves) {
   return mesh;
 }
 
-/// Rays per leaf for the enclosure test.
+/// Rays per leaf for the enclosure test and escape estimate; emitters, whose escaping power
+/// dominates the estimate's error and which are few, get more.
 constexpr int kClosureRays = 32;
+constexpr int kEmitterClosureRays = 1024;
+int closureRays(const SurfaceRadiometry& r) { return maxComponent(r.emission) > 0 ? kEmitterClosureRays : kClosureRays; }
 
 /// Marks the leaves of closed surfaces. A leaf (tested once) looks closed when every one of K
 /// stratified, cosine-distributed rays from it hits the front of a face; a surface is closed
@@ -101,10 +104,11 @@ std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::ui
       const int n = todo[i];
       const HPolygon& p = h.polygon(n);
       Rng rng(seed, h[n].key, 0x636c6f736564ULL);
-      latinHypercube(kClosureRays, 4, rng, u, scratch);
+      const int K = closureRays(h.radiometry(n));
+      latinHypercube(K, 4, rng, u, scratch);
       Frame frame(p.normal);
       int misses = 0;
-      for (int k = 0; k < kClosureRays; ++k) {
+      for (int k = 0; k < K; ++k) {
         const double* q = &u[std::size_t(k) * 4];
         Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
         Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
@@ -112,7 +116,7 @@ std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::ui
         misses += !(hit && dot(base.patches[hit->patch].normal, d) < 0);
       }
       leafClosed[n] = misses == 0;
-      escape[n] = float(misses) / kClosureRays;
+      escape[n] = float(misses) / K;
       tested[n] = 1;
     }
   });
@@ -176,7 +180,8 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
     e.absorbed += mul(Vec3{1, 1, 1} - m.diffuseAlbedo(), r.irradiance[i]) * a;
     e.escaped += r.radiosity[i] * (a * q);
     Vec3 power = r.radiosity[i] * a;
-    variance += mul(power, power) * (std::max(q * (1 - q), 0.25 / kClosureRays) / kClosureRays);
+    const double K = maxComponent(m.emission) > 0 ? kEmitterClosureRays : kClosureRays;
+    variance += mul(power, power) * (std::max(q * (1 - q), 0.25 / K) / K);
   }
   r.escapedStandardError = {std::sqrt(variance.x), std::sqrt(variance.y), std::sqrt(variance.z)};
   for (int c = 0; c < 3; ++c)

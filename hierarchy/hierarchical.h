@@ -52,7 +52,7 @@ struct HierarchicalResult {
   std::vector<Vec3> radiosity;     ///< B per leaf, W/m²
   std::vector<Vec3> irradiance;    ///< H per leaf, W/m²
   std::vector<double> rowSums;     ///< Σ_j F_ij of each leaf as the links see it
-  std::vector<float> escape;       ///< 1 − Σ_j F_ij of each leaf from 32 rays (float: a fraction of 32)
+  std::vector<float> escape;       ///< 1 − Σ_j F_ij of each leaf from 32 rays, 1 024 on emitters (float: a ray count's fraction)
   Vec3 escapedStandardError;       ///< of energy.escaped, W
   SolveResult solve;               ///< convergence of every round, one history
   std::vector<HierarchicalRound> rounds;

@@ -1,4 +1,5 @@
 #include "radiosity/study.h"
+#include "util/process_memory.h"
 
 #include <algorithm>
 #include <chrono>
@@ -19,16 +20,6 @@ std::string format(const char* f, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
-}
-
-/// Linux: "5" in clear_refs resets VmHWM, so each configuration's peak is its own.
-void resetPeakMemory() { std::ofstream("/proc/self/clear_refs") << "5"; }
-std::size_t peakMemory() {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("VmHWM:", 0) == 0) return std::size_t(std::stoll(line.substr(6))) * 1024;
-  return 0;
 }
 
 double total(const StageSeconds& s) { return s.mesh + s.rayScene + s.formFactors + s.solve + s.results; }
