@@ -1,6 +1,7 @@
 // radkit study: the speed-accuracy sweep of radiosity/study.h and its files: study.csv,
 // study.md, one error-versus-seconds chart per knob and the Pareto fronts.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -10,7 +11,9 @@
 
 #include "apps/common.h"
 #include "apps/report.h"
+#include "hierarchy/hierarchical.h"
 #include "radiosity/study.h"
+#include "util/process_memory.h"
 #include "util/line_chart.h"
 #include "util/output_folder.h"
 
@@ -18,17 +21,64 @@ namespace radkit::app {
 
 namespace {
 
-struct StudyCommand {
-  MeshOptions mesh;  // scene only: the study chooses the meshes
-  StudySettings settings;
-  std::string out;
-};
-
 std::string fmt(const char* f, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
 }
+
+struct StudyCommand {
+  MeshOptions mesh;  // scene only: the study chooses the meshes
+  StudySettings settings;
+  std::vector<double> epsilons{1e-3, 3e-4, 1e-4, 3e-5, 1e-5};
+  std::string out;
+};
+
+/// The hierarchical method's ε ladder, coarse to fine, against the study's reference: each
+/// rung runs while the last one's time, tripled, fits the budget left.
+void addHierarchicalRows(const Scene& scene, const StudyCommand& cmd, StudyResult& r, const PipelineLog& log) {
+  double left = cmd.settings.maxSeconds - r.seconds, last = 0;
+  for (double eps : cmd.epsilons) {
+    StudyRow row;
+    row.config.knob = StudyKnob::Hierarchical;
+    row.config.settings = cmd.settings.baseline;
+    row.config.epsilon = eps;
+    row.estimatedSeconds = 3 * last;
+    if (row.estimatedSeconds > left) {
+      row.note = "skipped: estimated " + fmt("%.0f s", row.estimatedSeconds) + ", " + fmt("%.0f s", left) + " left";
+      r.rows.push_back(row);
+      continue;
+    }
+    HierarchicalSettings hs;
+    hs.epsilon = eps;
+    hs.seed = cmd.settings.baseline.formFactors.seed;
+    if (log.message) log.message("hierarchical " + row.config.label());
+    resetPeakMemory();
+    auto start = std::chrono::steady_clock::now();
+    HierarchicalResult h = solveHierarchical(scene, hs);
+    last = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    left -= last;
+    row.ran = true;
+    row.patches = h.leaves.size();
+    row.seconds = {h.seconds.hierarchy, h.seconds.rayScene, h.seconds.refine, h.seconds.solve, h.seconds.results};
+    row.totalSeconds = last;
+    row.peakBytes = peakMemory();
+    row.iterations = h.solve.iterations;
+    row.converged = h.solve.converged;
+    row.note = h.solve.reason;
+    measureErrors(StudySolution{h.leaves, h.radiosity, h.surfaces}, r.reference.solution, row);
+    r.rows.push_back(row);
+  }
+  r.seconds = cmd.settings.maxSeconds - left;
+  // Both Pareto fronts again, over every configuration that ran.
+  std::vector<StudyRow*> ran;
+  std::vector<double> cost, surface, patch;
+  for (StudyRow& w : r.rows)
+    if (w.ran) ran.push_back(&w), cost.push_back(w.totalSeconds), surface.push_back(w.surfaceError), patch.push_back(w.patchError);
+  std::vector<bool> fs = paretoFront(cost, surface), fp = paretoFront(cost, patch);
+  for (std::size_t k = 0; k < ran.size(); ++k) ran[k]->paretoSurface = fs[k], ran[k]->paretoPatch = fp[k];
+}
+
 
 std::string mib(std::size_t bytes) { return fmt("%.1f", bytes / 1048576.0); }
 
@@ -100,7 +150,7 @@ std::vector<const StudyRow*> rowsOf(const StudyResult& r, std::initializer_list<
 
 void writeCharts(OutputFolder& folder, const StudyResult& r, const std::string& scene) {
   const std::string s = "seconds (all stages)", es = "surface error (max rel.)", ep = "patch error (rel. L1)";
-  auto mesh = rowsOf(r, {StudyKnob::Mesh});
+  auto mesh = rowsOf(r, {StudyKnob::Mesh, StudyKnob::Hierarchical});
   writeLineChartPng(folder.path("study-mesh.png"),
                     {panel(mesh, totalS, surfaceE, byKnob, scene + ": mesh density", s, es),
                      panel(mesh, totalS, patchE, byKnob, scene + ": mesh density", s, ep)});
@@ -116,7 +166,8 @@ void writeCharts(OutputFolder& folder, const StudyResult& r, const std::string& 
   writeLineChartPng(folder.path("study-adaptive.png"),
                     {panel(ad, patchesOf, patchE, byKnob, scene + ": adaptive against uniform", "patches", ep),
                      panel(ad, totalS, patchE, byKnob, scene + ": adaptive against uniform", s, ep)});
-  auto all = rowsOf(r, {StudyKnob::Mesh, StudyKnob::FormFactors, StudyKnob::Solver, StudyKnob::Adaptive});
+  auto all = rowsOf(r, {StudyKnob::Mesh, StudyKnob::FormFactors, StudyKnob::Solver, StudyKnob::Adaptive,
+                        StudyKnob::Hierarchical});
   writeLineChartPng(folder.path("study-pareto.png"),
                     {panel(all, totalS, surfaceE, byKnob, scene + ": every configuration", s, es),
                      panel(all, totalS, patchE, byKnob, scene + ": every configuration", s, ep)});
@@ -169,6 +220,7 @@ void runStudyCommand(StudyCommand& cmd) {
     std::fprintf(stderr, "study: %s\n", line.c_str());
   };
   StudyResult r = runStudy(scene, cmd.settings, log);
+  addHierarchicalRows(scene, cmd, r, log);
   progress.finish();
   OutputFolder folder(cmd.out);
   writeCsv(folder.path("study.csv"), r);
@@ -190,8 +242,8 @@ void runStudyCommand(StudyCommand& cmd) {
 void addStudyCommand(CLI::App& app) {
   auto cmd = std::make_shared<StudyCommand>();
   CLI::App* sub = app.add_subcommand(
-      "study", "Speed against accuracy: sweep mesh density, form factors, solvers and adaptive meshes within a time "
-               "budget; study.csv, study.md and error-versus-seconds charts");
+      "study", "Speed against accuracy: sweep mesh density, form factors, solvers, adaptive meshes and the hierarchical "
+               "method's epsilon within a time budget; study.csv, study.md and error-versus-seconds charts");
   sub->add_option("scene", cmd->mesh.scene, "Scene file (default: the Cornell box)");
   sub->add_option("--max-seconds", cmd->settings.maxSeconds, "Wall-clock budget of the whole study")
       ->check(CLI::PositiveNumber)
@@ -201,6 +253,9 @@ void addStudyCommand(CLI::App& app) {
       ->check(CLI::IsMember({250, 500, 1000, 2000, 4000}))
       ->capture_default_str();
   sub->add_option("--seed", cmd->settings.baseline.formFactors.seed, "Seed of every random stream")->capture_default_str();
+  sub->add_option("--epsilons", cmd->epsilons, "Hierarchical method's ladder of --epsilon (none: leave it out)")
+      ->check(CLI::PositiveNumber & CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   sub->add_option("--out", cmd->out, "Output folder")->required();
   sub->callback([cmd] { runStudyCommand(*cmd); });
 }

@@ -79,13 +79,15 @@ PatchMesh leafMesh(const Hierarchy& h, const std::vector<int>& leaves) {
 /// dominates the estimate's error and which are few, get more.
 constexpr int kClosureRays = 32;
 constexpr int kEmitterClosureRays = 1024;
+/// Share of a surface's rays that may miss for it to count as closed (seams, not openings).
+constexpr double kSeamMisses = 1e-3;
 int closureRays(const SurfaceRadiometry& r) { return maxComponent(r.emission) > 0 ? kEmitterClosureRays : kClosureRays; }
 
-/// Marks the leaves of closed surfaces. A leaf (tested once) looks closed when every one of K
-/// stratified, cosine-distributed rays from it hits the front of a face; a surface is closed
-/// when all its leaves look closed, so one leaf that sees an opening clears the whole surface
-/// (a single leaf's K rays can miss a small opening). Leaves of closed surfaces obey
-/// Σ_j F_ij = 1 exactly, which the solve then enforces (HierarchicalSystem).
+/// Marks the leaves of closed surfaces. Each leaf (tested once) casts K stratified,
+/// cosine-distributed rays; a ray that misses the front of every face escapes. A surface is
+/// closed when almost none of all its leaves' rays escape, so a leaf that sees an opening opens
+/// the whole surface (one leaf's K rays can miss a small opening). Leaves of closed surfaces
+/// obey Σ_j F_ij = 1 exactly, which the solve then enforces (HierarchicalSystem).
 /// The same rays estimate each leaf's escape fraction 1 − Σ_j F_ij (the share that misses
 /// every face's front), for an energy balance that does not rely on the links.
 std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::uint64_t seed,
@@ -120,11 +122,19 @@ std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::ui
       tested[n] = 1;
     }
   });
-  std::vector<char> surfaceClosed(h.base().surfaceBegin.size(), 1), closed(h.size(), 0);
+  // Rays that slip through the seams between faces (single-precision tests at shared edges)
+  // must not open a closed surface: a surface is closed when at most kSeamMisses of its rays
+  // miss. An opening that large changes its row sums by at most that much.
+  std::vector<double> cast(h.base().surfaceBegin.size(), 0), misses(cast.size(), 0);
+  for (int n = 0; n < h.size(); ++n) {
+    if (!h[n].element || !h[n].isLeaf()) continue;
+    const double K = closureRays(h.radiometry(n));
+    cast[h.surfaceOf(n)] += K;
+    misses[h.surfaceOf(n)] += escape[n] * K;
+  }
+  std::vector<char> closed(h.size(), 0);
   for (int n = 0; n < h.size(); ++n)
-    if (h[n].element && h[n].isLeaf() && !leafClosed[n]) surfaceClosed[h.surfaceOf(n)] = 0;
-  for (int n = 0; n < h.size(); ++n)
-    closed[n] = h[n].element && h[n].isLeaf() && surfaceClosed[h.surfaceOf(n)];
+    closed[n] = h[n].element && h[n].isLeaf() && misses[h.surfaceOf(n)] <= kSeamMisses * cast[h.surfaceOf(n)];
   return closed;
 }
 
@@ -218,6 +228,8 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   r.hierarchy = std::make_unique<Hierarchy>(base, std::move(surfaces));
   Hierarchy& h = *r.hierarchy;
   r.seconds.hierarchy = since(t);
+  say("hierarchy: " + std::to_string(base.size()) + " input faces, " + std::to_string(h.size()) + " nodes, " +
+      num(r.seconds.hierarchy) + " s");
   t = Clock::now();
   r.rays = std::make_unique<RayScene>(base);
   r.seconds.rayScene = since(t);
@@ -259,8 +271,10 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
       HierarchicalSystem(h, {}, settings.order).pull(state);
       links = refiner.rootLinks();
     }
-    RefineStats stats = refiner.refine(links, state, [&](long long settled) {
-      if (log.progress) log.progress("links, epsilon " + num(info.epsilon), std::min(0.99, settled / 1e7));
+    // Progress: the share of the candidates known so far that are settled (new candidates
+    // appear as links split, so it can step back).
+    RefineStats stats = refiner.refine(links, state, [&](long long settled, long long pending) {
+      if (log.progress) log.progress("links, epsilon " + num(info.epsilon), double(settled) / double(settled + pending));
     });
     // After the last refinement every source's light is known: links still kept blocked for a
     // dark source carry nothing.

@@ -271,7 +271,7 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
 }
 
 RefineStats Refiner::refine(std::vector<HLink>& links, SourceState& state,
-                            const std::function<void(long long)>& progress) {
+                            const std::function<void(long long, long long)>& progress) {
   RefineStats stats;
   std::vector<HLink> frontier;
   frontier.swap(links);
@@ -329,7 +329,7 @@ RefineStats Refiner::refine(std::vector<HLink>& links, SourceState& state,
                                  " while refining links (" + std::to_string(m_h.size()) + " nodes, " +
                                  std::to_string(links.size() + frontier.size()) + " links, about " + gib(bytes) +
                                  "). Raise --memory-budget, or ask for less: a larger --epsilon or --min-area");
-    if (progress) progress(stats.evaluated);
+    if (progress) progress(stats.evaluated, static_cast<long long>(frontier.size()));
   }
   return stats;
 }

@@ -43,9 +43,9 @@ class Refiner {
   /// \brief Refines `links` (in: last round's links, or the root's self-link; out: links whose
   /// estimated error is at most settings.threshold, or which cannot be split further) with the
   /// sources' light in `state`; new nodes get their parent's radiosity in `state`.
-  /// \param progress called with the number of candidates settled so far
+  /// \param progress called after each level with the candidates settled and those pending
   RefineStats refine(std::vector<HLink>& links, SourceState& state,
-                     const std::function<void(long long)>& progress = {});
+                     const std::function<void(long long, long long)>& progress = {});
 
   /// The root's link to itself: where refinement starts.
   std::vector<HLink> rootLinks() const;

@@ -297,6 +297,7 @@ const char* studyKnobName(StudyKnob knob) {
     case StudyKnob::FormFactors: return "formfactors";
     case StudyKnob::Solver: return "solver";
     case StudyKnob::Adaptive: return "adaptive";
+    case StudyKnob::Hierarchical: return "hierarchical";
   }
   return "?";
 }
@@ -310,6 +311,7 @@ std::string StudyConfig::label() const {
       return settings.solvers.front().name + " tol=" + format("%.0e", settings.stopping.tolerance);
     case StudyKnob::Adaptive:
       return "adaptive " + std::to_string(settings.mesh.targetPatches) + " to <=" + std::to_string(adaptive.maxPatches);
+    case StudyKnob::Hierarchical: return "eps=" + format("%.0e", epsilon);
   }
   return "?";
 }

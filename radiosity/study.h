@@ -13,14 +13,17 @@
 namespace radkit {
 
 /// Which setting a configuration varies; the others stay at StudySettings::baseline.
-enum class StudyKnob { Mesh, FormFactors, Solver, Adaptive };
-const char* studyKnobName(StudyKnob knob);  ///< "mesh", "formfactors", "solver", "adaptive"
+/// Hierarchical rows are run by the caller (hierarchy/ sits above radiosity/) and measured with
+/// measureErrors against the same reference.
+enum class StudyKnob { Mesh, FormFactors, Solver, Adaptive, Hierarchical };
+const char* studyKnobName(StudyKnob knob);  ///< "mesh", "formfactors", "solver", "adaptive", "hierarchical"
 
 struct StudyConfig {
   StudyKnob knob = StudyKnob::Mesh;
   PipelineSettings settings;  ///< one solver; mesh.targetPatches set
   AdaptiveSettings adaptive;  ///< Adaptive knob only: settings.mesh is the starting mesh
-  std::string label() const;  ///< "N=1000", "monte-carlo K=64", "sor tol=1e-03", "adaptive <=2000"
+  double epsilon = 0;         ///< Hierarchical knob only: the link error threshold
+  std::string label() const;  ///< "N=1000", "monte-carlo K=64", "sor tol=1e-03", "adaptive <=2000", "eps=1e-04"
 };
 
 /// One configuration's measurements. Errors are relative, against the study's reference:

@@ -256,7 +256,9 @@ RunFolder readRunFolder(const std::string& folder) {
                                         std::to_string(run.formFactors->n) + " but radiosity.vtp has " +
                                         std::to_string(run.patches.size()) + " patches (files of different runs?)");
   } else {
-    run.formFactorsMissing = "no formfactors.mtx (large runs skip it: rerun with --write-matrix)";
+    run.formFactorsMissing = fs::exists(file("links.png"))
+                                 ? "a hierarchical run has no F matrix: links.png draws its links as blocks of F"
+                                 : "no formfactors.mtx (large runs skip it: rerun with --write-matrix)";
   }
   if (fs::exists(file("convergence.csv")))
     run.convergence = readConvergenceCsv(file("convergence.csv"));

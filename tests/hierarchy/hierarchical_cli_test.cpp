@@ -60,5 +60,26 @@ TEST(HierarchicalCli, DenseOnlyOptionsAndBadValuesAreRefused) {
   EXPECT_FALSE(std::filesystem::exists(out)) << "no partial output";
 }
 
+/// The study puts the hierarchy's ε ladder on the same error axes as the uniform meshes,
+/// measured against the same reference.
+TEST(HierarchicalCli, StudyMeasuresTheEpsilonLadder) {
+  TempDir dir;
+  std::string out = dir.path("study");
+  RunResult r = runRadkit("study " + dataPath("cube-one-emitter.json") + " --max-seconds 8 --epsilons 1e-2 1e-3 --out " + out);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  int ran = 0;
+  std::vector<double> errors;
+  for (const auto& row : readCsv(out + "/study.csv")) {
+    if (row.at("knob") != "hierarchical") continue;
+    EXPECT_EQ(row.at("status"), "ran");
+    double e = std::stod(row.at("surface_error"));
+    EXPECT_TRUE(std::isfinite(e) && e >= 0);
+    errors.push_back(e);
+    ++ran;
+  }
+  ASSERT_EQ(ran, 2);
+  EXPECT_LT(errors[1], errors[0]) << "a smaller epsilon is closer to the reference";
+}
+
 }  // namespace
 }  // namespace radkit::test

@@ -88,28 +88,41 @@ TEST(Hierarchy, ClusterTreeBoundsEveryFaceBelowIt) {
 
 /// As ε falls, the hierarchy's answer approaches the dense solution on its own leaves: at
 /// small ε every link is a leaf-to-leaf link with the dense method's form factor.
-TEST(Hierarchical, ApproachesTheDenseSolutionOfItsLeavesAsEpsilonFalls) {
-  SceneBuilder b;
-  int walls = b.material("walls", {0.6, 0.5, 0.4}, {});
-  int lamp = b.material("lamp", {0.3, 0.3, 0.3}, {1, 1, 1});
-  b.cube(2, walls, lamp);
+void expectApproachesDense(const Scene& scene, double minArea) {
   std::vector<double> errors;
   for (double eps : {1e-2, 1e-3, 1e-5}) {
     HierarchicalSettings s;
     s.epsilon = eps;
-    s.minArea = 1.0 / 64;  // leaves of at least 1/8 × 1/8
+    s.minArea = minArea;
     s.stopping.tolerance = 1e-10;
-    HierarchicalResult hr = solveHierarchical(b.scene, s);
+    HierarchicalResult hr = solveHierarchical(scene, s);
     PipelineSettings dense;
     dense.stopping.tolerance = 1e-10;
-    PipelineResult d = runPipeline(b.scene, hr.leaves, dense);
+    PipelineResult d = runPipeline(scene, hr.leaves, dense);
     errors.push_back(maxRelativeDifference(hr.radiosity, d.radiosity));
+    std::printf("epsilon %g: %d leaves, max relative difference from dense on the same leaves %.3g\n", eps,
+                hr.leaves.size(), errors.back());
   }
-  for (double e : errors) std::printf("max relative difference from dense on the same leaves: %.3g\n", e);
   EXPECT_LT(errors[1], errors[0]);
   EXPECT_LT(errors[2], errors[1]);
   // The floor: element links integrate F to 1e-3 relative, the dense method to 1e-6 absolute.
   EXPECT_LT(errors[2], 1e-4) << "at epsilon 1e-5 the links are leaf links";
+}
+
+TEST(Hierarchical, ApproachesTheDenseSolutionOfItsLeavesAsEpsilonFalls) {
+  SceneBuilder cube;
+  int walls = cube.material("walls", {0.6, 0.5, 0.4}, {});
+  int lamp = cube.material("lamp", {0.3, 0.3, 0.3}, {1, 1, 1});
+  cube.cube(2, walls, lamp);
+  expectApproachesDense(cube.scene, 1.0 / 64);  // leaves of at least 1/8 × 1/8
+
+  // Howell's C-11 pair: unit squares one apart, 4×4 faces each, the upper one emitting.
+  SceneBuilder squares;
+  int grey = squares.material("grey", {0.7, 0.7, 0.7}, {});
+  int glow = squares.material("glow", {0.5, 0.5, 0.5}, {1, 1, 1});
+  squares.rectangle("lower", grey, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 4, 4);
+  squares.rectangle("upper", glow, {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, 4, 4);
+  expectApproachesDense(squares.scene, 1.0 / 256);
 }
 
 /// Closed cube, uniform ρ = 0.95 and E = 1, faces split into 8×8 input faces so that cluster
@@ -128,7 +141,9 @@ TEST(Hierarchical, FurnaceWithClusters) {
   EXPECT_EQ(hr.system->normalisedLeaves(), hr.leaves.size());
   EXPECT_GT(hr.system->largestRowSumError(), 1e-3) << "the links alone are not exact";
   for (const Vec3& v : hr.radiosity) EXPECT_NEAR(v.y, 20.0, 20.0 * 1e-8);
-  EXPECT_LT(hr.energy.relativeImbalance, 1e-8);
+  // The balance's escape is estimated by rays (a few slip through seams): within 4 of its
+  // standard errors.
+  EXPECT_LT(hr.energy.relativeImbalance, 4 * hr.escapedStandardError.y / hr.energy.emitted.y + 1e-9);
 }
 
 /// An open scene: nothing is normalised, and a row sum far above 1 (a coarse ε between nearby
