@@ -62,6 +62,34 @@ TEST(PathTracer, StatisticalFurnace) {
   EXPECT_NEAR(small.standardError.y / big.standardError.y, 2.0, 0.3);
 }
 
+TEST(PathTracer, StatisticalFurnaceForEverySampler) {
+  // The furnace again, with each sampler: 16 renders with independent seeds give image means
+  // whose spread is the honest error bar (stratified and Sobol samples of a pixel are not
+  // independent, so per-pixel variances would misstate it). t with 15 degrees of freedom
+  // exceeds 4 with probability 0.001 per sampler.
+  Scene scene = loadScene(test::dataPath("furnace.json"));
+  PatchMesh mesh = subdivide(scene, {0.1, 0});
+  RayScene rays(mesh);
+  ShadingScene shading(scene, mesh, rays, {});
+  for (SamplerType type : {SamplerType::Independent, SamplerType::Stratified, SamplerType::Sobol}) {
+    PathTraceSettings s;
+    s.width = s.height = 16;
+    s.samplesPerPixel = 8;
+    s.sampler = type;
+    std::vector<double> means;
+    for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+      s.seed = seed;
+      means.push_back(regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(256, true)).mean.y);
+    }
+    double mean = 0, spread = 0;
+    for (double m : means) mean += m / means.size();
+    for (double m : means) spread += (m - mean) * (m - mean);
+    const double se = std::sqrt(spread / (means.size() - 1) / means.size());
+    EXPECT_NEAR(mean, 2 / M_PI, 4 * se) << samplerName(type);
+    EXPECT_LT(se, 0.01 * mean) << samplerName(type);
+  }
+}
+
 TEST(PathTracer, ConstructDeterministicPerSeed) {
   // Pixels draw from their own streams: the same seed gives the same image with one thread
   // or all of them; another seed gives another image.

@@ -9,5 +9,6 @@ target_sources(render_test PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/shading_hdr_io_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/shading_cli_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/smooth_radiosity_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sampler_test.cpp
 )
 target_link_libraries(render_test PRIVATE nlohmann_json::nlohmann_json)
