@@ -11,6 +11,7 @@ target_sources(radkit_render PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/shading_context.cpp
   ${CMAKE_CURRENT_LIST_DIR}/shading.cpp
   ${CMAKE_CURRENT_LIST_DIR}/path_tracer.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/final_gather.cpp
   ${CMAKE_CURRENT_LIST_DIR}/path_benchmark.cpp
   ${CMAKE_CURRENT_LIST_DIR}/hdr_io.cpp
 )

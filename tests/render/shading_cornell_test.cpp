@@ -19,6 +19,7 @@
 #include <cstdio>
 
 #include "geometry/scene_loader.h"
+#include "render/final_gather.h"
 #include "render/path_tracer.h"
 #include "render/shading.h"
 #include "tests/common/test_util.h"
@@ -137,6 +138,15 @@ TEST_F(CornellBox, StatisticalPhongModeMatchesRadiosity) {
   s.width = s.height = kSize;
   s.samplesPerPixel = 64;
   expectAgreement(renderTwoPass(shading, *s_scene->camera, radiosityLighting(*s_fine), s), "phong");
+}
+
+TEST_F(CornellBox, StatisticalFinalGatherMatchesRadiosity) {
+  // Direct light by MIS plus one gathered bounce of (B − E)/π gives B/π again.
+  ShadingScene shading(*s_scene, s_fine->mesh, *s_fine->rays, {});
+  FinalGatherSettings s;
+  s.width = s.height = kSize;
+  s.samplesPerPixel = 128;
+  expectAgreement(renderFinalGather(shading, *s_scene->camera, radiosityLighting(*s_fine), s), "final-gather");
 }
 
 TEST_F(CornellBox, SmoothKeepsEverySurfaceMean) {
