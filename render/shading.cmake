@@ -14,6 +14,7 @@ target_sources(radkit_render PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/final_gather.cpp
   ${CMAKE_CURRENT_LIST_DIR}/path_benchmark.cpp
   ${CMAKE_CURRENT_LIST_DIR}/hdr_io.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/image_comparison.cpp
 )
 # Two-pass shading reads the radiosity solution (render/ may depend on radiosity/ results).
 target_link_libraries(radkit_render PUBLIC radkit_radiosity)
