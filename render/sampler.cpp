@@ -20,6 +20,17 @@ std::uint32_t reverseBits(std::uint32_t x) {
 std::uint64_t mix(std::uint64_t a, std::uint64_t b) { return splitMix64(a ^ splitMix64(b)); }
 
 double toUnit(std::uint32_t x) { return x * 0x1p-32; }
+
+/// The hash of owenScramble, acting on bit-reversed digits (Laine & Karras 2011's form with
+/// Burley 2020's constants).
+std::uint32_t laineKarras(std::uint32_t x, std::uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
 double toUnit64(std::uint64_t x) { return (x >> 11) * 0x1p-53; }
 
 /// Today's streams: one Rng per pixel, consumed in order across its samples.
@@ -52,13 +63,15 @@ class PaddedSampler : public Sampler {
   }
 
  protected:
-  std::uint64_t nextDimensionKey() { return mix(m_pixelKey, m_dimension++); }
+  std::uint64_t nextDimensionKey() { return splitMix64(m_pixelKey + 0x9e3779b97f4a7c15ull * ++m_dimension); }
   std::uint64_t m_key = 0, m_pixelKey = 0, m_dimension = 0;
   std::uint32_t m_index = 0;
 };
 
 /// Jittered strata: n strata per dimension, ⌊√n⌋² cells per pair, each dimension (pair)
-/// visiting its strata in its own random order. Samples beyond the strata are independent.
+/// visiting its strata in its own random order (shuffleIndex: a nested permutation would
+/// send the first half of the samples to the same half of every dimension, correlating
+/// them). Samples beyond the strata are independent.
 class StratifiedSampler : public PaddedSampler {
  public:
   StratifiedSampler(std::uint64_t seed, std::uint64_t stream, int samples)
@@ -68,14 +81,14 @@ class StratifiedSampler : public PaddedSampler {
     const std::uint64_t key = nextDimensionKey();
     const double jitter = toUnit64(mix(key, m_index));
     if (m_index >= m_n) return jitter;
-    return (permuteIndex(m_index, m_n, std::uint32_t(key)) + jitter) / m_n;
+    return (shuffleIndex(m_index, m_n, key) + jitter) / m_n;
   }
   std::array<double, 2> get2D() override {
     const std::uint64_t key = nextDimensionKey();
     const std::uint64_t bits = mix(key, m_index);
     const double jx = toUnit(std::uint32_t(bits)), jy = toUnit(std::uint32_t(bits >> 32));
     if (m_index >= m_side * m_side) return {jx, jy};
-    const std::uint32_t cell = permuteIndex(m_index, m_side * m_side, std::uint32_t(key));
+    const std::uint32_t cell = shuffleIndex(m_index, m_side * m_side, key);
     return {(cell % m_side + jx) / m_side, (cell / m_side + jy) / m_side};
   }
 
@@ -83,20 +96,32 @@ class StratifiedSampler : public PaddedSampler {
   std::uint32_t m_n, m_side;
 };
 
+/// Shuffled indices stay in the first power-of-two block that holds the pixel's samples (a
+/// nested scramble maps [0, 2^k) onto itself once the digits above k are masked off), so
+/// each power-of-two prefix of them is still a net, and sobol1 meets only k bits.
 class SobolSampler : public PaddedSampler {
  public:
-  using PaddedSampler::PaddedSampler;
+  SobolSampler(std::uint64_t seed, std::uint64_t stream, int samples) : PaddedSampler(seed, stream) {
+    while (m_mask < std::uint32_t(std::max(1, samples) - 1)) m_mask = (m_mask << 1) | 1;
+  }
+  // owenScramble(sobol0(i), s) = reverse(LK(i, s)): sobol0 is itself a reversal.
   double get1D() override {
     const std::uint64_t key = nextDimensionKey();
-    const std::uint32_t i = owenScramble(m_index, std::uint32_t(key));
-    return toUnit(owenScramble(sobol0(i), std::uint32_t(key >> 32)));
+    return toUnit(reverseBits(laineKarras(shuffled(std::uint32_t(key)), std::uint32_t(key >> 32))));
   }
   std::array<double, 2> get2D() override {
     const std::uint64_t key = nextDimensionKey(), key2 = splitMix64(key);
-    const std::uint32_t i = owenScramble(m_index, std::uint32_t(key));
-    return {toUnit(owenScramble(sobol0(i), std::uint32_t(key >> 32))),
+    const std::uint32_t i = shuffled(std::uint32_t(key));
+    return {toUnit(reverseBits(laineKarras(i, std::uint32_t(key >> 32)))),
             toUnit(owenScramble(sobol1(i), std::uint32_t(key2)))};
   }
+
+ private:
+  /// Indices past the block (more samples than declared) keep their higher digits.
+  std::uint32_t shuffled(std::uint32_t seed) const {
+    return m_index > m_mask ? owenScramble(m_index, seed) : owenScramble(m_index, seed) & m_mask;
+  }
+  std::uint32_t m_mask = 0;
 };
 
 }  // namespace
@@ -121,7 +146,7 @@ std::unique_ptr<Sampler> makeSampler(SamplerType type, std::uint64_t seed, std::
   switch (type) {
     case SamplerType::Independent: return std::make_unique<IndependentSampler>(seed, stream);
     case SamplerType::Stratified: return std::make_unique<StratifiedSampler>(seed, stream, samplesPerPixel);
-    case SamplerType::Sobol: return std::make_unique<SobolSampler>(seed, stream);
+    case SamplerType::Sobol: return std::make_unique<SobolSampler>(seed, stream, samplesPerPixel);
   }
   throw std::invalid_argument("makeSampler: unknown sampler type");
 }
@@ -130,22 +155,43 @@ std::uint32_t sobol0(std::uint32_t index) { return reverseBits(index); }
 
 std::uint32_t sobol1(std::uint32_t index) {
   // Column j of the Pascal matrix mod 2, as a 32-bit fraction: v_{j+1} = v_j ^ (v_j >> 1).
-  std::uint32_t x = 0;
-  for (std::uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
-    if (index & 1) x ^= v;
-  return x;
+  // The matrix-vector product is linear over GF(2): tabulate it a byte of the index at a time.
+  static const auto table = [] {
+    std::array<std::array<std::uint32_t, 256>, 4> t{};
+    std::uint32_t column[32];
+    column[0] = 1u << 31;
+    for (int j = 1; j < 32; ++j) column[j] = column[j - 1] ^ (column[j - 1] >> 1);
+    for (int b = 0; b < 4; ++b)
+      for (int byte = 0; byte < 256; ++byte)
+        for (int j = 0; j < 8; ++j)
+          if (byte >> j & 1) t[b][byte] ^= column[8 * b + j];
+    return t;
+  }();
+  return table[0][index & 255] ^ table[1][index >> 8 & 255] ^ table[2][index >> 16 & 255] ^ table[3][index >> 24];
 }
 
 std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed) {
   // Reversed, the most significant digit becomes bit 0; additions and x ^= x·even then only
   // carry upward, so each digit flips by a function of the seed and the digits above it.
-  x = reverseBits(x);
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
-  return reverseBits(x);
+  return reverseBits(laineKarras(reverseBits(x), seed));
+}
+
+std::uint32_t shuffleIndex(std::uint32_t i, std::uint32_t n, std::uint64_t seed) {
+  int bits = 0;
+  while ((std::uint64_t(1) << bits) < n) ++bits;
+  const std::uint32_t mask = bits == 32 ? ~0u : (1u << bits) - 1;
+  // Rounds of bijections of [0, 2^bits): xor, multiply by an odd number (mixes upward),
+  // xorshift right (mixes downward); cycle-walk until the result lies below n.
+  do {
+    std::uint64_t key = seed;
+    for (int round = 0; round < 4; ++round) {
+      key = splitMix64(key);
+      i = (i ^ std::uint32_t(key)) & mask;
+      i = (i * (std::uint32_t(key >> 32) | 1u)) & mask;
+      if (bits > 1) i ^= i >> ((bits + 1) / 2);
+    }
+  } while (i >= n);
+  return i;
 }
 
 std::uint32_t permuteIndex(std::uint32_t i, std::uint32_t n, std::uint32_t seed) {

@@ -33,7 +33,7 @@ class Sampler {
   virtual std::array<double, 2> get2D() = 0;
 };
 
-/// \param samplesPerPixel the stratified sampler's strata count (the others ignore it)
+/// \param samplesPerPixel strata count (stratified), power-of-two block of indices (Sobol)
 std::unique_ptr<Sampler> makeSampler(SamplerType type, std::uint64_t seed, std::uint64_t stream, int samplesPerPixel);
 
 /// \name Building blocks (exposed for tests)
@@ -48,6 +48,9 @@ std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed);
 /// \brief A random permutation of [0, n) keyed by seed: cycle-walking an Owen scramble of
 /// the index's bits, which permutes every aligned power-of-two block.
 std::uint32_t permuteIndex(std::uint32_t i, std::uint32_t n, std::uint32_t seed);
+/// \brief A random permutation of [0, n) keyed by seed with no nested structure (for strata,
+/// whose order must not correlate dimensions): cycle-walking rounds of small bijections.
+std::uint32_t shuffleIndex(std::uint32_t i, std::uint32_t n, std::uint64_t seed);
 /// \}
 
 }  // namespace radkit

@@ -168,9 +168,12 @@ TEST(Sampler, DeterministicPerSeedAndPermutationsArePermutations) {
   }
   for (std::uint32_t n : {1u, 5u, 16u, 100u}) {
     std::set<std::uint32_t> seen;
-    for (std::uint32_t i = 0; i < n; ++i) seen.insert(permuteIndex(i, n, 1234));
+    std::set<std::uint32_t> shuffled;
+    for (std::uint32_t i = 0; i < n; ++i) seen.insert(permuteIndex(i, n, 1234)), shuffled.insert(shuffleIndex(i, n, 99));
     EXPECT_EQ(seen.size(), n);
     EXPECT_LT(*seen.rbegin(), n);
+    EXPECT_EQ(shuffled.size(), n);
+    EXPECT_LT(*shuffled.rbegin(), n);
   }
   EXPECT_THROW(parseSamplerType("halton"), std::invalid_argument);
 }
