@@ -150,9 +150,17 @@ void compareWithReference(const RenderCommand& cmd, const Scene& scene, const Ra
   for (const Surface& s : scene.surfaces) names.push_back(s.name);
   names.push_back("edges");
   const std::vector<int> region = surfaceRegions(surfaces, img.width, img.height, int(names.size()) - 1);
+  // Also the lit surfaces alone, away from edges: emitters and aliased edges swamp "all".
+  std::vector<int> lit(region.size(), -1);
+  for (std::size_t k = 0; k < region.size(); ++k)
+    if (region[k] >= 0 && region[k] < int(scene.surfaces.size()) &&
+        !scene.materials[scene.surfaces[region[k]].material].emits())
+      lit[k] = 0;
   std::vector<RegionError> errors;
   try {
     errors = compareToReference(img, refs, region, names);
+    RegionError surfaces = compareToReference(img, refs, lit, {"surfaces"})[1];
+    errors.insert(errors.begin() + 1, surfaces);
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string(e.what()) + ". Fix: render the image at the reference's --size");
   }
