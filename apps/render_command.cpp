@@ -237,6 +237,11 @@ void addRenderCommand(CLI::App& app) {
                   "--smooth, final-gather: patches whose normals differ by more degrees are not averaged")
       ->check(CLI::Range(0.0, 180.0))
       ->capture_default_str();
+  sub->add_option("--smooth-error", cmd->smoothing.relativeError,
+                  "--smooth, final-gather: a patch's assumed error as a fraction of its B; neighbours that differ "
+                  "by more than 3 combined errors are not averaged (a shadow edge stays sharp)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   sub->add_option("--reference", cmd->references,
                   "PFM render(s) of the same view to report RMSE against, per surface; two or more independent "
                   "ones let their own noise be subtracted")

@@ -52,6 +52,10 @@ TEST(RenderCommand, ComparesWithReferenceRenders) {
   EXPECT_EQ(j["regions"][0]["region"], "all");
   EXPECT_EQ(j["regions"][0]["pixels"], 256);
   EXPECT_GT(j["regions"][0]["reference_noise"].get<double>(), 0);
+  r = test::runRadkit("render --shading radiosity --smooth --crease-angle 45 --smooth-error 0.2 --patches 60 --size 16x16"
+                      " --reference " + dir.path("ref1.pfm") + " --out " + dir.path("s.pfm"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("its own noise is not subtracted"), std::string::npos) << r.output;
   r = test::runRadkit("render --spp 1 --size 8x8 --reference " + dir.path("ref1.pfm") + " --out " + dir.path("x.pfm"));
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("--size"), std::string::npos) << r.output;
