@@ -43,7 +43,10 @@ struct SurfaceHit {
 /// Monte Carlo image with its per-pixel error: the sample variance of each pixel's mean.
 struct MonteCarloImage {
   RadianceImage image;
-  std::vector<Vec3> varianceOfMean;  ///< s²/n per pixel and channel, (W/m²/sr)²
+  /// s²/n per pixel and channel, (W/m²/sr)²: exact in expectation for independent samples;
+  /// stratified and Sobol samples usually do better than it, so for them it is a
+  /// conservative bar (render with several seeds for an honest one).
+  std::vector<Vec3> varianceOfMean;
   long long paths = 0;               ///< camera samples traced
   long long rays = 0;                ///< closest-hit and shadow rays cast
   double seconds = 0;                ///< wall time of the render
