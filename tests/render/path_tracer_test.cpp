@@ -3,6 +3,8 @@
 // shading_cornell_test.cpp, beside the two-pass modes that share its radiosity solutions.
 #include "render/path_tracer.h"
 
+#include "render/final_gather.h"
+
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
@@ -87,6 +89,36 @@ TEST(PathTracer, StatisticalFurnaceForEverySampler) {
     const double se = std::sqrt(spread / (means.size() - 1) / means.size());
     EXPECT_NEAR(mean, 2 / M_PI, 4 * se) << samplerName(type);
     EXPECT_LT(se, 0.01 * mean) << samplerName(type);
+  }
+}
+
+TEST(FinalGather, StatisticalFurnace) {
+  // The furnace's exact radiosity, B = 2 and E = 1 on every patch: emission 1/π, direct light
+  // ρ·E/π and the gathered (B − E)/π·ρ must add up to 2/π, flat or smooth lookups alike.
+  // Error bars from 16 seeds, as above.
+  Scene scene = loadScene(test::dataPath("furnace.json"));
+  PatchMesh mesh = subdivide(scene, {0.1, 0});
+  RayScene rays(mesh);
+  ShadingScene shading(scene, mesh, rays, {});
+  RadiosityLighting lighting;
+  lighting.radiosity.assign(mesh.size(), Vec3{2, 2, 2});
+  lighting.emission.assign(mesh.size(), Vec3{1, 1, 1});
+  for (bool smooth : {false, true}) {
+    FinalGatherSettings s;
+    s.width = s.height = 16;
+    s.samplesPerPixel = 4;
+    s.smooth = smooth;
+    std::vector<double> means;
+    for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+      s.seed = seed;
+      means.push_back(regionMean(renderFinalGather(shading, furnaceCamera(), lighting, s), std::vector<bool>(256, true)).mean.y);
+    }
+    double mean = 0, spread = 0;
+    for (double m : means) mean += m / means.size();
+    for (double m : means) spread += (m - mean) * (m - mean);
+    const double se = std::sqrt(spread / (means.size() - 1) / means.size());
+    EXPECT_NEAR(mean, 2 / M_PI, 4 * se) << (smooth ? "smooth" : "flat");
+    EXPECT_LT(se, 0.01 * mean);
   }
 }
 
