@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -40,7 +41,7 @@ struct RenderCommand {
   int spp = 16;
   std::size_t photons = 200000;
   double exposure = 0;
-  bool smooth = false, compensated = false;
+  bool smooth = false, compensated = false, unguided = false;
   SmoothSettings smoothing;
 };
 
@@ -124,7 +125,10 @@ RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width
     FinalGatherSettings s;
     s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed, s.sampler = sampler;
     s.smoothing = cmd.smoothing;
-    MonteCarloImage img = renderFinalGather(shading, camera, radiosityLighting(r), s);
+    const RadiosityLighting lighting = radiosityLighting(r);
+    std::optional<GatherGuide> guide;
+    if (!cmd.unguided) guide.emplace(r.formFactors->matrix, lighting);
+    MonteCarloImage img = renderFinalGather(shading, camera, lighting, s, guide ? &*guide : nullptr);
     what += ", " + std::to_string(img.paths) + " gathers in " + std::to_string(img.seconds) + " s";
     emits = emitterPixels(img.image, scene, r.mesh);
     surfaces = pixelSurfaces(img.image, r.mesh);
@@ -242,6 +246,8 @@ void addRenderCommand(CLI::App& app) {
                   "by more than 3 combined errors are not averaged (a shadow edge stays sharp)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  sub->add_flag("--unguided", cmd->unguided,
+                "final-gather: BSDF-sampled gather rays only, without the form-factor-guided samples");
   sub->add_option("--reference", cmd->references,
                   "PFM render(s) of the same view to report RMSE against, per surface; two or more independent "
                   "ones let their own noise be subtracted")

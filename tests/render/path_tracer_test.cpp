@@ -94,7 +94,8 @@ TEST(PathTracer, StatisticalFurnaceForEverySampler) {
 
 TEST(FinalGather, StatisticalFurnace) {
   // The furnace's exact radiosity, B = 2 and E = 1 on every patch: emission 1/π, direct light
-  // ρ·E/π and the gathered (B − E)/π·ρ must add up to 2/π, flat or smooth lookups alike.
+  // ρ·E/π and the gathered (B − E)/π·ρ must add up to 2/π, flat or smooth lookups alike,
+  // with or without the guide.
   // Error bars from 16 seeds, as above.
   Scene scene = loadScene(test::dataPath("furnace.json"));
   PatchMesh mesh = subdivide(scene, {0.1, 0});
@@ -103,21 +104,28 @@ TEST(FinalGather, StatisticalFurnace) {
   RadiosityLighting lighting;
   lighting.radiosity.assign(mesh.size(), Vec3{2, 2, 2});
   lighting.emission.assign(mesh.size(), Vec3{1, 1, 1});
-  for (bool smooth : {false, true}) {
+  // The guide only needs form factors of this mesh; any solution's will do.
+  PipelineSettings ps;
+  ps.mesh.maxArea = 0.1;
+  const PipelineResult r = runPipeline(scene, ps);
+  ASSERT_EQ(r.mesh.size(), mesh.size());
+  const GatherGuide guide(r.formFactors->matrix, lighting);
+  for (int variant = 0; variant < 3; ++variant) {
     FinalGatherSettings s;
     s.width = s.height = 16;
     s.samplesPerPixel = 4;
-    s.smooth = smooth;
+    s.smooth = variant != 0;
     std::vector<double> means;
     for (std::uint64_t seed = 1; seed <= 16; ++seed) {
       s.seed = seed;
-      means.push_back(regionMean(renderFinalGather(shading, furnaceCamera(), lighting, s), std::vector<bool>(256, true)).mean.y);
+      const MonteCarloImage img = renderFinalGather(shading, furnaceCamera(), lighting, s, variant == 2 ? &guide : nullptr);
+      means.push_back(regionMean(img, std::vector<bool>(256, true)).mean.y);
     }
     double mean = 0, spread = 0;
     for (double m : means) mean += m / means.size();
     for (double m : means) spread += (m - mean) * (m - mean);
     const double se = std::sqrt(spread / (means.size() - 1) / means.size());
-    EXPECT_NEAR(mean, 2 / M_PI, 4 * se) << (smooth ? "smooth" : "flat");
+    EXPECT_NEAR(mean, 2 / M_PI, 4 * se) << "variant " << variant << " (flat, smooth, guided)";
     EXPECT_LT(se, 0.01 * mean);
   }
 }

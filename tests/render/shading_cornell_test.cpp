@@ -146,7 +146,12 @@ TEST_F(CornellBox, StatisticalFinalGatherMatchesRadiosity) {
   FinalGatherSettings s;
   s.width = s.height = kSize;
   s.samplesPerPixel = 128;
-  expectAgreement(renderFinalGather(shading, *s_scene->camera, radiosityLighting(*s_fine), s), "final-gather");
+  const RadiosityLighting lighting = radiosityLighting(*s_fine);
+  expectAgreement(renderFinalGather(shading, *s_scene->camera, lighting, s), "final-gather");
+  // Guided by the form factors: another estimator of the same integral.
+  const GatherGuide guide(s_fine->formFactors->matrix, lighting);
+  s.samplesPerPixel = 64;
+  expectAgreement(renderFinalGather(shading, *s_scene->camera, lighting, s, &guide), "guided");
 }
 
 TEST_F(CornellBox, SmoothKeepsEverySurfaceMean) {
