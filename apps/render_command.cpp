@@ -163,8 +163,7 @@ void compareWithReference(const RenderCommand& cmd, const Scene& scene, const Ra
   std::vector<RegionError> errors;
   try {
     errors = compareToReference(img, refs, region, names);
-    RegionError surfaces = compareToReference(img, refs, lit, {"surfaces"})[1];
-    errors.insert(errors.begin() + 1, surfaces);
+    errors.insert(errors.begin() + 1, compareToReference(img, refs, lit, {"surfaces"})[1]);
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string(e.what()) + ". Fix: render the image at the reference's --size");
   }
