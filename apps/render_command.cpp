@@ -1,14 +1,21 @@
 // radkit render: one camera image of a scene by one shading mode (radiosity, two-pass Phong
 // or Cook-Torrance, path tracing, photon mapping), as PNG (tone mapped) or PFM (linear radiance).
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <optional>
+
+#include <nlohmann/json.hpp>
 
 #include "apps/common.h"
 #include "apps/options.h"
 #include "apps/report.h"
 #include "geometry/scene_loader.h"
+#include "render/final_gather.h"
 #include "render/hdr_io.h"
+#include "render/image_comparison.h"
 #include "render/path_tracer.h"
 #include "render/photon_image.h"
 #include "render/photon_map.h"
@@ -29,17 +36,27 @@ struct RenderCommand {
   FormFactorOptions ff;
   SolverOptions solver;
   std::string shading = "path-trace", size = "512x512", tonemap = "srgb", masking = "height-correlated", out;
+  std::string sampler = "sobol", report;
+  std::vector<std::string> references;
   int spp = 16;
   std::size_t photons = 200000;
   double exposure = 0;
-  bool smooth = false, compensated = false;
+  bool smooth = false, compensated = false, unguided = false;
+  SmoothSettings smoothing;
 };
 
+/// The surface each pixel centre sees, −1 where the ray escapes.
+std::vector<int> pixelSurfaces(const RadianceImage& img, const PatchMesh& mesh) {
+  std::vector<int> out(img.patch.size(), -1);
+  for (std::size_t k = 0; k < out.size(); ++k)
+    if (img.patch[k] >= 0) out[k] = mesh.patches[img.patch[k]].surface;
+  return out;
+}
 
 
 /// Radiance image of the chosen mode; `emits` marks pixels that show an emitter.
 RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, int height, std::string& what,
-                         std::vector<bool>& emits) {
+                         std::vector<bool>& emits, std::vector<int>& surfaces) {
   const Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(scene.bounds());
   BsdfSettings bsdf;
   bsdf.masking = parseMaskingShadowing(cmd.masking);
@@ -64,18 +81,21 @@ RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width
     what = std::to_string(cmd.photons) + " photons, " + std::to_string(maps.global->size()) + " stored, " +
            std::to_string(ps.gatherRays) + " gather rays per pixel";
     emits = emitterPixels(img, scene, mesh);
+    surfaces = pixelSurfaces(img, mesh);
     return img;
   }
+  const SamplerType sampler = parseSamplerType(cmd.sampler);
   if (cmd.shading == "path-trace") {
     PatchMesh mesh = meshScene(scene, cmd.mesh);
     RayScene rays(mesh);
     ShadingScene shading(scene, mesh, rays, bsdf);
     PathTraceSettings s;
-    s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed;
+    s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed, s.sampler = sampler;
     MonteCarloImage img = renderPathTraced(shading, camera, s);
     what = std::to_string(img.paths) + " paths, " + std::to_string(img.rays) + " rays in " +
            std::to_string(img.seconds) + " s";
     emits = emitterPixels(img.image, scene, mesh);
+    surfaces = pixelSurfaces(img.image, mesh);
     return img.image;
   }
   PipelineSettings settings;
@@ -92,21 +112,79 @@ RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width
   what = std::to_string(r.mesh.size()) + " patches";
   if (cmd.shading == "radiosity") {
     ImageSettings s;
-    s.width = width, s.height = height, s.smooth = cmd.smooth;
+    s.width = width, s.height = height, s.smooth = cmd.smooth, s.smoothing = cmd.smoothing;
     std::vector<bool> twoSided;
     for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
     RadianceImage img = renderRadiosity(r.mesh, *r.rays, camera, r.radiosity, twoSided, s);
     emits = emitterPixels(img, scene, r.mesh);
+    surfaces = pixelSurfaces(img, r.mesh);
     return img;
+  }
+  if (cmd.shading == "final-gather") {
+    ShadingScene shading(scene, r.mesh, *r.rays, bsdf);
+    FinalGatherSettings s;
+    s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed, s.sampler = sampler;
+    s.smoothing = cmd.smoothing;
+    const RadiosityLighting lighting = radiosityLighting(r);
+    std::optional<GatherGuide> guide;
+    if (!cmd.unguided) guide.emplace(r.formFactors->matrix, lighting);
+    MonteCarloImage img = renderFinalGather(shading, camera, lighting, s, guide ? &*guide : nullptr);
+    what += ", " + std::to_string(img.paths) + " gathers in " + std::to_string(img.seconds) + " s";
+    emits = emitterPixels(img.image, scene, r.mesh);
+    surfaces = pixelSurfaces(img.image, r.mesh);
+    return img.image;
   }
   const GlossyModel glossy = cmd.shading == "phong" ? GlossyModel::Phong : GlossyModel::CookTorrance;
   ShadingScene shading(scene, r.mesh, *r.rays, bsdf, glossy);
   TwoPassSettings s;
-  s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed;
+  s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed, s.sampler = sampler;
   MonteCarloImage img = renderTwoPass(shading, camera, radiosityLighting(r), s);
   what += ", " + std::to_string(img.paths) + " camera samples in " + std::to_string(img.seconds) + " s";
   emits = emitterPixels(img.image, scene, r.mesh);
+  surfaces = pixelSurfaces(img.image, r.mesh);
   return img.image;
+}
+
+/// Region errors against the reference renders: printed, and written as JSON with --report.
+void compareWithReference(const RenderCommand& cmd, const Scene& scene, const RadianceImage& img,
+                          const std::vector<int>& surfaces, double seconds) {
+  std::vector<RadianceImage> refs;
+  for (const std::string& f : cmd.references) refs.push_back(readPfm(f));
+  std::vector<std::string> names;
+  for (const Surface& s : scene.surfaces) names.push_back(s.name);
+  names.push_back("edges");
+  const std::vector<int> region = surfaceRegions(surfaces, img.width, img.height, int(names.size()) - 1);
+  // Also the lit surfaces alone, away from edges: emitters and aliased edges swamp "all".
+  std::vector<int> lit(region.size(), -1);
+  for (std::size_t k = 0; k < region.size(); ++k)
+    if (region[k] >= 0 && region[k] < int(scene.surfaces.size()) &&
+        !scene.materials[scene.surfaces[region[k]].material].emits())
+      lit[k] = 0;
+  std::vector<RegionError> errors;
+  try {
+    errors = compareToReference(img, refs, region, names);
+    errors.insert(errors.begin() + 1, compareToReference(img, refs, lit, {"surfaces"})[1]);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string(e.what()) + ". Fix: render the image at the reference's --size");
+  }
+  nlohmann::json rows = nlohmann::json::array();
+  for (const RegionError& e : errors) {
+    if (e.pixels == 0) continue;
+    char line[160];
+    std::snprintf(line, sizeof line, "%6.2f %% (raw %.4g, reference noise %.4g, mean %.4g W/m²/sr, %d px)",
+                  100 * e.relative(), e.rawRmse, e.referenceNoise, e.referenceMean, e.pixels);
+    printField("rmse " + e.name, line);
+    rows.push_back({{"region", e.name}, {"pixels", e.pixels}, {"reference_mean", e.referenceMean},
+                    {"raw_rmse", e.rawRmse}, {"reference_noise", e.referenceNoise}, {"rmse", e.rmse},
+                    {"relative_rmse", e.relative()}});
+  }
+  if (refs.size() < 2) printField("note", "one reference: its own noise is not subtracted (give --reference twice)");
+  if (cmd.report.empty()) return;
+  const nlohmann::json j{{"shading", cmd.shading}, {"smooth", cmd.smooth}, {"sampler", cmd.sampler},
+                         {"spp", cmd.spp}, {"width", img.width}, {"height", img.height},
+                         {"seconds", seconds}, {"references", cmd.references}, {"regions", rows}};
+  std::ofstream(cmd.report) << j.dump(2) << "\n";
+  printField("report", cmd.report);
 }
 
 void runRender(RenderCommand& cmd) {
@@ -118,7 +196,10 @@ void runRender(RenderCommand& cmd) {
   const Scene scene = loadSceneReporting(cmd.mesh.scene);
   std::string what;
   std::vector<bool> emits;
-  const RadianceImage img = renderMode(cmd, scene, width, height, what, emits);
+  std::vector<int> surfaces;
+  const auto start = std::chrono::steady_clock::now();
+  const RadianceImage img = renderMode(cmd, scene, width, height, what, emits, surfaces);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double exposure = cmd.exposure > 0 ? cmd.exposure : autoExposure(img, emits);
   const std::string ext = std::filesystem::path(cmd.out).extension().string();
   if (ext == ".pfm") writePfm(cmd.out, img);
@@ -127,6 +208,8 @@ void runRender(RenderCommand& cmd) {
   printField("shading", cmd.shading + ": " + what);
   if (ext != ".pfm") printField("exposure", std::to_string(exposure));
   printField("wrote", cmd.out);
+  printField("seconds", std::to_string(seconds));
+  if (!cmd.references.empty()) compareWithReference(cmd, scene, img, surfaces, seconds);
 }
 
 }  // namespace
@@ -138,7 +221,10 @@ void addRenderCommand(CLI::App& app) {
   addFormFactorOptions(*sub, cmd->ff);
   addSolverOptions(*sub, cmd->solver, "gauss-seidel");
   sub->add_option("--shading", cmd->shading, "Image mode")
-      ->check(CLI::IsMember({"radiosity", "phong", "cook-torrance", "path-trace", "photon-map"}))
+      ->check(CLI::IsMember({"radiosity", "phong", "cook-torrance", "path-trace", "photon-map", "final-gather"}))
+      ->capture_default_str();
+  sub->add_option("--sampler", cmd->sampler, "Monte Carlo modes: the camera samples' numbers")
+      ->check(CLI::IsMember({"independent", "stratified", "sobol"}))
       ->capture_default_str();
   sub->add_option("--spp", cmd->spp, "Samples (camera paths) per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT")->capture_default_str();
@@ -149,7 +235,23 @@ void addRenderCommand(CLI::App& app) {
   sub->add_option("--tonemap", cmd->tonemap, "srgb: clamp and sRGB; filmic: ACES fit (Narkowicz 2016), then sRGB")
       ->check(CLI::IsMember({"srgb", "filmic"}))
       ->capture_default_str();
-  sub->add_flag("--smooth", cmd->smooth, "radiosity: interpolate between patches");
+  sub->add_flag("--smooth", cmd->smooth, "radiosity: interpolate between patches (never across creases or jumps)");
+  sub->add_option("--crease-angle", cmd->smoothing.creaseAngleDeg,
+                  "--smooth, final-gather: patches whose normals differ by more degrees are not averaged")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
+  sub->add_option("--smooth-error", cmd->smoothing.relativeError,
+                  "--smooth, final-gather: a patch's assumed error as a fraction of its B; neighbours that differ "
+                  "by more than 3 combined errors are not averaged (a shadow edge stays sharp)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_flag("--unguided", cmd->unguided,
+                "final-gather: BSDF-sampled gather rays only, without the form-factor-guided samples");
+  sub->add_option("--reference", cmd->references,
+                  "PFM render(s) of the same view to report RMSE against, per surface; two or more independent "
+                  "ones let their own noise be subtracted")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--report", cmd->report, "With --reference: write the errors and the time as JSON");
   sub->add_option("--g", cmd->masking, "Cook-Torrance shadowing-masking term")
       ->check(CLI::IsMember({"height-correlated", "separable", "schlick", "cook-torrance"}))
       ->capture_default_str();

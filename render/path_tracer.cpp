@@ -6,7 +6,7 @@
 
 namespace radkit {
 
-Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir, Rng& rng,
+Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir, Sampler& sampler,
                   const PathTraceSettings& settings, long long& rays) {
   Vec3 radiance, beta{1, 1, 1};
   Vec3 o = origin, d = dir;
@@ -23,9 +23,10 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
       radiance += mul(beta, le) * w;
     }
     if (!hit->bsdf) break;  // the back of a one-sided surface absorbs
-    if (!hit->bsdf->isDelta()) radiance += mul(beta, scene.directLight(*hit, rng, rays));
+    if (!hit->bsdf->isDelta()) radiance += mul(beta, scene.directLight(*hit, sampler, rays));
 
-    const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    const double u0 = sampler.get1D();
+    const auto [u1, u2] = sampler.get2D();
     std::optional<BsdfSample> s = hit->bsdf->sample(hit->wo, u0, u1, u2);
     if (!s) break;
     beta = mul(beta, s->weight);
@@ -38,7 +39,7 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
     // dividing β by q keeps the estimator unbiased.
     if (depth + 1 >= settings.rouletteDepth) {
       const double q = std::min(1.0, maxComponent(beta));
-      if (rng.uniform() >= q) break;
+      if (sampler.get1D() >= q) break;
       beta = beta / q;
     }
   }
@@ -46,10 +47,10 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
 }
 
 MonteCarloImage renderPathTraced(const ShadingScene& scene, const Camera& camera, const PathTraceSettings& s) {
-  PixelSampling sampling{s.width, s.height, s.samplesPerPixel, s.seed, 0};
+  PixelSampling sampling{s.width, s.height, s.samplesPerPixel, s.seed, 0, s.sampler};
   return renderCameraSamples(scene, camera, sampling,
-                             [&](const Vec3& origin, const Vec3& direction, Rng& rng, long long& rays) {
-                               return pathRadiance(scene, origin, direction, rng, s, rays);
+                             [&](const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays) {
+                               return pathRadiance(scene, origin, direction, sampler, s, rays);
                              });
 }
 

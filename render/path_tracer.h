@@ -14,7 +14,8 @@ struct PathTraceSettings {
   int width = 256;
   int height = 256;
   int samplesPerPixel = 16;  ///< camera paths per pixel, jittered over the pixel
-  std::uint64_t seed = 1;    ///< pixel (x, y) uses Rng(seed, y·width + x, 0)
+  std::uint64_t seed = 1;    ///< keys every pixel's numbers (stream 0)
+  SamplerType sampler = SamplerType::Sobol;
   int rouletteDepth = 3;     ///< bounces before Russian roulette may end a path
   int maxDepth = 1000;       ///< hard stop (a safety net; roulette ends paths long before)
 };
@@ -23,11 +24,11 @@ struct PathTraceSettings {
 /// through delta lobes at full weight; at every other vertex, light sampling and BSDF
 /// sampling combined by the power heuristic (Veach 1997, §9.2).
 /// \param rays incremented by the rays cast (closest-hit and shadow)
-Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir, Rng& rng,
+Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir, Sampler& sampler,
                   const PathTraceSettings& settings, long long& rays);
 
 /// \brief Renders the camera view, rows in parallel (TBB). Deterministic for a seed,
-/// whatever the thread count: each pixel draws from its own counter-based stream.
+/// whatever the thread count: each pixel's numbers depend on (seed, pixel, sample) only.
 MonteCarloImage renderPathTraced(const ShadingScene& scene, const Camera& camera, const PathTraceSettings& settings);
 
 }  // namespace radkit

@@ -7,55 +7,6 @@
 
 namespace radkit {
 
-namespace {
-
-/// Mean value coordinates of x in a convex planar polygon (Floater 2003): smooth inside,
-/// linear on the edges, the barycentric coordinates for a triangle.
-std::vector<double> meanValueCoordinates(const std::vector<Vec3>& poly, const Vec3& x) {
-  const std::size_t n = poly.size();
-  std::vector<double> w(n, 0.0);
-  std::vector<Vec3> d(n);
-  std::vector<double> r(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    d[i] = poly[i] - x;
-    r[i] = length(d[i]);
-    if (r[i] < 1e-300) {  // at a vertex
-      w.assign(n, 0.0);
-      w[i] = 1;
-      return w;
-    }
-  }
-  double sum = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    std::size_t prev = (i + n - 1) % n, next = (i + 1) % n;
-    auto tanHalf = [&](std::size_t a, std::size_t b) {
-      double c = std::clamp(dot(d[a], d[b]) / (r[a] * r[b]), -1.0, 1.0);
-      return std::sqrt(std::max(0.0, (1 - c) / (1 + c)));
-    };
-    w[i] = (tanHalf(prev, i) + tanHalf(i, next)) / r[i];
-    sum += w[i];
-  }
-  for (double& v : w) v = sum > 0 ? v / sum : 1.0 / n;
-  return w;
-}
-
-}  // namespace
-
-std::vector<Vec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<Vec3>& radiosity) {
-  std::vector<Vec3> sum(mesh.vertices.size());
-  std::vector<double> weight(mesh.vertices.size(), 0.0);
-  for (int i = 0; i < mesh.size(); ++i) {
-    const Patch& p = mesh.patches[i];
-    for (int k = 0; k < p.vertexCount; ++k) {
-      sum[p.vertex[k]] += radiosity[i] * p.area;
-      weight[p.vertex[k]] += p.area;
-    }
-  }
-  for (std::size_t v = 0; v < sum.size(); ++v)
-    if (weight[v] > 0) sum[v] = sum[v] / weight[v];
-  return sum;
-}
-
 RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, const Camera& camera,
                               const std::vector<Vec3>& radiosity, const std::vector<bool>& twoSided,
                               const ImageSettings& s) {
@@ -65,8 +16,8 @@ RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, con
   img.height = s.height;
   img.radiance.assign(std::size_t(s.width) * s.height, Vec3{});
   img.patch.assign(std::size_t(s.width) * s.height, -1);
-  std::vector<Vec3> atVertex;
-  if (s.smooth) atVertex = vertexRadiosity(mesh, radiosity);
+  std::optional<SmoothRadiosity> smooth;
+  if (s.smooth) smooth.emplace(mesh, radiosity, s.smoothing);
   const int n = std::max(1, s.samplesPerAxis);
 
   // Radiance leaving the hit patch toward the camera: B/π on the front side (Lambertian).
@@ -74,11 +25,7 @@ RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, con
     const Patch& p = mesh.patches[hit.patch];
     if (dot(dir, p.normal) > 0 && !twoSided[p.surface]) return Vec3{};
     if (!s.smooth) return radiosity[hit.patch] / M_PI;
-    Vec3 x = cam.origin() + dir * hit.distance;
-    std::vector<double> w = meanValueCoordinates(mesh.polygon(p), x);
-    Vec3 b;
-    for (int k = 0; k < p.vertexCount; ++k) b += atVertex[p.vertex[k]] * w[k];
-    return b / M_PI;
+    return smooth->at(hit.patch, cam.origin() + dir * hit.distance) / M_PI;
   };
 
   tbb::parallel_for(0, s.height, [&](int y) {

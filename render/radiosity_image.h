@@ -9,6 +9,7 @@
 #include "geometry/scene.h"
 #include "geometry/visibility.h"
 #include "render/camera.h"
+#include "render/smooth_radiosity.h"
 #include "util/canvas.h"
 
 namespace radkit {
@@ -17,7 +18,8 @@ struct ImageSettings {
   int width = 512;
   int height = 512;
   int samplesPerAxis = 2;  ///< stratified samples per pixel: samplesPerAxis² (deterministic)
-  bool smooth = false;     ///< interpolate radiosity from vertices instead of flat patches
+  bool smooth = false;     ///< interpolate radiosity between patches (SmoothRadiosity)
+  SmoothSettings smoothing;  ///< crease angle and jump test of the smooth reconstruction
   double exposure = 0;     ///< multiplier on radiance; 0 picks one automatically
 };
 
@@ -34,9 +36,6 @@ struct RadianceImage {
 RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, const Camera& camera,
                               const std::vector<Vec3>& radiosity, const std::vector<bool>& twoSided,
                               const ImageSettings& settings);
-
-/// Per-vertex radiosity: the area-weighted mean of the patches around each vertex.
-std::vector<Vec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<Vec3>& radiosity);
 
 /// Automatic exposure: maps the 95th percentile of non-emitting pixel luminance to 0.8.
 double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEmits);

@@ -32,7 +32,7 @@ Vec3 reflectedRadiosity(const SurfaceHit& hit, const RadiosityLighting& l) {
 /// One camera sample: follow delta lobes, then at the first glossy or diffuse vertex add
 /// direct light (MIS), the BSDF-sampled ray's emission (MIS) and glossy radiosity, and
 /// the diffuse lobe's indirect light ρ_d/π · H_indirect.
-Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lighting, Vec3 o, Vec3 d, Rng& rng,
+Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lighting, Vec3 o, Vec3 d, Sampler& sampler,
                      const TwoPassSettings& s, long long& rays) {
   Vec3 radiance, beta{1, 1, 1};
   for (int depth = 0; depth <= s.maxSpecularDepth; ++depth) {
@@ -41,7 +41,8 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
     if (!hit) break;
     radiance += mul(beta, scene.emitted(*hit));
     if (!hit->bsdf) break;
-    const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    const double u0 = sampler.get1D();
+    const auto [u1, u2] = sampler.get2D();
     if (hit->bsdf->isDelta()) {
       std::optional<BsdfSample> bs = hit->bsdf->sample(hit->wo, u0, u1, u2);
       if (!bs) break;
@@ -50,7 +51,7 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
       o = scene.spawn(*hit, d);
       continue;
     }
-    radiance += mul(beta, scene.directLight(*hit, rng, rays));
+    radiance += mul(beta, scene.directLight(*hit, sampler, rays));
     const Vec3 diffuse = hit->bsdf->diffuseAlbedo();
     radiance += mul(beta, mul(diffuse, lighting.indirectIrradiance[hit->patch])) / M_PI;
     if (std::optional<BsdfSample> bs = hit->bsdf->sample(hit->wo, u0, u1, u2)) {
@@ -75,10 +76,10 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
 
 MonteCarloImage renderTwoPass(const ShadingScene& scene, const Camera& camera, const RadiosityLighting& lighting,
                               const TwoPassSettings& s) {
-  PixelSampling sampling{s.width, s.height, s.samplesPerPixel, s.seed, 1};
+  PixelSampling sampling{s.width, s.height, s.samplesPerPixel, s.seed, 1, s.sampler};
   return renderCameraSamples(scene, camera, sampling,
-                             [&](const Vec3& origin, const Vec3& direction, Rng& rng, long long& rays) {
-                               return twoPassRadiance(scene, lighting, origin, direction, rng, s, rays);
+                             [&](const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays) {
+                               return twoPassRadiance(scene, lighting, origin, direction, sampler, s, rays);
                              });
 }
 

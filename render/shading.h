@@ -18,7 +18,8 @@ struct TwoPassSettings {
   int width = 256;
   int height = 256;
   int samplesPerPixel = 16;  ///< camera samples per pixel, each with one light and one BSDF sample
-  std::uint64_t seed = 1;    ///< pixel (x, y) uses Rng(seed, y·width + x, 1)
+  std::uint64_t seed = 1;    ///< keys every pixel's numbers (stream 1)
+  SamplerType sampler = SamplerType::Sobol;
   int maxSpecularDepth = 8;  ///< mirror/glass bounces followed before a path is dropped
 };
 

@@ -67,8 +67,9 @@ Vec3 ShadingScene::spawn(const SurfaceHit& hit, const Vec3& dir) const {
   return liftToward(hit.point, m_mesh.patches[hit.patch].normal, hit.point + dir, m_rays.epsilon());
 }
 
-Vec3 ShadingScene::directLight(const SurfaceHit& hit, Rng& rng, long long& rays) const {
-  const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+Vec3 ShadingScene::directLight(const SurfaceHit& hit, Sampler& sampler, long long& rays) const {
+  const double u0 = sampler.get1D();
+  const auto [u1, u2] = sampler.get2D();
   if (m_emitters.empty() || !hit.bsdf || hit.bsdf->isDelta()) return {};
   const EmitterSample e = m_emitters.sample(u0, u1, u2);
   const Vec3 d = e.point - hit.point;
@@ -110,13 +111,14 @@ MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& cam
   std::vector<long long> rowRays(s.height, 0);
 
   tbb::parallel_for(0, s.height, [&](int y) {
+    std::unique_ptr<Sampler> sampler = makeSampler(s.sampler, s.seed, s.stream, n);
     for (int x = 0; x < s.width; ++x) {
       const std::size_t k = std::size_t(y) * s.width + x;
-      Rng rng(s.seed, k, s.stream);
       Vec3 sum, sumSq;
       for (int i = 0; i < n; ++i) {
-        const double jx = rng.uniform(), jy = rng.uniform();
-        const Vec3 l = radiance(cam.origin(), cam.direction(x + jx, y + jy), rng, rowRays[y]);
+        sampler->start(k, i);
+        const auto [jx, jy] = sampler->get2D();
+        const Vec3 l = radiance(cam.origin(), cam.direction(x + jx, y + jy), *sampler, rowRays[y]);
         sum += l;
         sumSq += mul(l, l);
       }

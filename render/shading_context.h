@@ -17,6 +17,7 @@
 #include "render/bsdf.h"
 #include "render/emitters.h"
 #include "render/radiosity_image.h"
+#include "render/sampler.h"
 
 namespace radkit {
 
@@ -42,7 +43,10 @@ struct SurfaceHit {
 /// Monte Carlo image with its per-pixel error: the sample variance of each pixel's mean.
 struct MonteCarloImage {
   RadianceImage image;
-  std::vector<Vec3> varianceOfMean;  ///< s²/n per pixel and channel, (W/m²/sr)²
+  /// s²/n per pixel and channel, (W/m²/sr)²: exact in expectation for independent samples;
+  /// stratified and Sobol samples usually do better than it, so for them it is a
+  /// conservative bar (render with several seeds for an honest one).
+  std::vector<Vec3> varianceOfMean;
   long long paths = 0;               ///< camera samples traced
   long long rays = 0;                ///< closest-hit and shadow rays cast
   double seconds = 0;                ///< wall time of the render
@@ -53,16 +57,18 @@ struct PixelSampling {
   int width = 256, height = 256;
   int samplesPerPixel = 16;
   std::uint64_t seed = 1;
-  std::uint64_t stream = 0;  ///< pixel (x, y) uses Rng(seed, y·width + x, stream)
+  std::uint64_t stream = 0;  ///< keys pixel (x, y)'s numbers with (seed, y·width + x)
+  SamplerType sampler = SamplerType::Sobol;
 };
 
 /// Estimates the radiance along one camera ray; adds the rays it casts to `rays`.
-using CameraSampleRadiance = std::function<Vec3(const Vec3& origin, const Vec3& direction, Rng& rng, long long& rays)>;
+using CameraSampleRadiance =
+    std::function<Vec3(const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays)>;
 
 class ShadingScene;
 
-/// \brief Averages samplesPerPixel jittered camera samples per pixel (parallel over rows,
-/// deterministic), with the variance of each pixel mean and the patch seen at the pixel centre.
+/// \brief Averages samplesPerPixel camera samples per pixel, jittered by the sampler's first
+/// 2-D dimension (parallel over rows, deterministic), with the variance of each pixel mean and the patch seen at the pixel centre.
 MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& camera, const PixelSampling& sampling,
                                     const CameraSampleRadiance& radiance);
 
@@ -85,9 +91,10 @@ class ShadingScene {
   Vec3 spawn(const SurfaceHit& hit, const Vec3& dir) const;
 
   /// \brief Next-event estimate of reflected direct light at a non-delta hit: one emitter
-  /// point, a shadow ray, weighted against BSDF sampling by the power heuristic.
+  /// (by power, a 1-D sample) and a point on it (uniform by area, a 2-D sample), a shadow
+  /// ray, weighted against BSDF sampling by the power heuristic.
   /// \param rays incremented by the shadow rays cast
-  Vec3 directLight(const SurfaceHit& hit, Rng& rng, long long& rays) const;
+  Vec3 directLight(const SurfaceHit& hit, Sampler& sampler, long long& rays) const;
   /// \brief Solid-angle density with which directLight() would pick the emitter point hit
   /// at `light` seen from the previous vertex (0 on the back of the emitter).
   double lightPdf(const SurfaceHit& light) const;

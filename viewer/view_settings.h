@@ -65,7 +65,7 @@ std::string channelLabel(Channel channel, bool photometric);
 double falseColourTop(const PatchData& patches, const std::vector<double>& values);
 
 /// \brief Per-point values: the area-weighted mean over the patches sharing each point
-/// (the same weights as radkit::vertexRadiosity), for smooth shading.
+/// (crossing creases: radkit::SmoothRadiosity does not), for smooth shading.
 std::vector<double> pointAverage(const PatchData& patches, const std::vector<double>& perPatch);
 std::vector<Vec3> pointAverage(const PatchData& patches, const std::vector<Vec3>& perPatch);
 

@@ -3,6 +3,8 @@
 // shading_cornell_test.cpp, beside the two-pass modes that share its radiosity solutions.
 #include "render/path_tracer.h"
 
+#include "render/final_gather.h"
+
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
@@ -60,6 +62,72 @@ TEST(PathTracer, StatisticalFurnace) {
   EXPECT_NEAR(small.mean.y, 2 / M_PI, 4 * small.standardError.y);
   EXPECT_LT(big.standardError.y, 0.02 * big.mean.y);
   EXPECT_NEAR(small.standardError.y / big.standardError.y, 2.0, 0.3);
+}
+
+TEST(PathTracer, StatisticalFurnaceForEverySampler) {
+  // The furnace again, with each sampler: 16 renders with independent seeds give image means
+  // whose spread is the honest error bar (stratified and Sobol samples of a pixel are not
+  // independent, so per-pixel variances would misstate it). t with 15 degrees of freedom
+  // exceeds 4 with probability 0.001 per sampler.
+  Scene scene = loadScene(test::dataPath("furnace.json"));
+  PatchMesh mesh = subdivide(scene, {0.1, 0});
+  RayScene rays(mesh);
+  ShadingScene shading(scene, mesh, rays, {});
+  for (SamplerType type : {SamplerType::Independent, SamplerType::Stratified, SamplerType::Sobol}) {
+    PathTraceSettings s;
+    s.width = s.height = 16;
+    s.samplesPerPixel = 8;
+    s.sampler = type;
+    std::vector<double> means;
+    for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+      s.seed = seed;
+      means.push_back(regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(256, true)).mean.y);
+    }
+    double mean = 0, spread = 0;
+    for (double m : means) mean += m / means.size();
+    for (double m : means) spread += (m - mean) * (m - mean);
+    const double se = std::sqrt(spread / (means.size() - 1) / means.size());
+    EXPECT_NEAR(mean, 2 / M_PI, 4 * se) << samplerName(type);
+    EXPECT_LT(se, 0.01 * mean) << samplerName(type);
+  }
+}
+
+TEST(FinalGather, StatisticalFurnace) {
+  // The furnace's exact radiosity, B = 2 and E = 1 on every patch: emission 1/π, direct light
+  // ρ·E/π and the gathered (B − E)/π·ρ must add up to 2/π, flat or smooth lookups alike,
+  // with or without the guide.
+  // Error bars from 16 seeds, as above.
+  Scene scene = loadScene(test::dataPath("furnace.json"));
+  PatchMesh mesh = subdivide(scene, {0.1, 0});
+  RayScene rays(mesh);
+  ShadingScene shading(scene, mesh, rays, {});
+  RadiosityLighting lighting;
+  lighting.radiosity.assign(mesh.size(), Vec3{2, 2, 2});
+  lighting.emission.assign(mesh.size(), Vec3{1, 1, 1});
+  // The guide only needs form factors of this mesh; any solution's will do.
+  PipelineSettings ps;
+  ps.mesh.maxArea = 0.1;
+  const PipelineResult r = runPipeline(scene, ps);
+  ASSERT_EQ(r.mesh.size(), mesh.size());
+  const GatherGuide guide(r.formFactors->matrix, lighting);
+  for (int variant = 0; variant < 3; ++variant) {
+    FinalGatherSettings s;
+    s.width = s.height = 16;
+    s.samplesPerPixel = 4;
+    s.smooth = variant != 0;
+    std::vector<double> means;
+    for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+      s.seed = seed;
+      const MonteCarloImage img = renderFinalGather(shading, furnaceCamera(), lighting, s, variant == 2 ? &guide : nullptr);
+      means.push_back(regionMean(img, std::vector<bool>(256, true)).mean.y);
+    }
+    double mean = 0, spread = 0;
+    for (double m : means) mean += m / means.size();
+    for (double m : means) spread += (m - mean) * (m - mean);
+    const double se = std::sqrt(spread / (means.size() - 1) / means.size());
+    EXPECT_NEAR(mean, 2 / M_PI, 4 * se) << "variant " << variant << " (flat, smooth, guided)";
+    EXPECT_LT(se, 0.01 * mean);
+  }
 }
 
 TEST(PathTracer, ConstructDeterministicPerSeed) {

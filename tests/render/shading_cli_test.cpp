@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include <algorithm>
 
@@ -30,6 +31,34 @@ TEST(RenderCommand, WritesPngAndPfm) {
   r = test::runRadkit("render --shading photon-map --patches 60 --photons 2000 --size 8x8 --out " + dir.path("d.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(readPng(dir.path("d.png")).width(), 8);
+}
+
+TEST(RenderCommand, ComparesWithReferenceRenders) {
+  // Two independent path-traced references, then a final gather measured against them.
+  test::TempDir dir;
+  for (const char* seed : {"1", "2"}) {
+    test::RunResult r = test::runRadkit(std::string("render --spp 4 --size 16x16 --seed ") + seed + " --out " +
+                                        dir.path(std::string("ref") + seed + ".pfm"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+  }
+  test::RunResult r = test::runRadkit("render --shading final-gather --patches 60 --spp 2 --sampler stratified --size 16x16"
+                                      " --reference " + dir.path("ref1.pfm") + " --reference " + dir.path("ref2.pfm") +
+                                      " --report " + dir.path("r.json") + " --out " + dir.path("fg.pfm"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("rmse all"), std::string::npos) << r.output;
+  std::ifstream in(dir.path("r.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["shading"], "final-gather");
+  EXPECT_EQ(j["regions"][0]["region"], "all");
+  EXPECT_EQ(j["regions"][0]["pixels"], 256);
+  EXPECT_GT(j["regions"][0]["reference_noise"].get<double>(), 0);
+  r = test::runRadkit("render --shading radiosity --smooth --crease-angle 45 --smooth-error 0.2 --patches 60 --size 16x16"
+                      " --reference " + dir.path("ref1.pfm") + " --out " + dir.path("s.pfm"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("its own noise is not subtracted"), std::string::npos) << r.output;
+  r = test::runRadkit("render --spp 1 --size 8x8 --reference " + dir.path("ref1.pfm") + " --out " + dir.path("x.pfm"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--size"), std::string::npos) << r.output;
 }
 
 TEST(RenderCommand, RefusesBadInput) {
