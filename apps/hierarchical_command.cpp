@@ -73,7 +73,7 @@ nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSett
 void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalResult& r, const HierarchicalJob& job) {
   ImageSettings s;
   s.width = s.height = job.imageSize;
-  s.smooth = job.smooth;
+  s.smooth = true;  // leaves differ in size by orders of magnitude: flat shading shows the hierarchy, not the light
   std::vector<bool> twoSided;
   for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
   Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(r.leaves.bounds());
