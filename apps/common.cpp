@@ -39,6 +39,12 @@ PatchMesh meshScene(const Scene& scene, const MeshOptions& options) {
   return subdivide(scene, SubdivisionSettings{options.maxArea, options.patches});
 }
 
+std::string fmt(const char* format, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, value);
+  return buf;
+}
+
 void printField(const std::string& label, const std::string& value) {
   std::printf("%22s: %s\n", label.c_str(), value.c_str());
 }

@@ -28,6 +28,8 @@ std::string defaultScenePath();
 Scene loadSceneReporting(const std::string& path);
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
 
+/// One number printed with a printf format ("%.3g").
+std::string fmt(const char* format, double value);
 /// Prints a right-aligned "label: value" line to stdout.
 void printField(const std::string& label, const std::string& value);
 

@@ -15,12 +15,6 @@ namespace radkit::app {
 
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSettings& s) {
   const Hierarchy& h = *r.hierarchy;
   long long clusters = 0, elements = 0;
@@ -74,12 +68,8 @@ void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalRe
   ImageSettings s;
   s.width = s.height = job.imageSize;
   s.smooth = true;  // leaves differ in size by orders of magnitude: flat shading shows the hierarchy, not the light
-  std::vector<bool> twoSided;
-  for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
-  Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(r.leaves.bounds());
   RayScene rays(r.leaves);  // the image needs the leaf under each pixel
-  RadianceImage img = renderRadiosity(r.leaves, rays, camera, r.radiosity, twoSided, s);
-  writePng(folder.path("render.png"), toneMap(img, autoExposure(img, scene, r.leaves)));
+  writeRadiosityPng(folder.path("render.png"), scene, r.leaves, rays, r.radiosity, s);
 }
 
 void printSummary(const Scene& scene, const HierarchicalResult& r, const HierarchicalJob& job, double total) {
@@ -99,16 +89,7 @@ void printSummary(const Scene& scene, const HierarchicalResult& r, const Hierarc
                             ", total " + fmt("%.2f", total));
   printField(r.solve.solver, std::to_string(r.solve.iterations) + " sweeps, change " +
                                  fmt("%.2e", r.solve.residual) + (r.solve.converged ? "" : "  NOT CONVERGED: " + r.solve.reason));
-  printField("energy balance", "emitted " + fmt("%.4g W", luminance(r.energy.emitted)) + " = absorbed " +
-                                   fmt("%.4g", luminance(r.energy.absorbed)) + " + escaped " +
-                                   fmt("%.4g", luminance(r.energy.escaped)) + " ± " +
-                                   fmt("%.2g", luminance(r.escapedStandardError)) + " (Y), imbalance " +
-                                   fmt("%.2e", r.energy.relativeImbalance));
-  for (const SurfaceResult& s : r.surfaces) {
-    std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) + fmt(" %10.4f W/m²", s.radiosity.z);
-    if (job.photometric) line += fmt("  %9.2f cd/m²", s.luminance) + fmt("  %9.1f lux", s.illuminance);
-    printField(s.name, line);
-  }
+  printEnergyAndSurfaces(r.energy, r.surfaces, job.photometric, " ± " + fmt("%.2g", luminance(r.escapedStandardError)));
   printField("peak memory", fmt("%.0f MiB", peakMemoryBytes() / 1048576.0));
   printField("wrote", job.out);
 }

@@ -43,12 +43,6 @@ struct PhotonsCommand {
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 /// The radiosity solution to compare with: a run folder's surfaces.csv, or computed here on
 /// the same mesh (then per patch too).
 struct RadiosityReference {

@@ -60,12 +60,6 @@ PipelineSettings pipelineSettings(const PipelineCommand& cmd) {
   return s;
 }
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 /// `run`'s mesh when none is given: on the Cornell box, surface radiosities lie within 0.6 %
 /// of a 32 000-patch run (docs/run.md), in about 13 s on two cores.
 constexpr int kDefaultRunPatches = 4000;
@@ -90,11 +84,7 @@ void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult&
   ImageSettings s;
   s.width = s.height = cmd.imageSize;
   s.smooth = cmd.smooth;
-  std::vector<bool> twoSided;
-  for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
-  Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(r.mesh.bounds());
-  RadianceImage img = renderRadiosity(r.mesh, *r.rays, camera, r.radiosity, twoSided, s);
-  writePng(folder.path("render.png"), toneMap(img, autoExposure(img, scene, r.mesh)));
+  writeRadiosityPng(folder.path("render.png"), scene, r.mesh, *r.rays, r.radiosity, s);
 }
 
 void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd, double total) {
@@ -112,17 +102,7 @@ void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCom
   for (const SolveResult& s : r.solves)
     printField(s.solver, std::to_string(s.iterations) + " iterations, residual " + fmt("%.2e", s.checkedResidual) +
                              ", " + fmt("%.3f s", s.seconds) + (s.converged ? "" : "  NOT CONVERGED: " + s.reason));
-  if (!r.solves.empty()) {
-    printField("energy balance", "emitted " + fmt("%.4g W", luminance(r.energy.emitted)) + " = absorbed " +
-                                     fmt("%.4g", luminance(r.energy.absorbed)) + " + escaped " +
-                                     fmt("%.4g", luminance(r.energy.escaped)) + " (Y), imbalance " +
-                                     fmt("%.2e", r.energy.relativeImbalance));
-    for (const SurfaceResult& s : r.surfaces) {
-      std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) + fmt(" %10.4f W/m²", s.radiosity.z);
-      if (cmd.photometric) line += fmt("  %9.2f cd/m²", s.luminance) + fmt("  %9.1f lux", s.illuminance);
-      printField(s.name, line);
-    }
-  }
+  if (!r.solves.empty()) printEnergyAndSurfaces(r.energy, r.surfaces, cmd.photometric);
   printField("peak memory", fmt("%.0f MiB", peakMemoryBytes() / 1048576.0));
   printField("wrote", cmd.out);
 }

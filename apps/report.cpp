@@ -1,5 +1,7 @@
 #include "apps/report.h"
 
+#include "apps/common.h"
+
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -78,6 +80,19 @@ json surfacesJson(const std::vector<SurfaceResult>& surfaces) {
                  {"luminance_cd_m2", s.luminance},
                  {"illuminance_lux", s.illuminance}});
   return a;
+}
+
+void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceResult>& surfaces, bool photometric,
+                            const std::string& escapedNote) {
+  printField("energy balance", "emitted " + fmt("%.4g W", luminance(e.emitted)) + " = absorbed " +
+                                   fmt("%.4g", luminance(e.absorbed)) + " + escaped " +
+                                   fmt("%.4g", luminance(e.escaped)) + escapedNote + " (Y), imbalance " +
+                                   fmt("%.2e", e.relativeImbalance));
+  for (const SurfaceResult& s : surfaces) {
+    std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) + fmt(" %10.4f W/m²", s.radiosity.z);
+    if (photometric) line += fmt("  %9.2f cd/m²", s.luminance) + fmt("  %9.1f lux", s.illuminance);
+    printField(s.name, line);
+  }
 }
 
 std::size_t peakMemoryBytes() {

@@ -14,6 +14,10 @@ nlohmann::json meshJson(const Scene& scene, const PatchMesh& mesh);
 nlohmann::json solveJson(const SolveResult& result);
 nlohmann::json energyJson(const EnergyBalance& e);
 nlohmann::json surfacesJson(const std::vector<SurfaceResult>& surfaces);
+/// Prints the energy balance ("escaped" followed by `escapedNote`) and one line of radiosity
+/// per surface (with cd/m² and lux when photometric).
+void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceResult>& surfaces, bool photometric,
+                            const std::string& escapedNote = "");
 /// Peak resident memory of this process in bytes (getrusage).
 std::size_t peakMemoryBytes();
 

@@ -21,12 +21,6 @@ namespace radkit::app {
 
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 struct StudyCommand {
   MeshOptions mesh;  // scene only: the study chooses the meshes
   StudySettings settings;

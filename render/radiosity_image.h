@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "geometry/patch_mesh.h"
@@ -36,6 +37,11 @@ struct RadianceImage {
 RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, const Camera& camera,
                               const std::vector<Vec3>& radiosity, const std::vector<bool>& twoSided,
                               const ImageSettings& settings);
+
+/// \brief render.png of a run: the scene's camera (or one framing the mesh), each surface's
+/// two-sidedness from its material, automatic exposure and sRGB, written as PNG.
+void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
+                       const std::vector<Vec3>& radiosity, const ImageSettings& settings);
 
 /// Automatic exposure: maps the 95th percentile of non-emitting pixel luminance to 0.8.
 double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEmits);

@@ -185,7 +185,9 @@ TEST(Hierarchical, ViewFactorThroughClusterLinksWithinTheLinkBound) {
     const int node = hr.leafNodes[leaf];
     int clusterLinks = 0;
     for (const HLink& l : hr.system->links()) clusterLinks += l.receiver == node && !(*hr.hierarchy)[l.source].element;
-    if (eps == 1e-2) EXPECT_GT(clusterLinks, 0) << "the emitter should be reached through clusters";
+    if (eps == 1e-2) {
+      EXPECT_GT(clusterLinks, 0) << "the emitter should be reached through clusters";
+    }
     const double bound = hr.system->linkCount(node) * hr.threshold / 0.5;  // receiver area 1
     EXPECT_NEAR(hr.irradiance[leaf].x, exact, bound) << "epsilon " << eps;
     errors.push_back(std::fabs(hr.irradiance[leaf].x - exact) / exact);
