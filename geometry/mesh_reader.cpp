@@ -35,21 +35,19 @@ std::string lowerExtension(const std::string& path) {
 }
 
 /// Routes OpenMesh's error stream into a string for the duration of a read, so its
-/// complaints become part of our message instead of stray console lines.
+/// complaints become part of our message instead of stray console lines. Swaps the stream's
+/// buffer: OpenMesh's disconnect() never frees the target that connect() allocated.
 class CapturedOpenMeshErrors {
  public:
-  CapturedOpenMeshErrors() {
-    omerr().disconnect(std::cerr);
-    omerr().connect(m_text);
-  }
-  ~CapturedOpenMeshErrors() {
-    omerr().disconnect(m_text);
-    omerr().connect(std::cerr);
-  }
+  CapturedOpenMeshErrors() : m_saved(omerr().rdbuf(&m_text)) {}
+  ~CapturedOpenMeshErrors() { omerr().rdbuf(m_saved); }
+  CapturedOpenMeshErrors(const CapturedOpenMeshErrors&) = delete;
+  CapturedOpenMeshErrors& operator=(const CapturedOpenMeshErrors&) = delete;
   std::string text() const { return m_text.str(); }
 
  private:
-  std::ostringstream m_text;
+  std::stringbuf m_text;
+  std::streambuf* m_saved;
 };
 
 /// OpenMesh gives a face that cannot join the surface manifoldly (wound against a neighbour,
