@@ -13,6 +13,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "geometry/mesh_structure.h"
 #include "geometry/scene_loader.h"
 #include "geometry/text_numbers.h"
 
@@ -83,7 +84,8 @@ void restoreFileVertices(RawMesh& raw, const std::vector<std::size_t>& refused) 
     for (int& v : face.vertices) v = renumber[v];
 }
 
-RawMesh readWithOpenMesh(const std::string& path) {
+/// `declaredFaces`: the count the file's header declares, or -1 when it does not say.
+RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces) {
   PolyMesh mesh;
   mesh.request_face_status();
   mesh.request_edge_status();
@@ -98,6 +100,12 @@ RawMesh readWithOpenMesh(const std::string& path) {
   if (errors.text().find("equal vertices") != std::string::npos)
     throw InputError(path + ": a face repeats a vertex (degenerate face). Fix: remove the "
                      "repeated index from the face.");
+  // A safety net behind checkMeshStructure: OpenMesh drops faces it cannot add without a word.
+  if (declaredFaces >= 0 && (long long)mesh.n_faces() != declaredFaces)
+    throw InputError(path + ": the file declares " + std::to_string(declaredFaces) + " faces, but only " +
+                     std::to_string(mesh.n_faces()) + " could be read" +
+                     (errors.text().empty() ? "" : " (" + errors.text() + ")") +
+                     ". Fix: correct the faces the reader refused.");
   RawMesh raw;
   for (auto v : mesh.vertices()) {
     const auto p = mesh.point(v);
@@ -149,8 +157,11 @@ std::vector<Vec3> objVertices(const tinyobj::attrib_t& attrib) {
 /// Keeps only the vertices the faces use, renumbered in first-use order.
 void compactVertices(const std::vector<Vec3>& all, Surface& surface) {
   std::vector<int> map(all.size(), -1);
-  for (Face& f : surface.faces)
-    for (int& v : f.vertices) {
+  for (std::size_t face = 0; face < surface.faces.size(); ++face)
+    for (int& v : surface.faces[face].vertices) {
+      if (v < 0 || v >= int(all.size()))  // checkMeshStructure refuses these first
+        throw InputError(surface.source + ": face " + std::to_string(face) + " names a vertex that does not "
+                         "exist. Fix: correct the face's indices.");
       if (map[v] < 0) {
         map[v] = static_cast<int>(surface.vertices.size());
         surface.vertices.push_back(all[v]);
@@ -165,9 +176,10 @@ RawMesh readMeshFile(const std::string& path) {
   if (!fs::exists(path))
     throw InputError(path + ": mesh file not found. Fix: give a path relative to the scene "
                      "file, or an absolute path.");
+  const long long declaredFaces = checkMeshStructure(path);
   checkTextMeshNumbers(path);
   std::string ext = lowerExtension(path);
-  if (ext == ".ply" || ext == ".off" || ext == ".stl") return readWithOpenMesh(path);
+  if (ext == ".ply" || ext == ".off" || ext == ".stl") return readWithOpenMesh(path, declaredFaces);
   if (ext == ".obj") {
     tinyobj::ObjReader reader = parseObj(path);
     RawMesh raw;
@@ -182,6 +194,7 @@ RawMesh readMeshFile(const std::string& path) {
 Scene loadObjScene(const std::string& path) {
   if (!fs::exists(path))
     throw InputError(path + ": scene file not found.");
+  checkMeshStructure(path);
   checkTextMeshNumbers(path);
   tinyobj::ObjReader reader = parseObj(path);
   Scene scene;
