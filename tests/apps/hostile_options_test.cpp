@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include "tests/common/test_util.h"
 
@@ -59,6 +62,21 @@ TEST(HostileOptionCli, ExposureNanRefusedByRender) {
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("--exposure"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.path("i.png")));
+}
+
+// Point 9: report.json says how each solver stopped, with its spectral-radius estimate.
+TEST(HostileOptionCli, ReportSaysMaxIterationsExit) {
+  test::TempDir dir;
+  const test::RunResult r = test::runRadkitWithin(
+      300, "run '" + test::dataPath("furnace.json") + "' --patches 24 --no-render --solvers jacobi "
+           "--max-iterations 20 --tol 1e-12 --out '" + dir.path("o") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir.path("o/report.json"));
+  const nlohmann::json solver = nlohmann::json::parse(in)["solvers"][0];
+  EXPECT_EQ(solver["exit_reason"], "max_iterations") << solver.dump();
+  ASSERT_TRUE(solver["spectral_radius_estimate"].is_number()) << solver.dump();
+  EXPECT_GT(solver["spectral_radius_estimate"].get<double>(), 0.0);
+  EXPECT_LT(solver["spectral_radius_estimate"].get<double>(), 1.0);
 }
 
 }  // namespace
