@@ -84,8 +84,9 @@ class Fail {
  public:
   explicit Fail(std::string path) : m_path(std::move(path)) {}
   [[noreturn]] void operator()(const std::string& what) const { throw InputError(m_path + ": " + what); }
+  /// line <= 0: a binary body, where lines mean nothing.
   [[noreturn]] void at(long line, const std::string& what) const {
-    (*this)("line " + std::to_string(line) + ": " + what);
+    (*this)(line > 0 ? "line " + std::to_string(line) + ": " + what : what);
   }
 
  private:
@@ -299,7 +300,7 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
             if (!bytes.has(p.countSize)) truncated();
             n = bytes.integer(p.countSize);
           }
-          if (indices) checkFaceSize(fail, ascii ? tokens.line() : e.line, row, n);
+          if (indices) checkFaceSize(fail, ascii ? tokens.line() : 0, row, n);
         }
         if (!ascii) {
           if (!bytes.has(double(n) * p.size)) truncated();
@@ -318,7 +319,7 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
             index = bytes.integer(p.size);
             if (p.isSigned && index >= (1LL << (8 * p.size - 1))) index -= 1LL << (8 * p.size);
           }
-          if (indices) checkIndex(fail, ascii ? tokens.line() : e.line, row, index, vertices);
+          if (indices) checkIndex(fail, ascii ? tokens.line() : 0, row, index, vertices);
         }
       }
     }

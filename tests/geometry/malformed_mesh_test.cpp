@@ -110,7 +110,7 @@ INSTANTIATE_TEST_SUITE_P(
         MeshCase{"PlyAsciiIndexOutOfRange", "p.ply",
                  ply("element face 1\nproperty list uchar int vertex_indices\n", "3 0 1 3\n"),
                  {"line 13", "face 0 names vertex 3"}},
-        MeshCase{"PlyBinaryIndexOutOfRange", "b.ply", binaryPly(5), {"face 0 names vertex 5"}},
+        MeshCase{"PlyBinaryIndexOutOfRange", "b.ply", binaryPly(5), {"b.ply: face 0 names vertex 5"}},
         MeshCase{"PlyBinaryNegativeIndex", "b.ply", binaryPly(-1), {"face 0 names vertex -1"}},
         MeshCase{"PlyTruncatedBody", "p.ply",
                  ply("element face 2\nproperty list uchar int vertex_indices\n", "3 0 1 2\n3 0 1\n"),
