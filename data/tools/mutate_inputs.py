@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """Bounded mutation run over radkit's loaders: mutated copies of data/ scenes and of meshes
 derived from data/sphere-interior.off (OFF, ASCII and binary PLY, ASCII and binary STL, OBJ+MTL)
-go through `radkit mesh` (every case) and `radkit run` (every fourth, small mesh) with a time
-limit per case. Counts outcomes: success (exit 0), clean error (non-zero exit with an error
-message and no output folder), crash (a signal, an abort or an uncaught exception), hang (time
-limit), silent failure or error with output (neither should occur), and staging folders left
-behind. Exits 1 when any case is neither a success nor a clean error. Reproducible: the same --seed gives the same inputs.
+go through `radkit mesh` (every case), `radkit run` (every fourth, small mesh), `radkit render`
+and `radkit photons` (every eighth each, small), each with a time limit. Counts outcomes:
+success (exit 0), clean error (non-zero exit with an error message and no output), crash (a
+signal, an abort or an uncaught exception), hang (time limit), silent failure or error with
+output (neither should occur), and staging folders left behind. Exits 1 when any case is
+neither a success nor a clean error. Reproducible: the same --seed gives the same inputs.
 
-  python3 data/tools/mutate_inputs.py --radkit build/apps/radkit --cases 400 --work /tmp/mut
+  python3 data/tools/mutate_inputs.py --radkit build/apps/radkit --cases 1000 --work /tmp/mut
 """
 import argparse, json, os, random, re, shutil, struct, subprocess, sys
 
@@ -135,6 +136,11 @@ def main():
         commands = [["mesh", target, "--out", "o-mesh"]]
         if n % 4 == 0:
             commands.append(["run", target, "--patches", "60", "--no-render", "--out", "o-run"])
+        if n % 8 == 1:
+            commands.append(["render", target, "--size", "24x24", "--spp", "2", "--out", "o-render.png"])
+        if n % 8 == 5:
+            commands.append(["photons", target, "--photons", "2000", "--no-radiosity", "--no-image",
+                             "--bench-rays", "0", "--out", "o-photons"])
         for cmd in commands:
             try:
                 p = subprocess.run([args.radkit] + cmd, cwd=case, capture_output=True, timeout=args.timeout)
