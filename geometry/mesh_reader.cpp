@@ -10,7 +10,6 @@
 #include <array>
 #include <map>
 #include <filesystem>
-#include <iostream>
 #include <sstream>
 
 #include "geometry/mesh_structure.h"
