@@ -1,12 +1,36 @@
 #include "apps/common.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
+#include <stdexcept>
 
 #include "geometry/scene_loader.h"
 
 namespace radkit::app {
+
+namespace {
+
+CLI::Validator finiteNumber(bool allowZero) {
+  return CLI::Validator(
+      [allowZero](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size()) return "'" + text + "' is not a number";
+        if (!std::isfinite(v)) return "'" + text + "' is not a finite number. Fix: give a decimal number";
+        if (allowZero ? v < 0 : v <= 0) return "'" + text + "' must be " + (allowZero ? ">= 0" : "> 0");
+        return "";
+      },
+      allowZero ? "FINITE >= 0" : "FINITE > 0");
+}
+
+}  // namespace
+
+const CLI::Validator FinitePositive = finiteNumber(false);
+const CLI::Validator FiniteNonNegative = finiteNumber(true);
 
 std::string defaultScenePath() {
   // The source tree's data/ first (a build run from anywhere), then ./data.
@@ -22,9 +46,9 @@ void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired)
   else scene->check(CLI::ExistingFile);
   auto* area = command.add_option("--max-area", options.maxArea,
                                   "Split surfaces so every patch has at most this area (scene units²)")
-                   ->check(CLI::PositiveNumber);
+                   ->check(FinitePositive);
   command.add_option("--patches", options.patches, "Split surfaces into about this many patches in total")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1, int(kMaxPatches)))
       ->excludes(area);
 }
 
@@ -36,7 +60,20 @@ Scene loadSceneReporting(const std::string& path) {
 }
 
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options) {
-  return subdivide(scene, SubdivisionSettings{options.maxArea, options.patches});
+  try {
+    return subdivide(scene, SubdivisionSettings{options.maxArea, options.patches});
+  } catch (const TooManyPatches&) {
+    tooManyPatches(scene, options);
+  }
+}
+
+void tooManyPatches(const Scene& scene, const MeshOptions& options) {
+  std::ostringstream option;
+  if (options.maxArea > 0) option << "--max-area " << options.maxArea;
+  else option << "--patches " << options.patches;
+  throw InputError(scene.file + ": " + option.str() + " would split the scene into more than " +
+                   std::to_string(kMaxPatches) + " patches, the most radkit meshes. Fix: give a larger "
+                   "--max-area, or fewer --patches.");
 }
 
 std::string fmt(const char* format, double value) {

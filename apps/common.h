@@ -18,15 +18,23 @@ struct MeshOptions {
   int patches = 0;
 };
 
+/// CLI11's PositiveNumber lets NaN through (NaN <= 0 is false) and infinity too; these refuse
+/// both at parse time.
+extern const CLI::Validator FinitePositive;
+extern const CLI::Validator FiniteNonNegative;
+
 /// Adds SCENE (positional; `required` or defaulting to the Cornell box) and --max-area/--patches.
 void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired = true);
 
 /// The measured Cornell box shipped in data/.
 std::string defaultScenePath();
 
-/// Loads the scene (printing its warnings to stderr) and subdivides it.
+/// Loads the scene (printing its warnings to stderr) and subdivides it; a mesh beyond
+/// kMaxPatches is an InputError naming the option that asked for it.
 Scene loadSceneReporting(const std::string& path);
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
+/// Throws that InputError (for subdivide's TooManyPatches).
+[[noreturn]] void tooManyPatches(const Scene& scene, const MeshOptions& options);
 
 /// One number printed with a printf format ("%.3g").
 std::string fmt(const char* format, double value);

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <new>
 
 #include "apps/common.h"
 #include "geometry/scene_loader.h"
@@ -22,6 +23,10 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "radkit: error: out of memory. Fix: use fewer patches (--patches, --max-area) or a smaller "
+                 "--memory-budget.\n";
+    return 1;
   } catch (const radkit::InputError& e) {
     std::cerr << "radkit: error: " << e.what() << '\n';
     return 1;

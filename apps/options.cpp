@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "apps/common.h"
 #include "solvers/registry.h"
 
 namespace radkit::app {
@@ -23,6 +24,10 @@ std::size_t parseBytes(const std::string& text) {
                                              : -1;
   if (scale < 0 || !(value > 0) || !std::isfinite(value))
     throw CLI::ValidationError("--memory-budget", "'" + text + "' is not a positive size in B, KiB, MiB, GiB or TiB");
+  // Converting a double beyond size_t's range is undefined; no machine has 2^60 bytes.
+  if (value * scale >= std::ldexp(1.0, 60))
+    throw CLI::ValidationError("--memory-budget", "'" + text + "' is larger than 1048576 TiB. Fix: give the memory "
+                               "F may use, e.g. 8GiB");
   return std::size_t(value * scale);
 }
 
@@ -74,12 +79,12 @@ void addSolverOptions(CLI::App& c, SolverOptions& o, const std::string& defaultS
                "Comma-separated solvers, parameters after ':' separated by ';' (sor:omega=1.2;power_iterations=40):" + help)
       ->capture_default_str();
   c.add_option("--tol", o.stopping.tolerance, "Stop at relative residual ||E + rho F B - B|| / ||E|| <= tol")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive)
       ->capture_default_str();
   c.add_option("--max-iterations", o.stopping.maxIterations, "Stop after this many iterations (shots for southwell)")
       ->check(CLI::PositiveNumber);
   c.add_option("--max-seconds", o.stopping.maxSeconds, "Stop a solver after this many seconds")
-      ->check(CLI::PositiveNumber);
+      ->check(FinitePositive);
   c.add_option("--residual-norm", o.norm, "relative: infinity norm over ||E||; per-patch: worst patch relative to its own B")
       ->check(CLI::IsMember({"relative", "per-patch"}))
       ->capture_default_str();

@@ -158,16 +158,20 @@ void runJob(PipelineCommand& cmd) {
   };
   nlohmann::json adaptiveJson;
   PipelineResult r;
-  if (cmd.adaptive) {
-    AdaptiveResult a = solveAdaptive(scene, settings, cmd.adaptiveSettings, log);
-    r = std::move(a.final);
-    nlohmann::json rounds = nlohmann::json::array();
-    for (const AdaptiveRound& round : a.rounds)
-      rounds.push_back({{"patches", round.patches}, {"max_indicator", round.maxIndicator},
-                        {"shadow_patches", round.shadowPatches}, {"split", round.split}});
-    adaptiveJson = {{"rounds", rounds}, {"stop_reason", a.stopReason}, {"seconds", a.seconds}};
-  } else {
-    r = runPipeline(scene, settings, log);
+  try {  // subdivide's TooManyPatches: more patches than radkit meshes
+    if (cmd.adaptive) {
+      AdaptiveResult a = solveAdaptive(scene, settings, cmd.adaptiveSettings, log);
+      r = std::move(a.final);
+      nlohmann::json rounds = nlohmann::json::array();
+      for (const AdaptiveRound& round : a.rounds)
+        rounds.push_back({{"patches", round.patches}, {"max_indicator", round.maxIndicator},
+                          {"shadow_patches", round.shadowPatches}, {"split", round.split}});
+      adaptiveJson = {{"rounds", rounds}, {"stop_reason", a.stopReason}, {"seconds", a.seconds}};
+    } else {
+      r = runPipeline(scene, settings, log);
+    }
+  } catch (const TooManyPatches&) {
+    tooManyPatches(scene, cmd.mesh);
   }
   progress.finish();
   // A run's answer must be a number: a diverged first solver leaves nothing to write.
@@ -244,9 +248,9 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
                   "re-solve, repeat (starts from --patches/--max-area, else a quarter of the budget; "
                   "docs/speed-vs-accuracy.md)");
     sub->add_option("--adaptive-max-patches", cmd->adaptiveSettings.maxPatches, "Adaptive: patch budget")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(CLI::Range(1, int(kMaxPatches)))->capture_default_str();
     sub->add_option("--adaptive-tol", cmd->adaptiveSettings.tolerance, "Adaptive: stop when no patch's indicator exceeds this")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(FinitePositive)->capture_default_str();
     sub->add_option("--adaptive-rounds", cmd->adaptiveSettings.maxRounds, "Adaptive: refine-and-solve rounds at most")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
     sub->add_option("--image-size", cmd->imageSize, "Side of render.png in pixels")->check(CLI::Range(16, 8192))->capture_default_str();

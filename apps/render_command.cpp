@@ -230,7 +230,7 @@ void addRenderCommand(CLI::App& app) {
   sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--photons", cmd->photons, "photon-map: photons emitted")->check(CLI::PositiveNumber)->capture_default_str();
   sub->add_option("--exposure", cmd->exposure, "Radiance multiplier before tone mapping; 0: automatic")
-      ->check(CLI::NonNegativeNumber)
+      ->check(FiniteNonNegative)
       ->capture_default_str();
   sub->add_option("--tonemap", cmd->tonemap, "srgb: clamp and sRGB; filmic: ACES fit (Narkowicz 2016), then sRGB")
       ->check(CLI::IsMember({"srgb", "filmic"}))

@@ -58,7 +58,8 @@ json solveJson(const SolveResult& r) {
     milestonesJson.push_back(row);
   }
   return {{"solver", r.solver},     {"description", r.description},         {"converged", r.converged},
-          {"reason", r.reason},     {"iterations", r.iterations},           {"seconds", r.seconds},
+          {"reason", r.reason},     {"exit_reason", r.exit},                {"iterations", r.iterations},
+          {"seconds", r.seconds},   {"spectral_radius_estimate", r.spectralRadius},
           {"residual", r.residual}, {"checked_residual", r.checkedResidual}, {"milestones", milestonesJson},
           {"ambient", json::array({r.ambient[0], r.ambient[1], r.ambient[2]})}};
 }

@@ -240,7 +240,7 @@ void addStudyCommand(CLI::App& app) {
                "method's epsilon within a time budget; study.csv, study.md and error-versus-seconds charts");
   sub->add_option("scene", cmd->mesh.scene, "Scene file (default: the Cornell box)");
   sub->add_option("--max-seconds", cmd->settings.maxSeconds, "Wall-clock budget of the whole study")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive)
       ->capture_default_str();
   sub->add_option("--knob-patches", cmd->settings.knobPatches,
                   "Mesh of the form-factor and solver sweeps (a rung of the mesh ladder)")

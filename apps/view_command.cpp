@@ -55,6 +55,7 @@ void addViewCommand(CLI::App& app) {
   sub->add_flag("--photometric", o.photometric,
                 "False colour of luminance in cd/m² (683 lm/W, Rec. 709 weights, L = B/pi) instead of W/m²");
   sub->add_option("--exposure", o.exposure, "Multiplier on radiance L = B/pi for true colour (0: automatic)")
+      ->check(FiniteNonNegative)
       ->capture_default_str();
   sub->callback([cmd] { runView(*cmd); });
 }

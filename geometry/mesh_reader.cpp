@@ -10,9 +10,9 @@
 #include <array>
 #include <map>
 #include <filesystem>
-#include <iostream>
 #include <sstream>
 
+#include "geometry/mesh_structure.h"
 #include "geometry/scene_loader.h"
 #include "geometry/text_numbers.h"
 
@@ -35,21 +35,19 @@ std::string lowerExtension(const std::string& path) {
 }
 
 /// Routes OpenMesh's error stream into a string for the duration of a read, so its
-/// complaints become part of our message instead of stray console lines.
+/// complaints become part of our message instead of stray console lines. Swaps the stream's
+/// buffer: OpenMesh's disconnect() never frees the target that connect() allocated.
 class CapturedOpenMeshErrors {
  public:
-  CapturedOpenMeshErrors() {
-    omerr().disconnect(std::cerr);
-    omerr().connect(m_text);
-  }
-  ~CapturedOpenMeshErrors() {
-    omerr().disconnect(m_text);
-    omerr().connect(std::cerr);
-  }
+  CapturedOpenMeshErrors() : m_saved(omerr().rdbuf(&m_text)) {}
+  ~CapturedOpenMeshErrors() { omerr().rdbuf(m_saved); }
+  CapturedOpenMeshErrors(const CapturedOpenMeshErrors&) = delete;
+  CapturedOpenMeshErrors& operator=(const CapturedOpenMeshErrors&) = delete;
   std::string text() const { return m_text.str(); }
 
  private:
-  std::ostringstream m_text;
+  std::stringbuf m_text;
+  std::streambuf* m_saved;
 };
 
 /// OpenMesh gives a face that cannot join the surface manifoldly (wound against a neighbour,
@@ -85,7 +83,8 @@ void restoreFileVertices(RawMesh& raw, const std::vector<std::size_t>& refused) 
     for (int& v : face.vertices) v = renumber[v];
 }
 
-RawMesh readWithOpenMesh(const std::string& path) {
+/// `declaredFaces`: the count the file's header declares, or -1 when it does not say.
+RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces) {
   PolyMesh mesh;
   mesh.request_face_status();
   mesh.request_edge_status();
@@ -100,6 +99,12 @@ RawMesh readWithOpenMesh(const std::string& path) {
   if (errors.text().find("equal vertices") != std::string::npos)
     throw InputError(path + ": a face repeats a vertex (degenerate face). Fix: remove the "
                      "repeated index from the face.");
+  // A safety net behind checkMeshStructure: OpenMesh drops faces it cannot add without a word.
+  if (declaredFaces >= 0 && (long long)mesh.n_faces() != declaredFaces)
+    throw InputError(path + ": the file declares " + std::to_string(declaredFaces) + " faces, but only " +
+                     std::to_string(mesh.n_faces()) + " could be read" +
+                     (errors.text().empty() ? "" : " (" + errors.text() + ")") +
+                     ". Fix: correct the faces the reader refused.");
   RawMesh raw;
   for (auto v : mesh.vertices()) {
     const auto p = mesh.point(v);
@@ -151,8 +156,11 @@ std::vector<Vec3> objVertices(const tinyobj::attrib_t& attrib) {
 /// Keeps only the vertices the faces use, renumbered in first-use order.
 void compactVertices(const std::vector<Vec3>& all, Surface& surface) {
   std::vector<int> map(all.size(), -1);
-  for (Face& f : surface.faces)
-    for (int& v : f.vertices) {
+  for (std::size_t face = 0; face < surface.faces.size(); ++face)
+    for (int& v : surface.faces[face].vertices) {
+      if (v < 0 || v >= int(all.size()))  // checkMeshStructure refuses these first
+        throw InputError(surface.source + ": face " + std::to_string(face) + " names a vertex that does not "
+                         "exist. Fix: correct the face's indices.");
       if (map[v] < 0) {
         map[v] = static_cast<int>(surface.vertices.size());
         surface.vertices.push_back(all[v]);
@@ -167,9 +175,10 @@ RawMesh readMeshFile(const std::string& path) {
   if (!fs::exists(path))
     throw InputError(path + ": mesh file not found. Fix: give a path relative to the scene "
                      "file, or an absolute path.");
+  const long long declaredFaces = checkMeshStructure(path);
   checkTextMeshNumbers(path);
   std::string ext = lowerExtension(path);
-  if (ext == ".ply" || ext == ".off" || ext == ".stl") return readWithOpenMesh(path);
+  if (ext == ".ply" || ext == ".off" || ext == ".stl") return readWithOpenMesh(path, declaredFaces);
   if (ext == ".obj") {
     tinyobj::ObjReader reader = parseObj(path);
     RawMesh raw;
@@ -184,6 +193,7 @@ RawMesh readMeshFile(const std::string& path) {
 Scene loadObjScene(const std::string& path) {
   if (!fs::exists(path))
     throw InputError(path + ": scene file not found.");
+  checkMeshStructure(path);
   checkTextMeshNumbers(path);
   tinyobj::ObjReader reader = parseObj(path);
   Scene scene;

@@ -13,6 +13,7 @@
 #include <set>
 
 #include "geometry/mesh_reader.h"
+#include "geometry/mesh_structure.h"
 #include "geometry/validation.h"
 
 namespace radkit {
@@ -265,6 +266,7 @@ Scene loadJsonScene(const std::string& path) {
 Scene loadScene(const std::string& path, LoadReport* report) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  requireRegularFile(path, "scene file");
   Scene scene;
   if (ext == ".json") scene = loadJsonScene(path);
   else if (ext == ".obj") scene = loadObjScene(path);

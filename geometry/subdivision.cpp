@@ -15,6 +15,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "geometry/scene_loader.h"
+
 namespace radkit {
 
 namespace {
@@ -101,12 +103,20 @@ SurfaceTopology buildTopology(const Surface& s) {
   return t;
 }
 
-/// Segments per edge class for a target edge length h (0: one segment each).
+[[noreturn]] void tooManyPatches() {
+  throw TooManyPatches("subdivide: the settings need more than " + std::to_string(kMaxPatches) + " patches");
+}
+
+/// Segments per edge class for a target edge length h (0: one segment each). Counted in
+/// double first: a tiny h would overflow int.
 std::vector<int> classCounts(const SurfaceTopology& t, double h) {
   std::vector<int> n(t.classLength.size(), 1);
   if (h > 0)
-    for (std::size_t c = 0; c < n.size(); ++c)
-      n[c] = std::max(1, int(std::ceil(t.classLength[c] / h * (1 - 1e-12))));
+    for (std::size_t c = 0; c < n.size(); ++c) {
+      const double segments = std::ceil(t.classLength[c] / h * (1 - 1e-12));
+      if (!(segments <= double(kMaxPatches))) tooManyPatches();  // a class this long needs as many
+      n[c] = std::max(1, int(segments));
+    }
   return n;
 }
 
@@ -236,10 +246,17 @@ double lengthForPatchCount(const std::vector<SurfaceTopology>& tops, long long t
 }  // namespace
 
 PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings) {
-  if (settings.maxArea < 0 || settings.targetPatches < 0)
-    throw std::invalid_argument("subdivide: maxArea and targetPatches must be >= 0");
+  if (!(settings.maxArea >= 0) || !std::isfinite(settings.maxArea) || settings.targetPatches < 0)
+    throw std::invalid_argument("subdivide: maxArea and targetPatches must be finite and >= 0");
+  if (settings.targetPatches > kMaxPatches) tooManyPatches();
   std::vector<SurfaceTopology> tops;
-  for (const Surface& s : scene.surfaces) tops.push_back(buildTopology(s));
+  for (const Surface& s : scene.surfaces) {
+    tops.push_back(buildTopology(s));
+    for (double len : tops.back().classLength)
+      if (!std::isfinite(len))
+        throw InputError(s.source + " is too large to measure: its edge lengths overflow a double. Fix: "
+                         "scale the scene down (coordinates beyond about 1e150 overflow).");
+  }
   double hGlobal = settings.targetPatches > 0 ? lengthForPatchCount(tops, settings.targetPatches) : 0;
 
   PatchMesh out;
@@ -252,8 +269,10 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings) {
     }
     // Cells of skewed quads or obtuse triangles can exceed h²: shrink h until all fit.
     for (int attempt = 0;; ++attempt) {
+      const std::vector<int> counts = classCounts(tops[s], h);
+      if (out.size() + patchCount(tops[s], counts) > kMaxPatches) tooManyPatches();
       PatchMesh trial = out;
-      emitPatches(tops[s], classCounts(tops[s], h), int(s), trial);
+      emitPatches(tops[s], counts, int(s), trial);
       double over = settings.maxArea > 0 ? maxFaceAreaLimitViolation(trial, out.size(), settings.maxArea) : 0;
       if (over <= 1 + 1e-12 || attempt > 60) {
         out = std::move(trial);

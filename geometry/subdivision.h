@@ -1,10 +1,20 @@
 // Patch subdivision: splits every surface into well-shaped patches (OpenMesh).
 #pragma once
 
+#include <stdexcept>
+
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
 
 namespace radkit {
+
+/// Most patches subdivide makes: beyond this a mesh does not fit memory, and counts would
+/// overflow int. A request for more throws TooManyPatches.
+constexpr long long kMaxPatches = 10'000'000;
+
+struct TooManyPatches : std::length_error {
+  using std::length_error::length_error;
+};
 
 struct SubdivisionSettings {
   double maxArea = 0;  ///< every patch <= maxArea (scene units²); 0: no limit
@@ -15,7 +25,8 @@ struct SubdivisionSettings {
 /// stay quads). Each face of a surface is split into a grid (quads) or into similar triangles
 /// with the same count along every edge of that surface, so shared edges match and there are
 /// no T-junctions inside a surface; a single-quad surface gets an n×m grid of near-square
-/// patches. Patch areas sum to the surface area.
+/// patches. Patch areas sum to the surface area. Throws TooManyPatches when the settings
+/// would need more than kMaxPatches patches, InputError when a surface's edge lengths overflow.
 PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings);
 
 }  // namespace radkit

@@ -370,9 +370,17 @@ void validateScene(Scene& scene, LoadReport& report) {
       throw InputError(s.source + ": the surface name \"" + s.name + "\" is used twice. Fix: give each surface its own name.");
     if (s.faces.empty())
       throw InputError(s.source + " has no faces. Fix: give it a polygon or a non-empty mesh.");
-    for (std::size_t v = 0; v < s.vertices.size(); ++v)
-      if (!isFinite(s.vertices[v]))
+    for (std::size_t v = 0; v < s.vertices.size(); ++v) {
+      const Vec3& p = s.vertices[v];
+      if (!isFinite(p))
         throw InputError(s.source + ", vertex " + std::to_string(v) + " has a NaN or infinite coordinate. Fix: correct the coordinates.");
+      // Embree refuses (asserts on) rays whose origin lies beyond about 1.8e18 in float.
+      if (std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) > kMaxCoordinate)
+        throw InputError(s.source + ", vertex " + std::to_string(v) + " has a coordinate of " +
+                         fmt(std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)})) +
+                         ", beyond the " + fmt(kMaxCoordinate) + " the ray tracer handles. Fix: "
+                         "use a larger unit or move the scene nearer the origin.");
+    }
     for (std::size_t f = 0; f < s.faces.size(); ++f) checkFace(s, f);
     repairOrientation(s, report);
     normaliseFaces(s, report);

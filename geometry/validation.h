@@ -21,6 +21,9 @@ constexpr double kPlanarityTolerance = 1e-7;
 /// triangulated (non-planar ones with a warning). Warns on self-intersections (CGAL).
 void validateScene(Scene& scene, LoadReport& report);
 
+/// Largest |coordinate| validateScene accepts (scene units).
+constexpr double kMaxCoordinate = 1e15;
+
 /// Reports exact self-intersections between non-adjacent faces of one surface (CGAL PMP).
 /// Returns the number of intersecting face pairs found (0 when clean).
 std::size_t countSelfIntersections(const Surface& surface);

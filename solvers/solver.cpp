@@ -62,32 +62,92 @@ std::string number(double v) {
   return s.str();
 }
 
-/// Empty when the run goes on; otherwise why it stops (and result.converged is set).
+/// What the driver tracks across iterations beyond the solver's own state.
+struct Progress {
+  double startResidual = 0.0;
+  double best = std::numeric_limits<double>::infinity();  ///< lowest residual so far
+  double bestSweeps = 0.0;                                 ///< sweeps() when it was reached
+  double windowSweeps = 0.0, windowResidual = 0.0;         ///< start of the rate window
+  double rate = std::numeric_limits<double>::quiet_NaN();  ///< see SolveResult::spectralRadius
+  int decade = std::numeric_limits<int>::max();            ///< floor(log10) of the last kept residual's decade
+
+  void update(double r, double sweeps) {
+    if (r < best * (1 - 1e-9)) {
+      best = r;
+      bestSweeps = sweeps;
+    }
+    if (sweeps - windowSweeps >= kRateWindowSweeps || std::isnan(rate)) {
+      if (sweeps > windowSweeps && windowResidual > 0 && r >= 0)
+        rate = std::pow(r / windowResidual, 1 / (sweeps - windowSweeps));
+      if (sweeps - windowSweeps >= kRateWindowSweeps) {
+        windowSweeps = sweeps;
+        windowResidual = r;
+      }
+    }
+  }
+  /// Keeps every row up to 1000, then 900 per decade of iterations, and the first row of each
+  /// new decade of the residual (so milestones at powers of ten stay exact).
+  bool keep(long iteration, double r) {
+    bool newDecade = false;
+    if (r > 0 && std::isfinite(r) && int(std::floor(std::log10(r))) < decade) {
+      decade = int(std::floor(std::log10(r)));
+      newDecade = true;
+    }
+    if (iteration < 1000 || newDecade) return true;
+    long step = 1;
+    for (long i = iteration; i >= 1000; i /= 10) step *= 10;
+    return iteration % step == 0;
+  }
+};
+
+std::string rateText(double rate) {
+  return std::isnan(rate) ? std::string() : ", estimated spectral radius " + number(rate);
+}
+
+/// Empty when the run goes on; otherwise why it stops (and result.exit, result.converged).
 std::string stopReason(const Solver& solver, const SolverSettings& settings, long iteration,
-                       double seconds, double emissionNorm, double startResidual, bool& converged) {
+                       double seconds, double emissionNorm, const Progress& p, SolveResult& result) {
   const double r = solver.residual();
   const std::string tail = " after " + std::to_string(iteration) + " iterations";
-  converged = false;
+  result.converged = false;
   // Iterating B ← E + ρFB diverges when some row of ρF sums above 1 (noisy or
   // non-physical form factors): B grows without bound and turns inf, then NaN.
   // A million-fold growth over the starting residual is divergence too, caught long before
   // B overflows; none of the methods grows its residual that far on a convergent system.
-  if (!std::isfinite(r) || !allFinite(solver.radiosity()) || r > 1e6 * startResidual)
+  if (!std::isfinite(r) || !allFinite(solver.radiosity()) || r > 1e6 * p.startResidual) {
+    result.exit = "diverged";
     return "diverged: the residual grew to " + number(r) + tail +
            " (rows of rho F sum above 1: check the form factors' row sums, raise --ff-samples)";
+  }
   if (r <= settings.tolerance) {
-    converged = true;
+    result.converged = true;
+    result.exit = "converged";
     if (emissionNorm == 0.0 && r == 0.0) return "converged: E = 0, so B = 0 is exact";
     return "converged: residual " + number(r) + " <= tolerance " + number(settings.tolerance) +
            tail;
   }
-  if (iteration >= settings.maxIterations)
+  if (iteration >= settings.maxIterations) {
+    result.exit = "max_iterations";
     return "not converged: maximum iterations (" + std::to_string(settings.maxIterations) +
            ") reached with residual " + number(r) + " > tolerance " +
-           number(settings.tolerance);
-  if (seconds >= settings.maxSeconds)
+           number(settings.tolerance) + rateText(p.rate);
+  }
+  if (seconds >= settings.maxSeconds) {
+    result.exit = "time_limit";
     return "not converged: time limit " + number(settings.maxSeconds) + " s reached" + tail +
-           " with residual " + number(r) + " > tolerance " + number(settings.tolerance);
+           " with residual " + number(r) + " > tolerance " + number(settings.tolerance) + rateText(p.rate);
+  }
+  // A residual stuck at the rounding floor above the tolerance would run to the iteration
+  // limit. Only at the floor: far above it, a residual may rise for a long while and still
+  // converge (Gauss-Seidel and Southwell at reflectances near 1).
+  if (solver.sweeps() - p.bestSweeps >= kStagnationSweeps &&
+      p.best <= 1e4 * std::numeric_limits<double>::epsilon() *
+                    std::max(1.0, maxAbs(solver.radiosity()) / std::max(emissionNorm, 1e-300))) {
+    result.exit = "stagnated";
+    return "stagnated: no residual below " + number(p.best) + " for " + number(kStagnationSweeps) +
+           " sweeps" + tail + rateText(p.rate) + " (rounding error: tolerance " +
+           number(settings.tolerance) + " is below what this system reaches; raise --tol)";
+  }
   return {};
 }
 
@@ -101,13 +161,15 @@ SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSet
   result.description = solver.describe();
   const double emissionNorm = system.emissionNorm();
   long iteration = 0;
-  const double startResidual = std::max(solver.residual(), std::numeric_limits<double>::min());
+  Progress progress;
+  progress.startResidual = std::max(solver.residual(), std::numeric_limits<double>::min());
+  progress.windowResidual = solver.residual();
   for (;;) {
     const double seconds = secondsSince(t0);
-    result.history.push_back(
-        {iteration, seconds, solver.residual(), solver.unshotPower(), solver.sweeps()});
-    result.reason = stopReason(solver, settings, iteration, seconds, emissionNorm, startResidual,
-                               result.converged);
+    const HistoryRow row{iteration, seconds, solver.residual(), solver.unshotPower(), solver.sweeps()};
+    progress.update(row.residual, row.sweeps);
+    result.reason = stopReason(solver, settings, iteration, seconds, emissionNorm, progress, result);
+    if (progress.keep(iteration, row.residual) || !result.reason.empty()) result.history.push_back(row);
     if (!result.reason.empty()) break;
     solver.step();
     ++iteration;
@@ -115,6 +177,7 @@ SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSet
   result.iterations = iteration;
   result.seconds = result.history.back().seconds;
   result.residual = solver.residual();
+  result.spectralRadius = progress.rate;
   result.radiosity = solver.radiosity();
   result.ambient = solver.ambient();
   const Channels r = residualVector(system, result.radiosity);

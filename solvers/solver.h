@@ -92,11 +92,27 @@ struct SolveResult {
   double checkedResidual = 0.0;  ///< recomputed from F by the driver, same norm
   Channels radiosity;
   Rgb ambient{};
-  std::vector<HistoryRow> history;  ///< iteration 0 (after start) then every step
+  /// Why it stopped, for report.json: "converged", "max_iterations", "time_limit",
+  /// "stagnated" (at the rounding floor, no new lowest residual for kStagnationSweeps sweeps)
+  /// or "diverged".
+  std::string exit;
+  /// Mean factor by which the residual fell per sweep over the last kRateWindowSweeps sweeps
+  /// (or since the start): an estimate of the iteration's spectral radius; NaN before a sweep.
+  double spectralRadius = std::numeric_limits<double>::quiet_NaN();
+  /// Iteration 0 (after start), every step up to iteration 1000, then logarithmically spaced
+  /// (900 rows per decade of iterations), plus the first row below each power of ten of the
+  /// residual and the last row: its size stays bounded however long a solver runs.
+  std::vector<HistoryRow> history;
 };
 
-/// \brief Runs solver from B = E until residual <= tolerance, maxIterations steps or
-///        maxSeconds, recording every iteration. Throws what start() throws.
+/// Sweeps without a new lowest residual (by a relative 1e-9), at a residual within 1e4
+/// rounding errors of zero, after which solve() stops.
+constexpr double kStagnationSweeps = 1000;
+/// Sweeps over which SolveResult::spectralRadius is measured.
+constexpr double kRateWindowSweeps = 50;
+
+/// \brief Runs solver from B = E until residual <= tolerance, maxIterations steps, maxSeconds,
+///        stagnation or divergence, recording the history. Throws what start() throws.
 SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSettings& settings);
 
 }  // namespace radkit

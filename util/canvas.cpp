@@ -46,9 +46,29 @@ void Canvas::line(double x0, double y0, double x1, double y1, Rgb8 c, int width)
   }
 }
 
+namespace {
+
+/// The text as stb_easy_font can draw it: its glyph table covers ' ' to '~' only, and indexes
+/// out of bounds with anything else. Each other UTF-8 code point (or stray byte) becomes '?'.
+std::vector<char> fontChars(const std::string& s) {
+  std::vector<char> out;
+  for (std::size_t k = 0; k < s.size();) {
+    const unsigned char b = static_cast<unsigned char>(s[k]);
+    const int length = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xE ? 3 : (b >> 3) == 0x1E ? 4 : 1;
+    int taken = 1;  // a lead byte with missing continuation bytes counts alone
+    while (taken < length && k + taken < s.size() && (static_cast<unsigned char>(s[k + taken]) >> 6) == 0x2)
+      ++taken;
+    out.push_back((b >= 32 && b <= 126) || b == '\n' ? char(b) : '?');
+    k += taken;
+  }
+  out.push_back('\0');
+  return out;
+}
+
+}  // namespace
+
 void Canvas::text(int x, int y, const std::string& s, int scale, Rgb8 c, bool vertical) {
-  std::vector<char> chars(s.begin(), s.end());
-  chars.push_back('\0');
+  std::vector<char> chars = fontChars(s);
   // stb_easy_font emits quads of 4 vertices × 16 bytes; ~270 bytes per character is enough.
   std::vector<char> quads(chars.size() * 300);
   int n = stb_easy_font_print(0, 0, chars.data(), nullptr, quads.data(), int(quads.size()));
@@ -65,8 +85,7 @@ void Canvas::text(int x, int y, const std::string& s, int scale, Rgb8 c, bool ve
 }
 
 int Canvas::textWidth(const std::string& s, int scale) {
-  std::vector<char> chars(s.begin(), s.end());
-  chars.push_back('\0');
+  std::vector<char> chars = fontChars(s);
   return stb_easy_font_width(chars.data()) * scale;
 }
 

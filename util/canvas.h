@@ -27,7 +27,8 @@ class Canvas {
   /// A line of the given width in pixels (Bresenham steps, square pen).
   void line(double x0, double y0, double x1, double y1, Rgb8 c, int width = 1);
   /// Text with its top-left corner at (x, y), `scale` pixels per font unit; vertical text
-  /// runs downwards (rotated 90° clockwise).
+  /// runs downwards (rotated 90° clockwise). Any UTF-8 works: characters the font lacks are
+  /// drawn as '?'.
   void text(int x, int y, const std::string& s, int scale, Rgb8 c = {0, 0, 0}, bool vertical = false);
   static int textWidth(const std::string& s, int scale);
   static int textHeight(int scale) { return 7 * scale; }

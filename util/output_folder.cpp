@@ -1,7 +1,11 @@
 #include "util/output_folder.h"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -11,13 +15,48 @@ namespace radkit {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// Removes `.NAME.partial-PID` and `.NAME.old-PID` folders whose process has ended: a kill or
+/// a crash skips the destructor and commit() that would have removed them.
+void removeStaleStaging(const fs::path& parent, const std::string& name) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(parent, ec)) {
+    const std::string file = entry.path().filename().string();
+    for (const std::string prefix : {"." + name + ".partial-", "." + name + ".old-"}) {
+      if (file.size() <= prefix.size() || file.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string pid = file.substr(prefix.size());
+      if (pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), [](unsigned char c) { return std::isdigit(c); }))
+        continue;
+      if (::kill(pid_t(std::stol(pid)), 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
+    }
+  }
+}
+
+/// A folder commit() may replace: empty, or written by radkit (one of the files every command
+/// writes). Anything else may be the user's own and is refused rather than deleted.
+bool replaceable(const fs::path& dir) {
+  if (fs::is_empty(dir)) return true;
+  for (const char* file : {"report.json", "patches.csv", "study.csv"})
+    if (fs::exists(dir / file)) return true;
+  return false;
+}
+
+}  // namespace
+
 OutputFolder::OutputFolder(std::string destination) : m_destination(std::move(destination)) {
   fs::path dest = fs::absolute(m_destination).lexically_normal();
   if (dest.filename().empty()) dest = dest.parent_path();
+  m_destination = dest.string();
   fs::path parent = dest.parent_path();
   std::error_code ec;
+  if (fs::exists(dest) && (!fs::is_directory(dest) || !replaceable(dest)))
+    throw std::runtime_error(dest.string() + " exists and is not a radkit output folder (no report.json, "
+                             "patches.csv or study.csv), and an output folder is replaced whole. Fix: "
+                             "choose another --out, or empty or remove that folder.");
   fs::create_directories(parent, ec);
   if (ec) throw std::runtime_error("cannot create the folder " + parent.string() + ": " + ec.message());
+  removeStaleStaging(parent, dest.filename().string());
   m_staging = (parent / ("." + dest.filename().string() + ".partial-" + std::to_string(::getpid()))).string();
   fs::remove_all(m_staging, ec);
   fs::create_directories(m_staging, ec);
@@ -36,15 +75,26 @@ std::string OutputFolder::path(const std::string& name) {
 
 std::vector<std::string> OutputFolder::commit() {
   std::vector<std::string> done;
-  fs::create_directories(m_destination);
-  for (const std::string& name : m_names) {
-    fs::path from = fs::path(m_staging) / name;
-    if (!fs::exists(from)) continue;
-    fs::path to = fs::path(m_destination) / name;
-    fs::rename(from, to);
-    done.push_back(to.string());
+  for (const std::string& name : m_names)
+    if (fs::exists(fs::path(m_staging) / name)) done.push_back((fs::path(m_destination) / name).string());
+  // One rename publishes the whole folder; an earlier one is moved aside first and removed
+  // after, so the destination never holds a mix of two runs or part of one.
+  const fs::path dest(m_destination);
+  fs::path aside;
+  std::error_code ec;
+  if (fs::exists(dest)) {
+    aside = dest.parent_path() / ("." + dest.filename().string() + ".old-" + std::to_string(::getpid()));
+    fs::remove_all(aside, ec);
+    fs::rename(dest, aside);
+  }
+  try {
+    fs::rename(m_staging, dest);
+  } catch (...) {
+    if (!aside.empty()) fs::rename(aside, dest, ec);
+    throw;
   }
   m_committed = true;
+  if (!aside.empty()) fs::remove_all(aside, ec);
   return done;
 }
 

@@ -6,9 +6,13 @@
 
 namespace radkit {
 
-/// Files are written into a hidden staging folder beside the destination; commit() renames
-/// each into the destination (created if needed). A folder destroyed before commit() removes
-/// its staging folder, so a failed run leaves no partial output behind.
+/// Files are written into a hidden staging folder `.NAME.partial-PID` beside the destination;
+/// commit() renames that folder to the destination in one step, replacing an earlier output
+/// folder (moved aside to `.NAME.old-PID`, then removed). A folder destroyed before commit()
+/// removes its staging folder, so a failed run leaves no partial output behind; staging
+/// folders of processes that were killed are removed by the next OutputFolder of that name.
+/// An existing destination that radkit did not write (non-empty, none of report.json,
+/// patches.csv, study.csv) is refused by the constructor rather than deleted.
 class OutputFolder {
  public:
   explicit OutputFolder(std::string destination);
@@ -18,7 +22,7 @@ class OutputFolder {
 
   /// Path to write the file `name` to (inside the staging folder).
   std::string path(const std::string& name);
-  /// Moves every staged file into the destination; returns their final paths.
+  /// Publishes the staged folder as the destination; returns the final paths of the files.
   std::vector<std::string> commit();
   const std::string& destination() const { return m_destination; }
 

@@ -41,10 +41,13 @@ struct RunResult {
   std::string output;  ///< stdout and stderr together
 };
 
-/// Runs the radkit binary with `args` (shell words), capturing output and exit code.
-inline RunResult runRadkit(const std::string& args) {
+/// Runs the radkit binary with `args` (shell words), capturing output and exit code. With a
+/// time limit, a run still going after `seconds` is killed and exits 124 (timeout(1)), so a
+/// hang fails its test instead of stalling the suite.
+inline RunResult runRadkit(const std::string& args, int seconds = 0) {
   RunResult r;
-  std::string cmd = std::string("'") + RADKIT_BINARY + "' " + args + " 2>&1";
+  const std::string limit = seconds > 0 ? "timeout -k 5 " + std::to_string(seconds) + " " : "";
+  std::string cmd = limit + "'" + RADKIT_BINARY + "' " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   char buf[4096];
@@ -54,6 +57,8 @@ inline RunResult runRadkit(const std::string& args) {
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+inline RunResult runRadkitWithin(int seconds, const std::string& args) { return runRadkit(args, seconds); }
 
 /// Rows of a CSV file without quoted fields, each a map from header name to text.
 inline std::vector<std::map<std::string, std::string>> readCsv(const std::string& path) {

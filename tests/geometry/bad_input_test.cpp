@@ -140,6 +140,8 @@ INSTANTIATE_TEST_SUITE_P(
         bad("MissingMeshFile", sceneWith(R"({"name": "statue", "material": "grey", "mesh": "statue.ply"})"),
                 {"statue.ply", "not found"}),
         bad("EmptyScene", std::string("{") + kMaterials + R"(, "surfaces": []})", {"no surfaces"}),
+        bad("CoordinateBeyondRayTracer", sceneWith(square("sliver", "lamp", "[[0,0,0],[1e20,0,0],[1e20,1e-20,0],[0,1e-20,0]]")),
+                {"\"sliver\"", "vertex 1", "1e+20", "Fix"}),
         bad("DuplicateSurfaceName", sceneWith(square("a", "lamp", kSquare) + "," + square("a", "grey", kSquare)),
                 {"\"a\"", "used twice"})),
     [](const ::testing::TestParamInfo<BadCase>& param) { return std::string(param.param.name); });
@@ -248,6 +250,27 @@ TEST(MeshCli, WritesPatchesAndSummary) {
   r = test::runRadkit("--version");
   EXPECT_EQ(r.exitCode, 0);
   EXPECT_NE(r.output.find("radkit "), std::string::npos);
+}
+
+// Issue 20, point 3: a polygon of extreme aspect (1e20 x 1e-20) made Embree's ray.valid()
+// assertion abort `run` and leave its staging folder; it is refused while loading now, and a
+// thin but representable one (1e6 x 1e-6) still runs.
+TEST(BadInputCli, ExtremeAspectPolygonInRun) {
+  test::TempDir dir;
+  const std::string huge = dir.file("huge.json", sceneWith(
+      square("sliver", "lamp", "[[0,0,0],[1e20,0,0],[1e20,1e-20,0],[0,1e-20,0]]") + "," +
+      square("floor", "grey", "[[0,0,-1],[0,1,-1],[1,1,-1],[1,0,-1]]")));
+  test::RunResult r = test::runRadkitWithin(300, "run '" + huge + "' --patches 10 --no-render --out '" + dir.path("out") + "'");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("vertex 1 has a coordinate of 1e+20"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.path("out")));
+  for (const auto& entry : fs::directory_iterator(dir.path("")))
+    EXPECT_EQ(entry.path().filename().string().find(".out."), std::string::npos) << "staging left behind";
+  const std::string thin = dir.file("thin.json", sceneWith(
+      square("sliver", "lamp", "[[0,0,0],[1e6,0,0],[1e6,1e-6,0],[0,1e-6,0]]") + "," +
+      square("floor", "grey", "[[0,0,-1],[0,1,-1],[1,1,-1],[1,0,-1]]")));
+  r = test::runRadkitWithin(300, "run '" + thin + "' --patches 10 --no-render --out '" + dir.path("thin") + "'");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 
 #include "geometry/scene_loader.h"
@@ -155,6 +156,33 @@ TEST(Subdivision, MeshSurfaceConformsAcrossFaces) {
   PatchMesh mesh = subdivide(scene, {0, 320 * 9});
   EXPECT_EQ(mesh.size(), 320 * 9);                 // each triangle into 3×3
   EXPECT_NEAR(unmatchedEdgeLength(mesh, 0), 0, 0);  // closed: every edge has its twin
+}
+
+// A limit that would need more patches than int counts and memory allow is refused; before,
+// int(ceil(len/h)) overflowed and 1e-300 was silently ignored (patches of 1 m²).
+TEST(Subdivision, RefusesMoreThanMaxPatches) {
+  Scene scene = loadScene(test::dataPath("cornell-box.json"));
+  for (double area : {1e-300, 1e-12, 1e-9})
+    EXPECT_THROW(subdivide(scene, SubdivisionSettings{area, 0}), TooManyPatches) << area;
+  EXPECT_THROW(subdivide(scene, SubdivisionSettings{0, int(kMaxPatches) + 1}), TooManyPatches);
+  EXPECT_THROW(subdivide(scene, SubdivisionSettings{std::nan(""), 0}), std::invalid_argument);
+}
+
+// Edge lengths that overflow a double are named instead of becoming int(inf).
+TEST(Subdivision, RefusesSurfacesWhoseLengthsOverflow) {
+  Scene scene;
+  Surface s;
+  s.name = "huge";
+  s.source = "test: huge";
+  s.vertices = {{0, 0, 0}, {1e200, 0, 0}, {1e200, 1e200, 0}, {0, 1e200, 0}};
+  s.faces = {Face{{0, 1, 2, 3}}};
+  scene.surfaces.push_back(s);
+  try {
+    subdivide(scene, SubdivisionSettings{0, 100});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("test: huge is too large"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

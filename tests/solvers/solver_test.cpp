@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "analytic_systems.h"
+#include "solvers/convergence.h"
 
 namespace radkit {
 using namespace radkit::test;
@@ -72,6 +73,58 @@ TEST(Solve, ExactHistoryIsMonotoneInTimeAndIteration) {
     EXPECT_GE(r.history[k].seconds, r.history[k - 1].seconds);
   }
   EXPECT_EQ(r.history.back().residual, r.residual);
+}
+
+// report.json's exit_reason: one token per way a run can stop.
+TEST(Solve, ExactExitReasons) {
+  Problem p = randomReciprocal(40, 21);
+  EXPECT_EQ(runSolver("jacobi", p.system, 1e-12, ResidualNorm::Relative, 3).exit, "max_iterations");
+  EXPECT_EQ(runSolver("jacobi", p.system, 1e-6).exit, "converged");
+  Problem bad = makeProblem({0.0, 1.5, 1.5, 0.0}, {1.0, 1.0}, grey({0.9, 0.9}), grey({1.0, 0.0}));
+  EXPECT_EQ(runSolver("jacobi", bad.system, 1e-9).exit, "diverged");
+}
+
+// A tolerance below the rounding floor used to run to the iteration limit (10 million here);
+// a residual with no new low for kStagnationSweeps sweeps now stops the run and says so.
+TEST(Solve, ExactStagnationStopsAndSaysWhy) {
+  Problem p = cubeOneEmitter(0.5);
+  int stagnated = 0;
+  for (const std::string& name : solverNames()) {
+    const SolveResult r = runSolver(name, p.system, 1e-300);
+    EXPECT_LT(r.iterations, 1000000) << name;
+    if (r.converged) continue;  // some reach (near) the exact fixed point: nothing to stagnate
+    EXPECT_EQ(r.exit, "stagnated") << name << ": " << r.reason;
+    EXPECT_EQ(r.reason.rfind("stagnated: no residual below", 0), 0u) << r.reason;
+    ++stagnated;
+  }
+  EXPECT_GT(stagnated, 0) << "no solver stagnated: the test shows nothing";
+}
+
+// The residual's reduction per sweep tends to ρ for Jacobi in a closed box of uniform ρ.
+TEST(Solve, ExactSpectralRadiusEstimate) {
+  const SolveResult r = runSolver("jacobi", cubeOneEmitter(0.9).system, 1e-12);
+  ASSERT_GT(r.iterations, 2 * kRateWindowSweeps);
+  EXPECT_NEAR(r.spectralRadius, 0.9, 1e-6);
+}
+
+// A long run keeps a bounded, logarithmically spaced history: every row up to 1000, then 900
+// per decade of iterations, the first row of each residual decade, and the last row.
+TEST(Solve, ExactHistoryIsDecimatedLogarithmically) {
+  const SolveResult r = runSolver("jacobi", cubeOneEmitter(0.9999).system, 1e-9);
+  ASSERT_TRUE(r.converged) << r.reason;
+  ASSERT_GT(r.iterations, 100000);
+  EXPECT_LT(r.history.size(), 1000u + 900u * 3 + 20u) << r.iterations << " iterations";
+  for (std::size_t k = 0; k < 1000; ++k) EXPECT_EQ(r.history[k].iteration, long(k));
+  for (std::size_t k = 1; k < r.history.size(); ++k) EXPECT_GT(r.history[k].iteration, r.history[k - 1].iteration);
+  EXPECT_EQ(r.history.back().iteration, r.iterations);
+  EXPECT_EQ(r.history.back().residual, r.residual);
+  // Milestones at powers of ten stay exact: one iteration earlier the residual was above.
+  const Milestone m = milestones(r, {1e-6})[0];
+  ASSERT_TRUE(m.reached);
+  ASSERT_GT(m.iterations, 1000);
+  const SolveResult before = runSolver("jacobi", cubeOneEmitter(0.9999).system, 1e-9, ResidualNorm::Relative,
+                                       m.iterations - 1);
+  EXPECT_GT(before.residual, 1e-6);
 }
 
 }  // namespace radkit

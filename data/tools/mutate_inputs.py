@@ -1,0 +1,177 @@
+#!/usr/bin/env python3
+"""Bounded mutation run over radkit's loaders: mutated copies of data/ scenes and of meshes
+derived from data/sphere-interior.off (OFF, ASCII and binary PLY, ASCII and binary STL, OBJ+MTL)
+go through `radkit mesh` (every case), `radkit run` (every fourth, small mesh), `radkit render`
+and `radkit photons` (every eighth each, small), each with a time limit. Counts outcomes:
+success (exit 0), clean error (non-zero exit with an error message and no output), crash (a
+signal, an abort or an uncaught exception), hang (time limit), silent failure or error with
+output (neither should occur), and staging folders left behind. Exits 1 when any case is
+neither a success nor a clean error. Reproducible: the same --seed gives the same inputs.
+
+  python3 data/tools/mutate_inputs.py --radkit build/apps/radkit --cases 1000 --work /tmp/mut
+"""
+import argparse, json, os, random, re, shutil, struct, subprocess, sys
+
+HOSTILE = ["nan", "-inf", "inf", "1e999", "-1", "0", "1e20", "4000000000", "-2147483648",
+           "99999999999999", "1e-300", "0.5", "x", "", "3.0", "-0"]
+
+
+def read_off(path):
+    tokens = [l.split() for l in open(path) if l.strip() and not l.startswith("#")]
+    nv, nf = int(tokens[1][0]), int(tokens[1][1])
+    verts = [list(map(float, t[:3])) for t in tokens[2:2 + nv]]
+    faces = [list(map(int, t[1:1 + int(t[0])])) for t in tokens[2 + nv:2 + nv + nf]]
+    return verts, faces
+
+
+def seeds(data):
+    """(file name, bytes, kind) of every seed; kind 'scene' is given to radkit directly."""
+    out = []
+    for name in sorted(os.listdir(data)):
+        if name.endswith(".json") and os.path.getsize(os.path.join(data, name)) < 200000:
+            out.append((name, open(os.path.join(data, name), "rb").read(), "scene"))
+    verts, faces = read_off(os.path.join(data, "sphere-interior.off"))
+    off = "OFF\n%d %d 0\n" % (len(verts), len(faces)) + "".join("%r %r %r\n" % tuple(v) for v in verts) + \
+          "".join("3 %d %d %d\n" % tuple(f) for f in faces)
+    out.append(("m.off", off.encode(), "mesh"))
+    head = "ply\nformat %s 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n" \
+           "element face %d\nproperty list uchar int vertex_indices\nend_header\n"
+    ply = head % ("ascii", len(verts), len(faces)) + "".join("%r %r %r\n" % tuple(v) for v in verts) + \
+          "".join("3 %d %d %d\n" % tuple(f) for f in faces)
+    out.append(("m.ply", ply.encode(), "mesh"))
+    body = b"".join(struct.pack("<3f", *v) for v in verts) + b"".join(struct.pack("<B3i", 3, *f) for f in faces)
+    out.append(("b.ply", (head % ("binary_little_endian", len(verts), len(faces))).encode() + body, "mesh"))
+    stl = "solid s\n" + "".join("facet normal 0 0 0\nouter loop\n" + "".join("vertex %r %r %r\n" % tuple(verts[i]) for i in f) +
+                                "endloop\nendfacet\n" for f in faces) + "endsolid s\n"
+    out.append(("m.stl", stl.encode(), "mesh"))
+    bstl = b"\0" * 80 + struct.pack("<I", len(faces)) + b"".join(
+        struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *verts[i]) for i in f) + b"\0\0" for f in faces)
+    out.append(("b.stl", bstl, "mesh"))
+    obj = "mtllib m.mtl\n" + "".join("v %r %r %r\n" % tuple(v) for v in verts) + "g ball\nusemtl lamp\n" + \
+          "".join("f %d %d %d\n" % (f[0] + 1, f[1] + 1, f[2] + 1) for f in faces)
+    out.append(("m.obj", obj.encode(), "scene"))
+    return out
+
+
+def mutate(data, rng):
+    """One to three random edits: byte flips, truncation, line deletion or duplication,
+    a number replaced by a hostile value, a random chunk repeated, a number scaled a little."""
+    for _ in range(rng.choice([1, 1, 1, 2, 3])):
+        op = rng.randrange(7)
+        if not data:
+            break
+        if op == 0:
+            b = bytearray(data)
+            for _ in range(rng.randint(1, 8)):
+                b[rng.randrange(len(b))] = rng.randrange(256)
+            data = bytes(b)
+        elif op == 1:
+            data = data[:rng.randrange(len(data))]
+        elif op in (2, 3):
+            lines = data.split(b"\n")
+            k = rng.randrange(len(lines))
+            if op == 2:
+                del lines[k]
+            else:
+                lines.insert(k, lines[k])
+            data = b"\n".join(lines)
+        elif op == 4:
+            nums = list(re.finditer(rb"-?\d+(\.\d+)?(e-?\d+)?", data))
+            if nums:
+                m = rng.choice(nums[:200] if rng.random() < 0.5 else nums)
+                data = data[:m.start()] + rng.choice(HOSTILE).encode() + data[m.end():]
+        elif op == 5:
+            a = rng.randrange(len(data))
+            data = data[:a] + data[a:a + rng.randint(1, 64)] * rng.randint(2, 5) + data[a:]
+        else:  # a plausible value: a number scaled a little, so many cases still load
+            nums = list(re.finditer(rb"\d+\.\d+", data))
+            if nums:
+                m = rng.choice(nums)
+                value = float(m.group()) * rng.uniform(0.5, 1.5)
+                data = data[:m.start()] + ("%.6g" % value).encode() + data[m.end():]
+    return data
+
+
+def classify(rc, output):
+    if rc < 0 or rc >= 128 or "terminate called" in output or "Assertion" in output:
+        return "crash"  # a signal, an abort or an uncaught exception
+    if rc == 0:
+        return "success"
+    return "clean error" if "error" in output.lower() else "silent failure"
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--radkit", required=True)
+    ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), ".."))
+    ap.add_argument("--cases", type=int, default=400)
+    ap.add_argument("--timeout", type=float, default=30)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--work", default="/tmp/radkit-mutate")
+    ap.add_argument("--log", help="write each case's outcome and first error line here")
+    args = ap.parse_args()
+    args.radkit = os.path.abspath(args.radkit)
+    rng = random.Random(args.seed)
+    base = seeds(args.data)
+    mtl = b"newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 1 1\n"
+    counts, cases = {}, []
+    for n in range(args.cases):
+        name, text, kind = base[n % len(base)]
+        case = os.path.join(args.work, "case%04d" % n)
+        shutil.rmtree(case, ignore_errors=True)
+        os.makedirs(case)
+        mutated = mutate(text, rng)
+        with open(os.path.join(case, name), "wb") as f:
+            f.write(mutated)
+        for mesh in ("sphere-interior.off", "terrain-51k.off"):  # meshes the data scenes name
+            os.symlink(os.path.abspath(os.path.join(args.data, mesh)), os.path.join(case, mesh))
+        with open(os.path.join(case, "m.mtl"), "wb") as f:
+            f.write(mutate(mtl, rng) if name == "m.obj" and rng.random() < 0.3 else mtl)
+        target = name
+        if kind == "mesh":
+            target = "scene.json"
+            with open(os.path.join(case, target), "w") as f:
+                json.dump({"materials": {"lamp": {"reflectance": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
+                           "surfaces": [{"name": "m", "material": "lamp", "mesh": name}]}, f)
+        commands = [["mesh", target, "--out", "o-mesh"]]
+        if n % 4 == 0:
+            commands.append(["run", target, "--patches", "60", "--no-render", "--out", "o-run"])
+        if n % 8 == 1:
+            commands.append(["render", target, "--size", "24x24", "--spp", "2", "--out", "o-render.png"])
+        if n % 8 == 5:
+            commands.append(["photons", target, "--photons", "2000", "--no-radiosity", "--no-image",
+                             "--bench-rays", "0", "--out", "o-photons"])
+        for cmd in commands:
+            try:
+                p = subprocess.run([args.radkit] + cmd, cwd=case, capture_output=True, timeout=args.timeout)
+                outcome = classify(p.returncode, (p.stdout + p.stderr).decode(errors="replace"))
+                rc = p.returncode
+                if rc != 0 and os.path.exists(os.path.join(case, cmd[-1])):
+                    outcome = "error with output"
+            except subprocess.TimeoutExpired:
+                outcome, rc = "hang", None
+            if args.log:
+                text = (p.stdout + p.stderr).decode(errors="replace") if rc is not None else ""
+                first = next((l for l in text.splitlines() if "error" in l.lower()), "")
+                with open(args.log, "a") as log:
+                    log.write("%s\t%s\t%s\t%s\t%s\n" % (case, name, cmd[0], outcome, first[:300]))
+            key = (cmd[0], outcome)
+            counts[key] = counts.get(key, 0) + 1
+            if outcome not in ("success", "clean error"):
+                cases.append("%s %s %s: %s (exit %s)" % (case, cmd[0], name, outcome, rc))
+        left = [e for e in os.listdir(case) if ".partial-" in e or ".old-" in e]
+        if left:
+            counts[("staging", "left behind")] = counts.get(("staging", "left behind"), 0) + 1
+        elif not cases or not cases[-1].startswith(case + " "):
+            shutil.rmtree(case)  # keep only the cases worth looking at
+    total = sum(v for (c, _), v in counts.items() if c != "staging")
+    print("inputs: %d, command runs: %d" % (args.cases, total))
+    for (command, outcome), v in sorted(counts.items()):
+        print("  %-8s %-12s %d" % (command, outcome, v))
+    for line in cases:
+        print("  " + line)
+    return 1 if cases else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

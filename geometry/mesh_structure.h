@@ -1,0 +1,19 @@
+// Checks the structure of mesh files before a reader parses them: header counts against the
+// file's size, face indices against the vertex count, truncation. OpenMesh's and
+// tinyobjloader's readers trust these, and then allocate without bound, loop forever, read out
+// of bounds or silently drop faces. Internal to geometry/.
+#pragma once
+
+#include <string>
+
+namespace radkit {
+
+/// Throws InputError naming path unless it is a regular file (FIFOs and devices hang readers).
+void requireRegularFile(const std::string& path, const std::string& what);
+
+/// \brief Throws InputError naming path, the line or element, and the fix when an OBJ (and the
+///        MTL files it names), OFF, PLY or STL file is malformed. Returns the number of faces
+///        the file declares (OFF, PLY, STL), or -1 where it declares none (OBJ).
+long long checkMeshStructure(const std::string& path);
+
+}  // namespace radkit
