@@ -213,7 +213,10 @@ void runStudyCommand(StudyCommand& cmd) {
     progress.finish();
     std::fprintf(stderr, "study: %s\n", line.c_str());
   };
-  StudyResult r = runStudy(scene, cmd.settings, log);
+  // The hierarchical ladder gets the last fifth of the budget; the sweeps would spend all of it.
+  StudySettings sweeps = cmd.settings;
+  if (!cmd.epsilons.empty()) sweeps.maxSeconds *= 0.8;
+  StudyResult r = runStudy(scene, sweeps, log);
   addHierarchicalRows(scene, cmd, r, log);
   progress.finish();
   OutputFolder folder(cmd.out);

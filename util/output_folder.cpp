@@ -23,7 +23,7 @@ void removeStaleStaging(const fs::path& parent, const std::string& name) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(parent, ec)) {
     const std::string file = entry.path().filename().string();
-    for (const std::string prefix : {"." + name + ".partial-", "." + name + ".old-"}) {
+    for (const std::string& prefix : {"." + name + ".partial-", "." + name + ".old-"}) {
       if (file.size() <= prefix.size() || file.compare(0, prefix.size(), prefix) != 0) continue;
       const std::string pid = file.substr(prefix.size());
       if (pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), [](unsigned char c) { return std::isdigit(c); }))

@@ -60,7 +60,7 @@ TEST(HierarchicalCli, DenseOnlyOptionsAndBadValuesAreRefused) {
 TEST(HierarchicalCli, StudyMeasuresTheEpsilonLadder) {
   TempDir dir;
   std::string out = dir.path("study");
-  RunResult r = runRadkit("study " + dataPath("cube-one-emitter.json") + " --max-seconds 8 --epsilons 1e-2 1e-3 --out " + out);
+  RunResult r = runRadkit("study " + dataPath("cube-one-emitter.json") + " --max-seconds 10 --epsilons 1e-2 1e-3 --out " + out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   int ran = 0;
   std::vector<double> errors;
