@@ -250,7 +250,7 @@ void addStudyCommand(CLI::App& app) {
       ->check(CLI::IsMember({250, 500, 1000, 2000, 4000}))
       ->capture_default_str();
   sub->add_option("--seed", cmd->settings.baseline.formFactors.seed, "Seed of every random stream")->capture_default_str();
-  sub->add_option("--epsilons", cmd->epsilons, "Hierarchical method's ladder of --epsilon (none: leave it out)")
+  sub->add_option("--epsilons", cmd->epsilons, "Hierarchical method's ladder of --epsilon, measured after the other knobs")
       ->check(CLI::PositiveNumber & CLI::Range(0.0, 1.0))
       ->capture_default_str();
   sub->add_option("--out", cmd->out, "Output folder")->required();
