@@ -4,6 +4,8 @@
 icosphere interior and a 51 200-triangle terrain room for scaling work. Run from data/."""
 import json, math
 
+from terrain import write_terrain_off
+
 def dump(name, scene):
     with open(name, "w") as f:
         json.dump(scene, f, indent=1)
@@ -167,18 +169,7 @@ dump("sphere-interior.json", {
 })
 
 # ---- Terrain room: a 160×160 heightfield (51 200 triangles) under an area light, for scaling.
-n, size = 160, 10.0
-with open("terrain-51k.off", "w") as out:
-    out.write("OFF\n%d %d 0\n" % ((n + 1) ** 2, 2 * n * n))
-    for j in range(n + 1):
-        for i in range(n + 1):
-            x, y = size * i / n, size * j / n
-            z = 0.4 * math.sin(0.9 * x) * math.cos(0.7 * y) + 0.15 * math.sin(2.3 * x + 1.1 * y)
-            out.write("%.17g %.17g %.17g\n" % (x, y, z))
-    for j in range(n):
-        for i in range(n):
-            a, b, c, d = j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1, (j + 1) * (n + 1) + i
-            out.write("3 %d %d %d\n3 %d %d %d\n" % (a, b, c, a, c, d))
+write_terrain_off("terrain-51k.off", 160)
 dump("terrain-room.json", {
     "name": "terrain-room",
     "description": "51 200-triangle terrain (terrain-51k.off) lit by a square area light 4 m above it.",

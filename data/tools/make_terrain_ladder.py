@@ -11,6 +11,8 @@ import json
 import math
 import os
 
+from terrain import write_terrain_off
+
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 parser.add_argument("outdir")
 parser.add_argument("--triangles", type=int, default=1000000, help="about this many terrain triangles")
@@ -21,18 +23,7 @@ size = 10.0
 os.makedirs(args.outdir, exist_ok=True)
 name = "terrain-%d" % (2 * n * n)
 mesh = os.path.join(args.outdir, name + ".off")
-with open(mesh, "w") as out:
-    out.write("OFF\n%d %d 0\n" % ((n + 1) ** 2, 2 * n * n))
-    for j in range(n + 1):
-        for i in range(n + 1):
-            x, y = size * i / n, size * j / n
-            z = 0.4 * math.sin(0.9 * x) * math.cos(0.7 * y) + 0.15 * math.sin(2.3 * x + 1.1 * y)
-            out.write("%.9g %.9g %.9g\n" % (x, y, z))
-    for j in range(n):
-        for i in range(n):
-            a, b, c, d = j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1, (j + 1) * (n + 1) + i
-            out.write("3 %d %d %d\n3 %d %d %d\n" % (a, b, c, a, c, d))
-
+write_terrain_off(mesh, n, size, "%.9g")
 
 def box(x0, y0, z0, sx, sy, sz):
     """Five outward faces of a box standing at height z0 (no bottom)."""
