@@ -152,14 +152,7 @@ void runHierarchicalJob(HierarchicalJob job) {
   LinkMatrixSettings matrix;
   matrix.colour = job.linkColour;
   matrix.title = scene.name + ": links as blocks of F, " + std::to_string(r.leaves.size()) + " leaves in tree order";
-  SourceState state;
-  state.radiosity.assign(r.hierarchy->size(), Vec3{});
-  for (std::size_t i = 0; i < r.leafNodes.size(); ++i) state.radiosity[r.leafNodes[i]] = r.radiosity[i];
-  state.powerVector.resize(r.hierarchy->size());
-  state.radiosityMin.resize(r.hierarchy->size());
-  state.radiosityMax.resize(r.hierarchy->size());
-  r.system->pull(state);
-  writeLinkMatrix(folder.path("links.png"), *r.hierarchy, r.system->links(), state, matrix);
+  writeLinkMatrix(folder.path("links.png"), *r.hierarchy, r.system->links(), r.state, matrix);
   if (!job.noRender) renderLeaves(folder, scene, r, job);
 
   double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -140,8 +140,8 @@ void HierarchicalSystem::gatherList(const std::vector<int>& receivers, const Sou
                     });
 }
 
-void HierarchicalSystem::pullNode(int n, SourceState& state) const {
-  const HNode& node = m_h[n];
+void pullNode(const Hierarchy& h, int n, SourceState& state) {
+  const HNode& node = h[n];
   if (node.isLeaf()) {
     state.radiosityMin[n] = state.radiosityMax[n] = maxComponent(state.radiosity[n]);
     return;
@@ -150,14 +150,14 @@ void HierarchicalSystem::pullNode(int n, SourceState& state) const {
   std::array<Vec3, 3> vec{};
   double lo = INFINITY, hi = -INFINITY;
   for (int k = 0; k < node.childCount; ++k) {
-    int c = m_h.child(n, k);
-    const HNode& child = m_h[c];
+    int c = h.child(n, k);
+    const HNode& child = h[c];
     Vec3 w = state.radiosity[c] * child.area;
     power += w;
     lo = std::min(lo, state.radiosityMin[c]), hi = std::max(hi, state.radiosityMax[c]);
     if (node.element) continue;
     if (child.element) {
-      const Vec3& nrm = m_h.polygon(c).normal;
+      const Vec3& nrm = h.polygon(c).normal;
       vec[0] += nrm * w.x, vec[1] += nrm * w.y, vec[2] += nrm * w.z;
     } else {
       for (int ch = 0; ch < 3; ++ch) vec[ch] += state.powerVector[c][ch];
@@ -168,10 +168,10 @@ void HierarchicalSystem::pullNode(int n, SourceState& state) const {
   if (!node.element) state.powerVector[n] = vec;
 }
 
-void HierarchicalSystem::pull(SourceState& state) const {
+void pull(const Hierarchy& h, SourceState& state) {
   // Children have larger numbers than their parents (clusters in preorder, split elements
   // appended), so a reverse walk pulls every child before its parent.
-  for (int n = m_h.size() - 1; n >= 0; --n) pullNode(n, state);
+  for (int n = h.size() - 1; n >= 0; --n) pullNode(h, n, state);
 }
 
 HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator& inherited, SourceState* state) {
@@ -219,7 +219,7 @@ HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator
     down.sum = h;
     recurse(down, node.level < kParallelElementLevel);
   }
-  if (state) pullNode(n, *state);
+  if (state) pullNode(m_h, n, *state);
   return change;
 }
 
@@ -247,7 +247,7 @@ HierarchicalSystem::Change HierarchicalSystem::sweep(SourceState& state) {
     gatherList(m_blockReceivers[b], state);
     change.add(pushPull(m_blocks[b], blockInherited[b], &state));
   }
-  for (auto it = m_aboveClusters.rbegin(); it != m_aboveClusters.rend(); ++it) pullNode(*it, state);
+  for (auto it = m_aboveClusters.rbegin(); it != m_aboveClusters.rend(); ++it) pullNode(m_h, *it, state);
   return change;
 }
 

@@ -16,6 +16,11 @@ namespace radkit {
 /// blocks before it already updated. Both give the same bits for any thread count.
 enum class GatherOrder { Jacobi, GaussSeidel };
 
+/// \brief Recomputes one inner node's radiosity, range and power vector from its children.
+void pullNode(const Hierarchy& h, int node, SourceState& state);
+/// \brief The same for every inner node, from the leaves up (needs no links).
+void pull(const Hierarchy& h, SourceState& state);
+
 class HierarchicalSystem {
  public:
   /// Links are sorted by receiver (then source) so every gather sums in one fixed order.
@@ -38,8 +43,6 @@ class HierarchicalSystem {
   };
   /// \brief One sweep: gather, push down to the leaves (B = E + ρH there), pull up.
   Change sweep(SourceState& state);
-  /// \brief Recomputes every inner node's radiosity and power vector from the leaves.
-  void pull(SourceState& state) const;
   /// \brief Irradiance H at every leaf (indexed by node) that the links deliver from `state`,
   /// without changing it. With B = 1 everywhere this is the row sum Σ_j F_ij of each leaf.
   std::vector<Vec3> leafIrradiance(const SourceState& state);
@@ -68,7 +71,6 @@ class HierarchicalSystem {
   /// Push-pull below `node` with what its ancestors gathered: records each leaf's H and, with a
   /// state, sets its B = E + ρH and pulls up; returns the largest change of a leaf's B.
   Change pushPull(int node, const Accumulator& inherited, SourceState* state);
-  void pullNode(int node, SourceState& state) const;
   void gatherList(const std::vector<int>& receivers, const SourceState& state);
 
   const Hierarchy& m_h;

@@ -235,7 +235,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   r.seconds.rayScene = since(t);
 
   // Start from B = E at the input faces.
-  SourceState state;
+  SourceState& state = r.state;
   state.radiosity.resize(h.size());
   state.powerVector.resize(h.size());
   state.radiosityMin.resize(h.size());
@@ -268,7 +268,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     t = Clock::now();
     Refiner refiner(h, *r.rays, rs);
     if (links.empty()) {
-      HierarchicalSystem(h, {}, settings.order).pull(state);
+      pull(h, state);
       links = refiner.rootLinks();
     }
     // Progress: the share of the candidates known so far that are settled (new candidates
@@ -284,7 +284,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     std::vector<char> closed = closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape);
     r.system.reset();
     r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed);
-    r.system->pull(state);
+    pull(h, state);
     info.refineSeconds = since(t);
     info.rays = stats.rays;
     info.links = static_cast<long long>(r.system->links().size());

@@ -49,6 +49,7 @@ struct HierarchicalResult {
   std::unique_ptr<RayScene> rays;  ///< over the input faces
   PatchMesh leaves;                ///< leaf elements in output order (grouped by surface)
   std::vector<int> leafNodes;      ///< node of each leaf patch
+  SourceState state;               ///< every node's radiosity (leaves solved, inner nodes pulled up)
   std::vector<Vec3> radiosity;     ///< B per leaf, W/m²
   std::vector<Vec3> irradiance;    ///< H per leaf, W/m²
   std::vector<double> rowSums;     ///< Σ_j F_ij of each leaf as the links see it
