@@ -16,6 +16,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 /// Relative accuracy of an element-to-element form factor's cubature.
 constexpr double kFormFactorTolerance = 1e-3;
+/// Nodes of the 2-point Gauss-Legendre rule on [0, 1]: where F is sampled over a receiver.
+const double kGauss2[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
 constexpr int kPartialRays = 4;
 /// Weight of the source's radiosity range in a link's error. The range bounds the error of
 /// using the source's mean; at weight 4 the Cornell box's worst surface moved from 2.50 % to
@@ -100,12 +102,11 @@ void Refiner::quarterShares(int r, int s, HLink& link) const {
   if (S.childCount != 4) return;
   const HPolygon& pr = m_h.polygon(r);
   PatchChart chart(pr.v, pr.count);
-  const double g[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
   double f[4] = {0, 0, 0, 0}, total = 0;
   for (int k = 0; k < 4; ++k) {
     const HPolygon& q = m_h.polygon(S.firstChild + k);
-    for (double a : g)
-      for (double b : g) {
+    for (double a : kGauss2)
+      for (double b : kGauss2) {
         Vec3 x = chart.point(a, b);
         if (dot(x - m_h[S.firstChild + k].centre, q.normal) > 0)
           f[k] += chart.jacobian(a, b) * pointToPolygonFormFactor(x, pr.normal, q.v, q.count);
@@ -180,10 +181,9 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
       return dot(x - S.centre, ps.normal) > 0 ? pointToPolygonFormFactor(x, pr.normal, ps.v, ps.count) : 0.0;
     };
     PatchChart chart(pr.v, pr.count);
-    const double g[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
-    double fMin = INFINITY, fMax = 0, sum = 0, weight = 0;
-    for (double a : g)
-      for (double b : g) {
+      double fMin = INFINITY, fMax = 0, sum = 0, weight = 0;
+    for (double a : kGauss2)
+      for (double b : kGauss2) {
         double f = pointValue(chart.point(a, b));
         double j = chart.jacobian(a, b);
         fMin = std::min(fMin, f), fMax = std::max(fMax, f);
