@@ -24,7 +24,7 @@ Vec3 absDiff(const Vec3& a, const Vec3& b) {
 }  // namespace
 
 HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links, GatherOrder order,
-                                       const std::vector<char>& closed)
+                                       const std::vector<char>& closed, const std::vector<char>& hidden)
     : m_h(h), m_links(std::move(links)) {
   tbb::parallel_sort(m_links.begin(), m_links.end(), [](const HLink& a, const HLink& b) {
     return a.receiver < b.receiver || (a.receiver == b.receiver && a.source < b.source);
@@ -53,6 +53,7 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
     for (std::size_t k = 0; k < m_slotTarget.size(); ++k) m_incoming[fill[m_slotTarget[k]]++] = static_cast<int>(k);
   }
   m_leafIrradiance.assign(h.size(), Vec3{});
+  m_fromParent.assign(h.size(), Vec3{});
 
   // Blocks in tree order; everything above them is gathered first in each sweep.
   const int blockLevel = order == GatherOrder::Jacobi ? 0 : kBlockLevel;
@@ -68,6 +69,16 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
     if (linkCount(n) > 0) m_aboveReceivers.push_back(n);
     stack.push_back(h.child(n, 1));
     stack.push_back(h.child(n, 0));
+  }
+  // Seen share of each node's area: hidden leaves count 0; parents after their children.
+  m_visibleFraction.assign(h.size(), 1.0);
+  {
+    std::vector<double> seen(h.size(), 0.0);
+    for (int n = h.size() - 1; n >= 0; --n) {
+      if (h[n].isLeaf()) seen[n] = n < static_cast<int>(hidden.size()) && hidden[n] ? 0.0 : h[n].area;
+      if (n > 0 && h[n].parent >= 0) seen[h[n].parent] += seen[n];
+      m_visibleFraction[n] = h[n].area > 0 ? std::min(1.0, seen[n] / h[n].area) : 1.0;
+    }
   }
   // Row sums, once per set of links: the irradiance every leaf gets when everything has B = 1.
   m_rowScale.assign(h.size(), 1.0);
@@ -100,10 +111,19 @@ void HierarchicalSystem::gather(int r, const SourceState& state) {
   Accumulator acc;
   const int slot0 = m_slotBegin[r], slots = m_slotBegin[r + 1] - slot0;
   for (int k = 0; k < slots; ++k) m_slots[slot0 + k] = Accumulator{};
+  const bool quarters = R.element && R.childCount == 4;
+  Vec3 toQuarter[4];
   for (int i = m_begin[r]; i < m_begin[r + 1]; ++i) {
     const HLink& l = m_links[i];
+    // A source nothing sees sends nothing (its rays' noise may still give a link V > 0).
+    if (!state.visibleArea.empty() && !(state.visibleArea[l.source] > 0)) continue;
     if (R.element && m_h[l.source].element) {
-      acc.sum += linkSourceRadiosity(m_h, state.radiosity, l) * (l.formFactor * l.visibility);
+      Vec3 e = linkSourceRadiosity(m_h, state.radiosity, l) * (l.formFactor * l.visibility);
+      if (quarters && l.receiverShare[0] >= 0) {
+        for (int k = 0; k < 4; ++k) toQuarter[k] += e * double(l.receiverShare[k]);
+      } else {
+        acc.sum += e;
+      }
       continue;
     }
     // Transfer between the centres: irradiance e = I_s(−ω) V / (d² + P_s/π) on a surface
@@ -125,6 +145,8 @@ void HierarchicalSystem::gather(int r, const SourceState& state) {
     }
   }
   m_acc[r] = acc;
+  if (quarters)
+    for (int k = 0; k < 4; ++k) m_fromParent[R.firstChild + k] = toQuarter[k];
 }
 
 HierarchicalSystem::Accumulator HierarchicalSystem::gathered(int n) const {
@@ -148,13 +170,16 @@ void pullNode(const Hierarchy& h, int n, SourceState& state) {
   }
   Vec3 power;
   std::array<Vec3, 3> vec{};
-  double lo = INFINITY, hi = -INFINITY;
+  double lo = INFINITY, hi = -INFINITY, seen = 0;
+  const bool hidden = !state.visibleArea.empty();
   for (int k = 0; k < node.childCount; ++k) {
     int c = h.child(n, k);
     const HNode& child = h[c];
-    Vec3 w = state.radiosity[c] * child.area;
+    const double a = hidden ? state.visibleArea[c] : child.area;
+    Vec3 w = state.radiosity[c] * a;
     power += w;
-    lo = std::min(lo, state.radiosityMin[c]), hi = std::max(hi, state.radiosityMax[c]);
+    seen += a;
+    if (a > 0) lo = std::min(lo, state.radiosityMin[c]), hi = std::max(hi, state.radiosityMax[c]);
     if (node.element) continue;
     if (child.element) {
       const Vec3& nrm = h.polygon(c).normal;
@@ -163,8 +188,10 @@ void pullNode(const Hierarchy& h, int n, SourceState& state) {
       for (int ch = 0; ch < 3; ++ch) vec[ch] += state.powerVector[c][ch];
     }
   }
-  state.radiosity[n] = node.area > 0 ? power / node.area : Vec3{};
+  state.radiosity[n] = seen > 0 ? power / seen : Vec3{};
+  if (!(lo <= hi)) lo = hi = 0;  // nothing below is seen
   state.radiosityMin[n] = lo, state.radiosityMax[n] = hi;
+  if (hidden) state.visibleArea[n] = seen;
   if (!node.element) state.powerVector[n] = vec;
 }
 
@@ -197,15 +224,20 @@ HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator
     // An input face turns its ancestors' irradiance vector into what its normal sees: exact
     // while the light comes from in front of the face, which the clusters' coherent parts
     // (normals within a narrow cone, each gathering its own links) make the rule.
-    Vec3 h = inherited.sum;
+    // Irradiance travels down per unit of seen area: the links' rays found the hidden part of
+    // a node blocked, so what they bring falls on the rest (a floor element half under a block
+    // gives its light to the uncovered half, not to leaves that nothing sees).
+    const double seen = m_visibleFraction[n];
+    Vec3 h = inherited.sum;  // per unit of seen area
     if (node.level == 0) {
       const Vec3& nrm = m_h.polygon(n).normal;
       h = {std::max(0.0, dot(nrm, inherited.vec[0])), std::max(0.0, dot(nrm, inherited.vec[1])),
            std::max(0.0, dot(nrm, inherited.vec[2]))};
+      h = seen > 0 ? h / seen : Vec3{};
     }
-    h += gathered(n).sum;
+    if (seen > 0) h += (gathered(n).sum + m_fromParent[n]) / seen;
     if (node.isLeaf()) {
-      h *= m_rowScale[n];
+      h *= seen * m_rowScale[n];
       m_leafIrradiance[n] = h;
       if (!state) return change;
       const SurfaceRadiometry& rad = m_h.radiometry(n);
@@ -260,14 +292,19 @@ std::vector<Vec3> HierarchicalSystem::leafIrradiance(const SourceState& state) {
   return m_leafIrradiance;
 }
 
+void HierarchicalSystem::setVisibleArea(SourceState& state) const {
+  state.visibleArea.resize(m_h.size());
+  for (int n = 0; n < m_h.size(); ++n) state.visibleArea[n] = m_visibleFraction[n] * m_h[n].area;
+}
+
 SourceState HierarchicalSystem::unitState() const {
   SourceState s;
   s.radiosity.assign(m_h.size(), Vec3{1, 1, 1});
   s.radiosityMin.assign(m_h.size(), 1.0);
   s.radiosityMax.assign(m_h.size(), 1.0);
   s.powerVector.resize(m_h.size());
-  for (int n = 0; n < m_h.size(); ++n)
-    if (!m_h[n].element) s.powerVector[n] = {m_h[n].areaNormal, m_h[n].areaNormal, m_h[n].areaNormal};
+  setVisibleArea(s);
+  pull(m_h, s);  // power vectors over the seen area, as the solve's pull makes them
   return s;
 }
 

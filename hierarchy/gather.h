@@ -29,7 +29,7 @@ class HierarchicalSystem {
   /// divided by the row sum its links add up to, which removes the error of gathering at a
   /// coarser receiver from the leaf's total. Empty: no leaf is taken as closed.
   HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links, GatherOrder order,
-                     const std::vector<char>& closed = {});
+                     const std::vector<char>& closed = {}, const std::vector<char>& hidden = {});
 
   const std::vector<HLink>& links() const { return m_links; }
   /// Links gathered by node n.
@@ -48,6 +48,8 @@ class HierarchicalSystem {
   std::vector<Vec3> leafIrradiance(const SourceState& state);
   /// \brief A state with B = 1 on every node (for row sums).
   SourceState unitState() const;
+  /// \brief Sets state.visibleArea (hidden leaves count 0) for pull().
+  void setVisibleArea(SourceState& state) const;
   /// Open leaves whose links add up to a row sum so far above 1 that ρ·(row sum) > (1 + ρ)/2,
   /// and the largest deviation |row sum − 1| of any leaf before scaling. Such an open leaf's
   /// irradiance is scaled down to that cap, so coarse links between nearby clusters can never
@@ -83,6 +85,10 @@ class HierarchicalSystem {
   std::vector<int> m_slotBegin, m_slotTarget, m_incomingBegin, m_incoming;
   std::vector<Accumulator> m_slots;
   std::vector<Vec3> m_leafIrradiance;
+  /// Per quarter of a split element: its share of its parent's links' irradiance beyond the
+  /// parent's mean (HLink::receiverShare); written only by the parent's gather.
+  std::vector<Vec3> m_fromParent;
+  std::vector<double> m_visibleFraction;  ///< per node: share of its area on leaves not hidden
   std::vector<double> m_rowScale;  ///< per node: 1 / max(1, row sum) at leaves
   int m_clamped = 0, m_normalised = 0;
   double m_largestRowSumError = 0;

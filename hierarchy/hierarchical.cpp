@@ -91,8 +91,10 @@ int closureRays(const SurfaceRadiometry& r) { return maxComponent(r.emission) > 
 /// The same rays estimate each leaf's escape fraction 1 − Σ_j F_ij (the share that misses
 /// every face's front), for an energy balance that does not rely on the links.
 std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::uint64_t seed,
-                               std::vector<char>& leafClosed, std::vector<char>& tested, std::vector<float>& escape) {
+                               std::vector<char>& leafClosed, std::vector<char>& tested, std::vector<float>& escape,
+                               std::vector<char>& hidden) {
   leafClosed.resize(h.size(), 0);
+  hidden.resize(h.size(), 0);
   tested.resize(h.size(), 0);
   escape.resize(h.size(), 0.0f);
   std::vector<int> todo;
@@ -109,15 +111,17 @@ std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::ui
       const int K = closureRays(h.radiometry(n));
       latinHypercube(K, 4, rng, u, scratch);
       Frame frame(p.normal);
-      int misses = 0;
+      int misses = 0, backs = 0;
       for (int k = 0; k < K; ++k) {
         const double* q = &u[std::size_t(k) * 4];
         Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
         Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
         std::optional<RayHit> hit = rays.closestHit(x, d, 0.0);
         misses += !(hit && dot(base.patches[hit->patch].normal, d) < 0);
+        backs += hit && dot(base.patches[hit->patch].normal, d) >= 0;
       }
       leafClosed[n] = misses == 0;
+      hidden[n] = backs == K;  // sees only the backs of faces (a floor under a block): nothing sees it
       escape[n] = float(misses) / K;
       tested[n] = 1;
     }
@@ -127,14 +131,15 @@ std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::ui
   // miss. An opening that large changes its row sums by at most that much.
   std::vector<double> cast(h.base().surfaceBegin.size(), 0), misses(cast.size(), 0);
   for (int n = 0; n < h.size(); ++n) {
-    if (!h[n].element || !h[n].isLeaf()) continue;
+    // A hidden leaf's rays hit the backs of faces enclosing it, not an opening.
+    if (!h[n].element || !h[n].isLeaf() || hidden[n]) continue;
     const double K = closureRays(h.radiometry(n));
     cast[h.surfaceOf(n)] += K;
     misses[h.surfaceOf(n)] += escape[n] * K;
   }
   std::vector<char> closed(h.size(), 0);
   for (int n = 0; n < h.size(); ++n)
-    closed[n] = h[n].element && h[n].isLeaf() && misses[h.surfaceOf(n)] <= kSeamMisses * cast[h.surfaceOf(n)];
+    closed[n] = h[n].element && h[n].isLeaf() && !hidden[n] && misses[h.surfaceOf(n)] <= kSeamMisses * cast[h.surfaceOf(n)];
   return closed;
 }
 
@@ -253,6 +258,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   std::vector<HLink> links;
   std::vector<char> leafClosed, tested;
   std::vector<float> escape;
+  std::vector<char> hidden;
   r.solve.solver = "hierarchical";
   r.solve.description = std::string("hierarchical radiosity with clustering, ") +
                         (settings.order == GatherOrder::Jacobi ? "Jacobi" : "Gauss-Seidel") +
@@ -265,6 +271,8 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     HierarchicalRound info;
     info.epsilon = settings.epsilon * std::pow(4.0, settings.rounds - 1 - round);
     rs.threshold = info.epsilon * emitted;
+    rs.round = round;
+    rs.last = round + 1 == settings.rounds;
     t = Clock::now();
     Refiner refiner(h, *r.rays, rs);
     if (links.empty()) {
@@ -281,9 +289,10 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     if (round + 1 == settings.rounds)
       links.erase(std::remove_if(links.begin(), links.end(), [](const HLink& l) { return !(l.visibility > 0); }),
                   links.end());
-    std::vector<char> closed = closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape);
+    std::vector<char> closed = closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape, hidden);
     r.system.reset();
-    r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed);
+    r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed, hidden);
+    r.system->setVisibleArea(state);
     pull(h, state);
     info.refineSeconds = since(t);
     info.rays = stats.rays;

@@ -143,16 +143,8 @@ void Hierarchy::finishCluster(int at) {
                                           angleBetween(node.coneAxis, b.coneAxis) + b.coneAngle));
 }
 
-bool Hierarchy::canSplit(int node, double minArea) const {
-  const HNode& n = m_nodes[node];
-  return n.element && (n.childCount > 0 || n.area >= 4.0 * minArea);
-}
-
-void Hierarchy::split(int node) {
-  if (m_nodes[node].childCount > 0) return;
-  const HPolygon parent = m_polygons[m_nodes[node].polygon];
+void quarterPolygons(const HPolygon& parent, HPolygon kids[4], double areas[4]) {
   const Vec3* v = parent.v;
-  HPolygon kids[4];
   if (parent.count == 4) {
     Vec3 m01 = (v[0] + v[1]) * 0.5, m12 = (v[1] + v[2]) * 0.5, m23 = (v[2] + v[3]) * 0.5,
          m30 = (v[3] + v[0]) * 0.5, c = (v[0] + v[1] + v[2] + v[3]) * 0.25;
@@ -167,6 +159,23 @@ void Hierarchy::split(int node) {
     kids[2] = {{m20, m12, v[2], {}}, 3, parent.normal};
     kids[3] = {{m01, m12, m20, {}}, 3, parent.normal};
   }
+  for (int k = 0; k < 4; ++k) {
+    const HPolygon& p = kids[k];
+    areas[k] = 0;
+    for (int t = 1; t + 1 < p.count; ++t) areas[k] += 0.5 * length(cross(p.v[t] - p.v[0], p.v[t + 1] - p.v[0]));
+  }
+}
+
+bool Hierarchy::canSplit(int node, double minArea) const {
+  const HNode& n = m_nodes[node];
+  return n.element && (n.childCount > 0 || n.area >= 4.0 * minArea);
+}
+
+void Hierarchy::split(int node) {
+  if (m_nodes[node].childCount > 0) return;
+  HPolygon kids[4];
+  double areas[4];
+  quarterPolygons(m_polygons[m_nodes[node].polygon], kids, areas);
   const int first = size();
   const HNode up = m_nodes[node];
   for (int k = 0; k < 4; ++k) {
@@ -180,14 +189,11 @@ void Hierarchy::split(int node) {
     child.reflectanceMax = up.reflectanceMax;
     child.coneAxis = up.coneAxis;
     const HPolygon& p = kids[k];
-    // Area and centroid by the fan of the (planar, convex) polygon.
+    // Centroid by the fan of the (planar, convex) polygon.
     Vec3 c;
-    double area = 0;
-    for (int t = 1; t + 1 < p.count; ++t) {
-      double a = 0.5 * length(cross(p.v[t] - p.v[0], p.v[t + 1] - p.v[0]));
-      c += (p.v[0] + p.v[t] + p.v[t + 1]) * (a / 3.0);
-      area += a;
-    }
+    for (int t = 1; t + 1 < p.count; ++t)
+      c += (p.v[0] + p.v[t] + p.v[t + 1]) * (0.5 * length(cross(p.v[t] - p.v[0], p.v[t + 1] - p.v[0])) / 3.0);
+    const double area = areas[k];
     child.area = area;
     child.centre = area > 0 ? c / area : p.v[0];
     child.areaNormal = p.normal * area;

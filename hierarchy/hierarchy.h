@@ -42,6 +42,10 @@ struct HPolygon {
   Vec3 normal;
 };
 
+/// \brief The four quarters of an element's polygon by midpoint subdivision (the children
+/// Hierarchy::split makes, in the same order), and their areas.
+void quarterPolygons(const HPolygon& p, HPolygon kids[4], double areas[4]);
+
 /// Per-surface material data the hierarchy needs (radiosity uses only the diffuse part).
 struct SurfaceRadiometry {
   Vec3 reflectance;  ///< ρ per channel in [0, 1)

@@ -17,13 +17,27 @@ struct HLink {
   int receiver = -1;
   int source = -1;
   double formFactor = 0;      ///< element ← element: unoccluded F_rs; otherwise unused (0)
-  float visibility = 1;       ///< kernel-weighted visible fraction V̂ from K rays
-  float visibilityError = 0;  ///< its standard error (delta method); float: a diagnostic only
+  /// Visible share from rays: for element pairs the control-variate estimate with the
+  /// unoccluded F, else the kernel-weighted ratio; times 1/P for a link that looked blocked and
+  /// survived the last round's roulette with probability P (refine.cpp), so it may exceed 1.
+  float visibility = 1;
+  /// Its standard error (delta method); when every ray agreed, 1/(rays + 1). Float: an error.
+  float visibilityError = 0;
   /// Element ← split element: the share of F_rs each quarter of s stands for (from r's Gauss
   /// points), so the gather weighs the quarters' radiosity instead of taking s's mean: the mean
   /// misses that r sees the bright part of s better or worse than the dark part. Negative
   /// first entry: not set (s unsplit). Float: shares of a sum that is itself stored in double.
   float quarterShare[4] = {-1, 0, 0, 0};
+  /// Element source: kernel-weighted visible fraction of each quarter of s from the rays that
+  /// ended there (−1: none did), so the shares above count the quarters r sees, not only how
+  /// close they are: a floor element half under a block is seen by its lit half only.
+  float quarterVisible[4] = {-1, -1, -1, -1};
+  /// Element receiver: what each quarter of r gets of the link's irradiance, as a multiple of
+  /// r's mean (area-weighted mean 1; negative first entry: the same everywhere). From F at the
+  /// quarters' centroids and the rays that started there, so when r is split the light goes
+  /// where it falls: not onto the part of a floor element hidden under a block, which would
+  /// absorb it unseen.
+  float receiverShare[4] = {-1, 0, 0, 0};
 };
 
 /// Radiosity of source s as link l sees it: its quarters weighted by the link's shares where
@@ -51,6 +65,11 @@ struct SourceState {
   /// source's mean B errs by up to this where the part the receiver sees is brighter or darker
   /// than the rest (the lit part of a floor around a block's shadow).
   std::vector<double> radiosityMin, radiosityMax;
+  /// Area of each node that can be seen: leaves that see nothing (a floor under a block; by
+  /// reciprocity nothing sees them) count 0. A node's radiosity is the mean over this area: the
+  /// rays of a link to it already count its hidden part as blocked, so the whole-area mean
+  /// would count that part's darkness twice. Empty: every leaf counts.
+  std::vector<double> visibleArea;
 };
 
 /// \brief Σ_k X_k max(0, n_k·w) for weights X_k >= 0 and unit normals n_k, from X = Σ X_k and

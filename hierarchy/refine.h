@@ -16,9 +16,11 @@ namespace radkit {
 
 struct RefineSettings {
   double threshold = 0;     ///< τ: the largest error a link may carry, W (scene units² · W/m²)
+  bool last = true;          ///< the last round: blocked links may be dropped (by roulette)
   double minArea = 0;       ///< elements are not split below this area (scene units²)
   int raysPerLink = 16;     ///< K visibility rays per new link
   std::uint64_t seed = 1;
+  int round = 0;  ///< refine-and-solve round: each round's visibility rays are a fresh stream
   std::size_t memoryBudget = std::size_t(8) << 30;
   std::size_t fixedBytes = 0;  ///< memory outside the hierarchy and links (mesh, Embree)
 };
@@ -63,10 +65,22 @@ class Refiner {
   /// Unoccluded element ← element form factor by adaptive cubature over the receiver, to a
   /// relative tolerance of the four-point `estimate`.
   double elementFormFactor(int r, int s, double estimate) const;
-  /// Sets link.quarterShare from r's Gauss points when s is split into quarters.
+  struct VisibilityEstimate {
+    double visible = 1, standardError = 0.5;
+    /// Mean over all rays of w·(1 − v), w = cosθ_x cosθ_y / r² (0 where they do not face), and
+    /// its standard error: with the unoccluded F it gives an unbiased visible share.
+    double blockedKernel = 0, blockedKernelError = 0;
+    float quarter[4] = {-1, -1, -1, -1};          ///< per quarter of an element source
+    float receiverQuarter[4] = {-1, -1, -1, -1};  ///< per quarter of an element receiver
+  };
+  /// Sets link.quarterShare from r's Gauss points and link.quarterVisible when s is split
+  /// into quarters.
   void quarterShares(int r, int s, HLink& link) const;
-  /// Kernel-weighted visible fraction from K segments between the nodes, and its error.
-  std::pair<double, double> visibleFraction(int r, int s, int rays) const;
+  /// Sets link.receiverShare from F at the centroids of r's quarters and their visibility.
+  void receiverShares(int r, int s, const VisibilityEstimate& v, HLink& link) const;
+  /// Kernel-weighted visible fraction from K segments between the nodes, and its error;
+  /// independent streams of segments for different `stream`.
+  VisibilityEstimate visibleFraction(int r, int s, int rays, int stream) const;
 
   Hierarchy& m_h;
   const Visibility& m_visibility;

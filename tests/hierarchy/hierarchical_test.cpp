@@ -6,6 +6,8 @@
 #include <cmath>
 #include <tbb/global_control.h>
 
+#include "geometry/ray_scene.h"
+#include "geometry/sampling.h"
 #include "hierarchy/hierarchical.h"
 #include "hierarchy/refine.h"
 #include "hierarchy/link_matrix.h"
@@ -146,6 +148,38 @@ TEST(Hierarchical, FurnaceWithClusters) {
   EXPECT_LT(hr.energy.relativeImbalance, 4 * hr.escapedStandardError.y / hr.energy.emitted.y + 1e-9);
 }
 
+/// The furnace again with a box (five faces, open below) resting on the floor: every leaf that
+/// sees the enclosure has B = E/(1 − ρ) = 20; the floor under the box sees only the backs of the
+/// box's faces, gets no light and keeps B = E = 1. Its rays must not open the floor (then no
+/// floor leaf would be normalised), and light gathered by coarse floor elements must go to the
+/// part of them that is seen, not to the leaves under the box.
+TEST(Hierarchical, FurnaceWithABoxOnTheFloor) {
+  SceneBuilder b;
+  int glow = b.material("glow", {0.95, 0.95, 0.95}, {1, 1, 1});
+  b.cube(4, glow, glow);
+  const double lo = 0.25, hi = 0.75, top = 0.4;  // on the floor faces' edges
+  b.rectangle("box top", glow, {lo, lo, top}, {hi - lo, 0, 0}, {0, hi - lo, 0}, 2, 2);
+  b.rectangle("box y0", glow, {lo, lo, 0}, {hi - lo, 0, 0}, {0, 0, top}, 2, 1);
+  b.rectangle("box y1", glow, {lo, hi, 0}, {0, 0, top}, {hi - lo, 0, 0}, 1, 2);
+  b.rectangle("box x0", glow, {lo, lo, 0}, {0, 0, top}, {0, hi - lo, 0}, 1, 2);
+  b.rectangle("box x1", glow, {hi, lo, 0}, {0, hi - lo, 0}, {0, 0, top}, 2, 1);
+  HierarchicalSettings s;
+  s.epsilon = 1e-3;
+  s.stopping.tolerance = 1e-10;
+  HierarchicalResult hr = solveHierarchical(b.scene, s);
+  int under = 0;
+  for (int i = 0; i < hr.leaves.size(); ++i) {
+    const Patch& p = hr.leaves.patches[i];
+    const bool covered = p.centroid.z < 1e-9 && p.centroid.x > lo && p.centroid.x < hi && p.centroid.y > lo &&
+                         p.centroid.y < hi;
+    under += covered;
+    EXPECT_NEAR(hr.radiosity[i].y, covered ? 1.0 : 20.0, 20.0 * 1e-8)
+        << "leaf " << i << " at (" << p.centroid.x << ", " << p.centroid.y << ", " << p.centroid.z << ")";
+  }
+  EXPECT_GT(under, 0);
+  EXPECT_EQ(hr.system->normalisedLeaves(), hr.leaves.size() - under);
+}
+
 /// An open scene: nothing is normalised, and a row sum far above 1 (a coarse ε between nearby
 /// clusters) is capped so the solve still converges at ρ = 0.99.
 TEST(Hierarchical, OpenSceneNearUnitReflectanceConverges) {
@@ -194,6 +228,60 @@ TEST(Hierarchical, ViewFactorThroughClusterLinksWithinTheLinkBound) {
   }
   EXPECT_LT(errors[2], errors[0]);
   EXPECT_LT(errors[2], 1e-3);
+}
+
+/// Partly blocked links, few rays: the visible share is estimated from K = 4 rays per link, and
+/// which links are kept or dropped depends on rays too. Kept values come from rays independent
+/// of those choices, blocked links are dropped by Russian roulette, and the visible share is a
+/// control-variate estimate, so the power reaching a partly shadowed receiver is unbiased: over
+/// 16 seeds its mean agrees with a Monte Carlo reference (10⁷ cosine rays from the emitter)
+/// within 4 standard errors of the difference. (Dropping every link whose rays were all
+/// blocked gave 1.8 % too little light here, 6 % when earlier rounds kept them.)
+TEST(Hierarchical, ShadowedPowerIsUnbiasedWithFewRays) {
+  SceneBuilder b;
+  int lamp = b.material("lamp", {0, 0, 0}, {1, 1, 1});
+  int grey = b.material("grey", {0.5, 0.5, 0.5}, {});
+  int black = b.material("black", {0, 0, 0}, {});
+  b.rectangle("emitter", lamp, {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, 4, 4);
+  b.rectangle("receiver", grey, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 4, 4);
+  b.rectangle("blocker", black, {0.15, 0.2, 0.45}, {0, 0.45, 0}, {0.5, 0, 0}, 2, 2);
+
+  // Reference: the share of the emitter's power whose first hit is the receiver's front.
+  PatchMesh base = subdivide(b.scene, {});
+  RayScene rays(base);
+  Rng rng(7, 0, 0);
+  const long N = 10000000;
+  long hits = 0;
+  Frame down({0, 0, -1});
+  for (long k = 0; k < N; ++k) {
+    Vec3 x{rng.uniform(), rng.uniform(), 1.0};
+    Vec3 d = down.toWorld(sampleCosineHemisphere(rng.uniform(), rng.uniform()));
+    std::optional<RayHit> hit = rays.closestHit(x, d, 1e-6);  // past the emitter itself
+    hits += hit && base.patches[hit->patch].surface == 1 && d.z < 0;
+  }
+  const double p = double(hits) / N, reference = p, referenceSe = std::sqrt(p * (1 - p) / N);
+
+  std::vector<double> power;
+  for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+    HierarchicalSettings s;
+    s.epsilon = 1e-3;
+    s.raysPerLink = 4;
+    s.seed = seed;
+    HierarchicalResult hr = solveHierarchical(b.scene, s);
+    double sum = 0;
+    for (int i = hr.leaves.surfaceBegin[1]; i < hr.leaves.surfaceBegin[2]; ++i)
+      sum += hr.leaves.patches[i].area * hr.irradiance[i].x;
+    power.push_back(sum);  // emitter power is 1 (unit area, E = 1)
+  }
+  double mean = 0, var = 0;
+  for (double v : power) mean += v / power.size();
+  for (double v : power) var += (v - mean) * (v - mean) / (power.size() - 1);
+  const double se = std::sqrt(var / power.size() + referenceSe * referenceSe);
+  std::printf("receiver's share of the emitted power: hierarchy %.5f (16 seeds, sd %.5f), reference %.5f +- %.5f\n",
+              mean, std::sqrt(var), reference, referenceSe);
+  EXPECT_GT(reference, 0.1);
+  EXPECT_LT(reference, 0.19) << "the blocker should shadow part of the receiver";
+  EXPECT_NEAR(mean, reference, 4 * se);
 }
 
 TEST(Hierarchical, SameSeedSameBitsForAnyThreadCount) {
