@@ -308,12 +308,13 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
     if (out.decision != Decision::Keep) return out;
   }
   double V = c.visibility, se = c.visibilityError;
-  VisibilityEstimate fresh;  // the rays behind the kept value
+  VisibilityEstimate decided, fresh;  // the rays behind the decision, and behind the kept value
   const int K = m_settings.raysPerLink;
   int cast = K;  // rays behind the decision
   auto unanimous = [](const VisibilityEstimate& v) { return (v.visible <= 0 || v.visible >= 1) && v.standardError < 0.5; };
   if (!knownVisibility) {
-    VisibilityEstimate v = visibleFraction(r, s, K, 2 * m_settings.round);
+    VisibilityEstimate& v = decided;
+    v = visibleFraction(r, s, K, 2 * m_settings.round);
     out.rays = K;
     // Rays that all agree leave a share of about 1/(K + 1) unseen: links that carry more than
     // τ·(K + 1) cast more rays before trusting them.
@@ -349,14 +350,16 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
     if (!(roulette.uniform() < survive)) return out;  // Drop
     weight = 1 / survive;
   }
-  {
-    // The decision above rests on those rays (or on last round's value); the value kept comes
-    // from fresh ones. Reusing them biases toward the unanimous cases, which are kept as they
-    // are while partly blocked links are refined (measured: the Cornell box floor's direct
-    // light 1.2 % high at K = 16).
-    if (knownVisibility && (V <= 0 || V >= 1) && se > 0 && se < 0.5)
+  // The decision above rests on those rays (or on last round's value); the value the last
+  // round keeps comes from fresh ones. Reusing them biases toward the unanimous cases, which
+  // are kept as they are while partly blocked links are refined (measured: the Cornell box
+  // floor's direct light 1.2 % high at K = 16). Earlier rounds only steer the refinement: they
+  // keep a known link's value, and a new unanimous link's decision rays.
+  const bool partial = V > 0 && V < 1;
+  if (m_settings.last || (!knownVisibility && partial)) {
+    if (knownVisibility && !partial && se > 0 && se < 0.5)
       cast = std::clamp(int(std::lround(1 / se - 1)), K, kConfirmRays * K);
-    const int n = V > 0 && V < 1 ? kPartialRays * K : cast;
+    const int n = partial ? kPartialRays * K : cast;
     fresh = visibleFraction(r, s, n, 2 * m_settings.round + 1);
     const VisibilityEstimate& e = fresh;
     out.rays += n;
@@ -365,6 +368,12 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
     out.link.visibilityError = float(se * weight);
     for (int k = 0; k < 4; ++k) out.link.quarterVisible[k] = e.quarter[k];
     if (R.element && S.element) receiverShares(r, s, e, out.link);
+  } else if (!knownVisibility) {
+    fresh = decided;
+    out.link.visibility = float(V);
+    out.link.visibilityError = float(se);
+    for (int k = 0; k < 4; ++k) out.link.quarterVisible[k] = decided.quarter[k];
+    if (R.element && S.element) receiverShares(r, s, decided, out.link);
   }
   // Kept whatever the fresh rays say: dropping those that found nothing would lose their
   // expected share (the last round's links with V = 0 are removed after refinement).
