@@ -129,7 +129,7 @@ struct Gather {
       if (std::optional<SurfaceHit> next = scene.intersect(scene.spawn(*hit, wi), wi)) {
         const Vec3 le = scene.emitted(*next);
         if (maxComponent(le) > 0)
-          radiance += mul(beta, mul(bs->weight, le)) * powerHeuristic(bs->pdf, scene.lightPdf(*next));
+          radiance += mul(beta, mul(bs->weight, le)) * powerHeuristic(bs->pdf, scene.lightPdf(*next, hit->point));
         const double w = guide ? powerHeuristic(bs->pdf, guidePdf(hit->patch, *next)) : 1.0;
         radiance += mul(beta, mul(bs->weight, reflected(*next))) * w;
       }

@@ -11,6 +11,7 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
   Vec3 radiance, beta{1, 1, 1};
   Vec3 o = origin, d = dir;
   double bsdfPdf = 0;      // density of the direction that led to the current vertex
+  Vec3 from;               // the previous vertex (light sampling's pdf depends on it)
   bool specular = true;    // the camera ray, or a delta lobe: no light sampling competed
   for (int depth = 0; depth < settings.maxDepth; ++depth) {
     ++rays;
@@ -19,7 +20,7 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
     // Emission found by the BSDF-sampled ray, weighted against light sampling.
     const Vec3 le = scene.emitted(*hit);
     if (maxComponent(le) > 0) {
-      const double w = specular ? 1.0 : powerHeuristic(bsdfPdf, scene.lightPdf(*hit));
+      const double w = specular ? 1.0 : powerHeuristic(bsdfPdf, scene.lightPdf(*hit, from));
       radiance += mul(beta, le) * w;
     }
     if (!hit->bsdf) break;  // the back of a one-sided surface absorbs
@@ -34,6 +35,7 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
     specular = s->delta;
     d = hit->frame.toWorld(s->wi);
     o = scene.spawn(*hit, d);
+    from = hit->point;
 
     // Russian roulette (Arvo & Kirk 1990): continue with probability q = min(1, max β),
     // dividing β by q keeps the estimator unbiased.

@@ -99,10 +99,18 @@ class StratifiedSampler : public PaddedSampler {
 /// Shuffled indices stay in the first power-of-two block that holds the pixel's samples (a
 /// nested scramble maps [0, 2^k) onto itself once the digits above k are masked off), so
 /// each power-of-two prefix of them is still a net, and sobol1 meets only k bits.
+/// The arithmetic stays in bit-reversed form where it can (the index is reversed once per
+/// sample, sobol1 is tabulated reversed): a sample costs three bit reversals per pair
+/// instead of five, for the same numbers.
 class SobolSampler : public PaddedSampler {
  public:
   SobolSampler(std::uint64_t seed, std::uint64_t stream, int samples) : PaddedSampler(seed, stream) {
     while (m_mask < std::uint32_t(std::max(1, samples) - 1)) m_mask = (m_mask << 1) | 1;
+    m_reversedMask = reverseBits(m_mask);
+  }
+  void start(std::uint64_t pixel, int index) override {
+    PaddedSampler::start(pixel, index);
+    m_reversedIndex = reverseBits(m_index);
   }
   // owenScramble(sobol0(i), s) = reverse(LK(i, s)): sobol0 is itself a reversal.
   double get1D() override {
@@ -112,16 +120,19 @@ class SobolSampler : public PaddedSampler {
   std::array<double, 2> get2D() override {
     const std::uint64_t key = nextDimensionKey(), key2 = splitMix64(key);
     const std::uint32_t i = shuffled(std::uint32_t(key));
+    // owenScramble(sobol1(i), s) = reverse(LK(reverse(sobol1(i)), s)).
     return {toUnit(reverseBits(laineKarras(i, std::uint32_t(key >> 32)))),
-            toUnit(owenScramble(sobol1(i), std::uint32_t(key2)))};
+            toUnit(reverseBits(laineKarras(reversedSobol1(i), std::uint32_t(key2))))};
   }
 
  private:
+  /// owenScramble(index, seed), masked to the block: reverse(LK(reverse(index), seed)).
   /// Indices past the block (more samples than declared) keep their higher digits.
   std::uint32_t shuffled(std::uint32_t seed) const {
-    return m_index > m_mask ? owenScramble(m_index, seed) : owenScramble(m_index, seed) & m_mask;
+    const std::uint32_t r = laineKarras(m_reversedIndex, seed);
+    return reverseBits(m_index > m_mask ? r : r & m_reversedMask);
   }
-  std::uint32_t m_mask = 0;
+  std::uint32_t m_mask = 0, m_reversedMask = 0, m_reversedIndex = 0;
 };
 
 }  // namespace
@@ -153,21 +164,35 @@ std::unique_ptr<Sampler> makeSampler(SamplerType type, std::uint64_t seed, std::
 
 std::uint32_t sobol0(std::uint32_t index) { return reverseBits(index); }
 
+namespace {
+using Sobol1Table = std::array<std::array<std::uint32_t, 256>, 4>;
+/// Column j of the Pascal matrix mod 2, as a 32-bit fraction: v_{j+1} = v_j ^ (v_j >> 1).
+/// The matrix-vector product is linear over GF(2): tabulate it a byte of the index at a
+/// time, the columns bit-reversed or not.
+Sobol1Table makeSobol1Table(bool reversed) {
+  Sobol1Table t{};
+  std::uint32_t column[32];
+  column[0] = 1u << 31;
+  for (int j = 1; j < 32; ++j) column[j] = column[j - 1] ^ (column[j - 1] >> 1);
+  for (int b = 0; b < 4; ++b)
+    for (int byte = 0; byte < 256; ++byte)
+      for (int j = 0; j < 8; ++j)
+        if (byte >> j & 1) t[b][byte] ^= reversed ? reverseBits(column[8 * b + j]) : column[8 * b + j];
+  return t;
+}
+std::uint32_t applySobol1(const Sobol1Table& t, std::uint32_t index) {
+  return t[0][index & 255] ^ t[1][index >> 8 & 255] ^ t[2][index >> 16 & 255] ^ t[3][index >> 24];
+}
+}  // namespace
+
 std::uint32_t sobol1(std::uint32_t index) {
-  // Column j of the Pascal matrix mod 2, as a 32-bit fraction: v_{j+1} = v_j ^ (v_j >> 1).
-  // The matrix-vector product is linear over GF(2): tabulate it a byte of the index at a time.
-  static const auto table = [] {
-    std::array<std::array<std::uint32_t, 256>, 4> t{};
-    std::uint32_t column[32];
-    column[0] = 1u << 31;
-    for (int j = 1; j < 32; ++j) column[j] = column[j - 1] ^ (column[j - 1] >> 1);
-    for (int b = 0; b < 4; ++b)
-      for (int byte = 0; byte < 256; ++byte)
-        for (int j = 0; j < 8; ++j)
-          if (byte >> j & 1) t[b][byte] ^= column[8 * b + j];
-    return t;
-  }();
-  return table[0][index & 255] ^ table[1][index >> 8 & 255] ^ table[2][index >> 16 & 255] ^ table[3][index >> 24];
+  static const Sobol1Table table = makeSobol1Table(false);
+  return applySobol1(table, index);
+}
+
+std::uint32_t reversedSobol1(std::uint32_t index) {
+  static const Sobol1Table table = makeSobol1Table(true);
+  return applySobol1(table, index);
 }
 
 std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed) {

@@ -42,6 +42,8 @@ std::unique_ptr<Sampler> makeSampler(SamplerType type, std::uint64_t seed, std::
 /// 32-bit fixed point.
 std::uint32_t sobol0(std::uint32_t index);
 std::uint32_t sobol1(std::uint32_t index);
+/// reverseBits(sobol1(index)), tabulated directly.
+std::uint32_t reversedSobol1(std::uint32_t index);
 /// \brief Owen (nested uniform) scrambling of a 32-bit fraction: bit b flips by a hash of the
 /// seed and the bits above b (Laine & Karras 2011 hash with Burley's constants).
 std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed);

@@ -8,6 +8,7 @@ target_sources(radkit_render PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/bsdf_mirror.cpp
   ${CMAKE_CURRENT_LIST_DIR}/bsdf_glass.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sampler.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/spherical_rectangle.cpp
   ${CMAKE_CURRENT_LIST_DIR}/shading_context.cpp
   ${CMAKE_CURRENT_LIST_DIR}/shading.cpp
   ${CMAKE_CURRENT_LIST_DIR}/path_tracer.cpp

@@ -60,7 +60,7 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
       if (std::optional<SurfaceHit> next = scene.intersect(scene.spawn(*hit, wi), wi)) {
         const Vec3 le = scene.emitted(*next);
         if (maxComponent(le) > 0)
-          radiance += mul(beta, mul(bs->weight, le)) * powerHeuristic(bs->pdf, scene.lightPdf(*next));
+          radiance += mul(beta, mul(bs->weight, le)) * powerHeuristic(bs->pdf, scene.lightPdf(*next, hit->point));
         // Only the non-diffuse lobes gather the solution; the diffuse lobe has H_indirect.
         const Vec3 glossy = hit->bsdf->eval(hit->wo, bs->wi) - diffuse / M_PI;
         if (maxComponent(glossy) > 0)

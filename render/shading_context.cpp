@@ -6,10 +6,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "render/camera.h"
 
 namespace radkit {
+
+LightSampling parseLightSampling(const std::string& name) {
+  if (name == "area") return LightSampling::Area;
+  if (name == "solid-angle") return LightSampling::SolidAngle;
+  throw std::invalid_argument("unknown light sampling \"" + name + "\" (area or solid-angle)");
+}
 
 std::unique_ptr<Bsdf> makeShadingBsdf(const Material& m, const BsdfSettings& settings, GlossyModel glossy) {
   if (glossy == GlossyModel::Phong && m.brdf == BrdfModel::CookTorrance) {
@@ -26,8 +33,8 @@ std::unique_ptr<Bsdf> makeShadingBsdf(const Material& m, const BsdfSettings& set
 }
 
 ShadingScene::ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
-                           const BsdfSettings& bsdf, GlossyModel glossy)
-    : m_mesh(mesh), m_rays(rays), m_emitters(scene, mesh) {
+                           const BsdfSettings& bsdf, GlossyModel glossy, LightSampling light)
+    : m_mesh(mesh), m_rays(rays), m_emitters(scene, mesh), m_lightSampling(light) {
   for (const Material& m : scene.materials) {
     m_bsdfs.push_back(makeShadingBsdf(m, bsdf, glossy));
     m_twoSided.push_back(m.twoSided);
@@ -71,29 +78,51 @@ Vec3 ShadingScene::directLight(const SurfaceHit& hit, Sampler& sampler, long lon
   const double u0 = sampler.get1D();
   const auto [u1, u2] = sampler.get2D();
   if (m_emitters.empty() || !hit.bsdf || hit.bsdf->isDelta()) return {};
-  const EmitterSample e = m_emitters.sample(u0, u1, u2);
+  EmitterSample e;
+  double pdfLight = 0;  // per steradian
+  const int patch = m_emitters.pick(u0);
+  const std::optional<SphericalRectangle> rect = solidAngleSampling(patch, hit.point);
+  if (rect) {
+    e.patch = patch;
+    e.point = rect->sample(u1, u2);
+    e.normal = m_mesh.patches[e.patch].normal;
+    e.emission = m_emission[m_material[m_mesh.patches[e.patch].surface]];
+    pdfLight = m_emitters.probability(e.patch) / rect->solidAngle();
+  } else {
+    e = m_emitters.sample(u0, u1, u2);
+  }
   const Vec3 d = e.point - hit.point;
   const double dist2 = dot(d, d);
   if (!(dist2 > 0)) return {};
   const Vec3 wi = d / std::sqrt(dist2);
   const double cosLight = -dot(wi, e.normal);
   if (cosLight <= 0) return {};
+  // Area to solid angle: p_ω = p_A r² / cos θ_light (Veach 1997, eq. 8.10).
+  if (!rect) pdfLight = e.pdfArea * dist2 / cosLight;
   const Vec3 wiLocal = hit.frame.toLocal(wi);
   const Vec3 f = hit.bsdf->eval(hit.wo, wiLocal);
   if (maxComponent(f) <= 0) return {};
   ++rays;
   if (m_rays.occluded(hit.point, m_mesh.patches[hit.patch].normal, e.point, e.normal)) return {};
-  // Area to solid angle: p_ω = p_A r² / cos θ_light (Veach 1997, eq. 8.10).
-  const double pdfLight = e.pdfArea * dist2 / cosLight;
   const double weight = powerHeuristic(pdfLight, hit.bsdf->pdf(hit.wo, wiLocal));
   return mul(f, e.emission / M_PI) * (std::fabs(wiLocal.z) * weight / pdfLight);
 }
 
-double ShadingScene::lightPdf(const SurfaceHit& light) const {
+double ShadingScene::lightPdf(const SurfaceHit& light, const Vec3& from) const {
   if (!light.front) return 0;
   const double cosLight = std::fabs(light.wo.z);
   if (cosLight <= 0) return 0;
+  if (const std::optional<SphericalRectangle> rect = solidAngleSampling(light.patch, from))
+    return m_emitters.probability(light.patch) / rect->solidAngle();
   return m_emitters.pdfArea(light.patch) * light.distance * light.distance / cosLight;
+}
+
+std::optional<SphericalRectangle> ShadingScene::solidAngleSampling(int patch, const Vec3& from) const {
+  Vec3 corner, ex, ey;
+  if (m_lightSampling != LightSampling::SolidAngle || !m_emitters.rectangle(patch, corner, ex, ey)) return std::nullopt;
+  SphericalRectangle rect(from, corner, ex, ey);
+  if (!(rect.solidAngle() >= kMinSolidAngle)) return std::nullopt;
+  return rect;
 }
 
 MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& camera, const PixelSampling& s,

@@ -81,4 +81,37 @@ Vec3 SmoothRadiosity::at(int patch, const Vec3& point) const {
   return b;
 }
 
+std::vector<Vec3> smoothCornerValues(const std::vector<Vec3>& points, const std::vector<std::vector<int>>& polygons,
+                                     const std::vector<int>& surface, const std::vector<Vec3>& perPatch,
+                                     const SmoothSettings& settings) {
+  PatchMesh mesh;
+  mesh.vertices = points;
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    Patch p;
+    p.surface = surface[i];
+    if (polygons[i].size() == 3 || polygons[i].size() == 4) {
+      p.vertexCount = int(polygons[i].size());
+      for (int k = 0; k < p.vertexCount; ++k) p.vertex[k] = polygons[i][k];
+      computePatchGeometry(mesh.vertices, p);
+    }
+    mesh.patches.push_back(p);
+  }
+  const SmoothRadiosity smooth(mesh, perPatch, settings);
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < polygons.size(); ++i)
+    for (std::size_t k = 0; k < polygons[i].size(); ++k)
+      out.push_back(mesh.patches[i].vertexCount > 0 ? smooth.corners(int(i))[k] : perPatch[i]);
+  return out;
+}
+
+std::vector<double> smoothCornerValues(const std::vector<Vec3>& points, const std::vector<std::vector<int>>& polygons,
+                                       const std::vector<int>& surface, const std::vector<double>& perPatch,
+                                       const SmoothSettings& settings) {
+  std::vector<Vec3> grey;
+  for (double v : perPatch) grey.push_back({v, v, v});
+  std::vector<double> out;
+  for (const Vec3& v : smoothCornerValues(points, polygons, surface, grey, settings)) out.push_back(v.x);
+  return out;
+}
+
 }  // namespace radkit

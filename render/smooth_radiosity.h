@@ -40,6 +40,19 @@ class SmoothRadiosity {
   std::vector<std::array<Vec3, 4>> m_corner;
 };
 
+/// \brief SmoothRadiosity's corner values for polygons given as point indices (the viewer's
+/// patches.vtp): one value per polygon corner, polygon by polygon, so a display that
+/// interpolates between corners gets the same crease, surface and jump rule as render.png.
+/// Polygons need not share points; ones with more than 4 corners stay flat.
+std::vector<Vec3> smoothCornerValues(const std::vector<Vec3>& points, const std::vector<std::vector<int>>& polygons,
+                                     const std::vector<int>& surface, const std::vector<Vec3>& perPatch,
+                                     const SmoothSettings& settings = {});
+/// \brief The same for a scalar per patch (false colour, a row of F): it is smoothed as the
+/// grey Vec3{v, v, v}, whose luminance is v.
+std::vector<double> smoothCornerValues(const std::vector<Vec3>& points, const std::vector<std::vector<int>>& polygons,
+                                       const std::vector<int>& surface, const std::vector<double>& perPatch,
+                                       const SmoothSettings& settings = {});
+
 /// \brief Mean value coordinates of x in a convex planar polygon (Floater 2003): smooth inside,
 /// linear on the edges, the barycentric coordinates for a triangle. `count` is 3 or 4.
 std::array<double, 4> meanValueCoordinates(const Vec3* poly, int count, const Vec3& x);

@@ -36,4 +36,7 @@ run final-gather-4000-256 --shading final-gather --spp 256 --patches 4000
 for sampler in independent stratified sobol; do
   for spp in 16 64 256; do run "path-$sampler-$spp" --shading path-trace --sampler $sampler --spp $spp; done
 done
+for spp in 16 64 256; do
+  run "path-sobol-solid-angle-$spp" --shading path-trace --light-sampling solid-angle --spp $spp
+done
 run path-sobol-1024 --shading path-trace --spp 1024

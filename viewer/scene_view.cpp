@@ -20,6 +20,7 @@
 #include <cmath>
 
 #include "render/camera.h"
+#include "render/smooth_radiosity.h"
 #include "viewer/colour_maps.h"
 
 namespace radkit::viewer {
@@ -55,17 +56,24 @@ vtkSmartPointer<vtkDoubleArray> valueArray(const std::vector<double>& v) {
   return a;
 }
 
+/// Smooth shading's per-corner values, in m_surface's point order (corner by corner).
+template <class T>
+std::vector<T> corners(const PatchData& p, const std::vector<T>& perPatch) {
+  return smoothCornerValues(p.points, p.polygons, p.surface, perPatch);
+}
+
 }  // namespace
 
 SceneView::SceneView(const RunFolder& run) : m_run(run) {
   const PatchData& p = run.patches;
+  // Every polygon gets its own corner points: smooth shading interpolates per-corner values,
+  // which differ across creases, surface boundaries and shadow edges (smoothCornerValues).
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  for (const Vec3& x : p.points) points->InsertNextPoint(x.x, x.y, x.z);
   vtkNew<vtkCellArray> polys;
   for (const auto& poly : p.polygons) {
     polys->InsertNextCell(vtkIdType(poly.size()));
-    for (int v : poly) polys->InsertCellPoint(v);
+    for (int v : poly) polys->InsertCellPoint(points->InsertNextPoint(p.points[v].x, p.points[v].y, p.points[v].z));
   }
   m_surface->SetPoints(points);
   m_surface->SetPolys(polys);
@@ -149,7 +157,7 @@ void SceneView::showTrueColour(const ViewSettings& s) {
   m_exposureUsed = s.exposure > 0 ? s.exposure : m_autoExposure;
   const std::vector<Vec3>& b = m_run.patches.radiosity;
   m_surface->GetCellData()->AddArray(colourArray(b, m_exposureUsed));
-  m_surface->GetPointData()->AddArray(colourArray(pointAverage(m_run.patches, b), m_exposureUsed));
+  m_surface->GetPointData()->AddArray(colourArray(corners(m_run.patches, b), m_exposureUsed));
   m_mapper->SetColorModeToDirectScalars();
   m_mapper->SetScalarMode(s.smooth ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
   m_mapper->SelectColorArray("colour");
@@ -204,7 +212,7 @@ void SceneView::showFormFactorRow(const ViewSettings& s) {
 
 void SceneView::setValues(const std::vector<double>& perPatch, bool smooth) {
   m_surface->GetCellData()->AddArray(valueArray(perPatch));
-  m_surface->GetPointData()->AddArray(valueArray(pointAverage(m_run.patches, perPatch)));
+  m_surface->GetPointData()->AddArray(valueArray(corners(m_run.patches, perPatch)));
   m_mapper->SetColorModeToMapScalars();
   m_mapper->SetScalarMode(smooth ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
   m_mapper->SelectColorArray("value");

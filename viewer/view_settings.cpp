@@ -139,30 +139,6 @@ std::string channelLabel(Channel channel, bool photometric) {
   return "";
 }
 
-namespace {
-template <class T>
-std::vector<T> areaWeightedPointMean(const PatchData& patches, const std::vector<T>& perPatch) {
-  std::vector<T> sum(patches.points.size(), T{});
-  std::vector<double> weight(patches.points.size(), 0.0);
-  for (int i = 0; i < patches.size(); ++i)
-    for (int p : patches.polygons[i]) {
-      sum[p] += perPatch[i] * patches.area[i];
-      weight[p] += patches.area[i];
-    }
-  for (std::size_t p = 0; p < sum.size(); ++p)
-    if (weight[p] > 0) sum[p] = sum[p] * (1.0 / weight[p]);
-  return sum;
-}
-}  // namespace
-
-std::vector<double> pointAverage(const PatchData& patches, const std::vector<double>& perPatch) {
-  return areaWeightedPointMean(patches, perPatch);
-}
-
-std::vector<Vec3> pointAverage(const PatchData& patches, const std::vector<Vec3>& perPatch) {
-  return areaWeightedPointMean(patches, perPatch);
-}
-
 MatrixCells downsampleMatrix(const FormFactorRows& f, int maxCells) {
   MatrixCells m;
   m.block = std::max(1, (f.n + maxCells - 1) / maxCells);

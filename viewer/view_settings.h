@@ -64,11 +64,6 @@ std::string channelLabel(Channel channel, bool photometric);
 /// to a lamp do not darken the rest; patches above it (and emitters) get the above-range colour.
 double falseColourTop(const PatchData& patches, const std::vector<double>& values);
 
-/// \brief Per-point values: the area-weighted mean over the patches sharing each point
-/// (crossing creases: radkit::SmoothRadiosity does not), for smooth shading.
-std::vector<double> pointAverage(const PatchData& patches, const std::vector<double>& perPatch);
-std::vector<Vec3> pointAverage(const PatchData& patches, const std::vector<Vec3>& perPatch);
-
 /// \brief The heat-map cells of F: n ≤ maxCells keeps one cell per patch pair; above that
 /// each cell is the MEAN of F over its block × block tile (block = ceil(n / maxCells)), as
 /// formfactors.png does, so a cell is the average coupling of the patches it stands for.

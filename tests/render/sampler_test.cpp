@@ -158,6 +158,17 @@ TEST(Sampler, StatisticalConvergenceOnASmoothIntegrand) {
   }
 }
 
+TEST(Sampler, ReversedSobol1IsSobol1Reversed) {
+  // The Sobol sampler works on bit-reversed numbers; its table must be sobol1's, reversed.
+  auto reverse = [](std::uint32_t x) {
+    std::uint32_t r = 0;
+    for (int b = 0; b < 32; ++b) r |= (x >> b & 1u) << (31 - b);
+    return r;
+  };
+  for (std::uint32_t i : {0u, 1u, 2u, 3u, 255u, 256u, 12345u, 0x80000001u, 0xffffffffu})
+    EXPECT_EQ(reversedSobol1(i), reverse(sobol1(i))) << i;
+}
+
 TEST(Sampler, DeterministicPerSeedAndPermutationsArePermutations) {
   for (SamplerType type : kAll) {
     auto a = makeSampler(type, 7, 1, 8), b = makeSampler(type, 7, 1, 8), c = makeSampler(type, 8, 1, 8);

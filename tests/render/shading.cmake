@@ -10,6 +10,7 @@ target_sources(render_test PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/shading_cli_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/smooth_radiosity_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sampler_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/light_sampling_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/image_comparison_test.cpp
 )
 target_link_libraries(render_test PRIVATE nlohmann_json::nlohmann_json)

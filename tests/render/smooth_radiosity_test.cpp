@@ -79,6 +79,33 @@ PatchMesh grid(int n) {
   return m;
 }
 
+TEST(SmoothRadiosity, CornerValuesForTheViewerKeepCreasesSurfacesAndJumps) {
+  // Square A (z = 0) shares an edge with the coplanar square B and another with C, folded up
+  // by 90°. A's corners on B's edge average A and B (equal areas) while they are one
+  // surface and agree; its corners on the crease keep A's value.
+  const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0},
+                                    {2, 1, 0}, {0, 1, 1}, {0, 0, 1}};
+  const std::vector<std::vector<int>> polygons = {{0, 1, 2, 3}, {1, 4, 5, 2}, {0, 3, 6, 7}};
+  auto cornersOfA = [&](std::vector<int> surface, std::vector<double> b) {
+    const std::vector<double> c = smoothCornerValues(points, polygons, surface, b);
+    EXPECT_EQ(c.size(), 12u);
+    return std::vector<double>(c.begin(), c.begin() + 4);
+  };
+  const std::vector<double> blended = cornersOfA({0, 0, 0}, {1, 1.1, 1.05});
+  EXPECT_NEAR(blended[0], 1, 1e-15);  // on the crease with C
+  EXPECT_NEAR(blended[1], 1.05, 1e-15);
+  EXPECT_NEAR(blended[2], 1.05, 1e-15);
+  EXPECT_NEAR(blended[3], 1, 1e-15);
+  // B on another surface, or B far brighter than the error explains: A stays flat.
+  for (const std::vector<double>& c : {cornersOfA({0, 1, 0}, {1, 1.1, 1.05}), cornersOfA({0, 0, 0}, {1, 5, 1.05})})
+    for (double v : c) EXPECT_NEAR(v, 1, 1e-15);
+  // Colours follow the same rule (the grey overload is the Vec3 one's x).
+  const std::vector<Vec3> colour =
+      smoothCornerValues(points, polygons, {0, 0, 0}, {Vec3{1, 1, 1}, Vec3{1.1, 1.1, 1.1}, Vec3{1.05, 1.05, 1.05}});
+  EXPECT_NEAR(colour[1].y, 1.05, 1e-15);
+  EXPECT_NEAR(colour[0].y, 1, 1e-15);
+}
+
 TEST(SmoothRadiosity, ReproducesALinearRampInside) {
   // B = 5 + 0.1x + 0.2y: patch means are the centroid values, vertex means of the four
   // patches around an interior vertex are the vertex values, and mean value coordinates

@@ -81,14 +81,6 @@ TEST(ViewSettings, FalseColourTopIsArea99thPercentileOfNonEmitters) {
   EXPECT_NEAR(falseColourTop(strip({0.01234}, {1}), {0.01234}), 0.013, 1e-15);  // two digits, up
 }
 
-TEST(ViewSettings, PointAverageIsAreaWeighted) {
-  PatchData p;
-  p.points.resize(3);
-  p.polygons = {{0, 1}, {1, 2}};
-  p.area = {1, 3};
-  EXPECT_EQ(pointAverage(p, std::vector<double>{2, 6}), (std::vector<double>{2, 5, 6}));
-}
-
 TEST(MatrixCells, BlockMeansCoverShortTiles) {
   // 5×5 with F_ij = i + 10 j; at most 2 cells: blocks of 3, the last tile 2 wide.
   FormFactorRows f;
