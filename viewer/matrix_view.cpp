@@ -4,6 +4,7 @@
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkImageMapper3D.h>
+#include <vtkPNGReader.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyDataMapper.h>
@@ -41,6 +42,10 @@ MatrixView::MatrixView(const RunFolder& run, int maxCells) : m_run(run) {
   m_title->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   m_title->SetPosition(0.015, 0.975);
   m_renderer->AddActor2D(m_title);
+  if (!run.formFactors && !run.linksImage.empty()) {
+    showLinksImage();
+    return;
+  }
   if (!run.formFactors) {  // say why, centred, one clause a line
     std::string why = "form-factor matrix:\n" + run.formFactorsMissing;
     for (const char* at : {" (", ": "})
@@ -72,6 +77,22 @@ MatrixView::MatrixView(const RunFolder& run, int maxCells) : m_run(run) {
                                             : "";
   m_title->SetInput(
       ("form factors F_ij (row i to column j): " + std::to_string(run.formFactors->n) + " patches" + how).c_str());
+  setFontSize(m_fontSize);
+  m_renderer->AddObserver(vtkCommand::StartEvent, this, &MatrixView::fit);
+}
+
+void MatrixView::showLinksImage() {
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(m_run.linksImage.c_str());
+  reader->Update();
+  int dims[3];
+  reader->GetOutput()->GetDimensions(dims);
+  m_linksWidth = dims[0], m_linksHeight = dims[1];
+  m_imageActor->GetMapper()->SetInputConnection(reader->GetOutputPort());
+  m_imageActor->InterpolateOff();
+  m_renderer->AddActor(m_imageActor);
+  // links.png carries its own title, labels and colour bar.
+  m_title->SetInput("links.png: each link r <- s of the hierarchy is a block over r's rows and s's columns");
   setFontSize(m_fontSize);
   m_renderer->AddObserver(vtkCommand::StartEvent, this, &MatrixView::fit);
 }
@@ -146,7 +167,7 @@ void MatrixView::buildLabels() {
 void MatrixView::setFontSize(int pixels) {
   m_fontSize = pixels;
   styleText(m_title->GetTextProperty(), pixels, false);
-  if (m_cells.cells == 0) {  // the message in the middle
+  if (m_cells.cells == 0 && m_linksWidth == 0) {  // the message in the middle
     m_title->GetTextProperty()->SetJustificationToCentered();
     m_title->GetTextProperty()->SetVerticalJustificationToCentered();
   } else {
@@ -164,6 +185,18 @@ void MatrixView::setFontSize(int pixels) {
 void MatrixView::fit() {
   const int* size = m_renderer->GetSize();
   const double w = std::max(1, size[0]), h = std::max(1, size[1]);
+  if (m_linksWidth > 0) {  // the whole PNG, centred below the title, aspect kept
+    const double top = 2.6 * m_fontSize;
+    const double scale = std::min(w / m_linksWidth, (h - top) / m_linksHeight);  // pixels per image pixel
+    vtkCamera* cam = m_renderer->GetActiveCamera();
+    const double cx = (m_linksWidth - 1) / 2.0, cy = (m_linksHeight - 1) / 2.0 + top / 2 / scale;
+    cam->SetFocalPoint(cx, cy, 0);
+    cam->SetPosition(cx, cy, 10.0 * m_linksHeight);
+    cam->SetViewUp(0, 1, 0);
+    cam->SetParallelScale(h / 2 / scale);
+    m_renderer->ResetCameraClippingRange();
+    return;
+  }
   if (m_cells.cells == 0) return;
   double labelPixels = 0;
   for (auto& label : m_labels)

@@ -38,11 +38,14 @@ class MatrixView {
 
  private:
   void buildImage();
+  /// A hierarchical run: its links.png as the matrix (no F to pick rows from).
+  void showLinksImage();
   void buildSurfaceLines();
   void buildLabels();
 
   const RunFolder& m_run;
   MatrixCells m_cells;
+  int m_linksWidth = 0, m_linksHeight = 0;  ///< links.png's size when it is shown
   int m_fontSize = 14;
   vtkNew<vtkRenderer> m_renderer;
   vtkNew<vtkImageData> m_image;

@@ -259,6 +259,7 @@ RunFolder readRunFolder(const std::string& folder) {
     run.formFactorsMissing = fs::exists(file("links.png"))
                                  ? "a hierarchical run has no F matrix: links.png draws its links as blocks of F"
                                  : "no formfactors.mtx (large runs skip it: rerun with --write-matrix)";
+    if (fs::exists(file("links.png"))) run.linksImage = file("links.png");
   }
   if (fs::exists(file("convergence.csv")))
     run.convergence = readConvergenceCsv(file("convergence.csv"));

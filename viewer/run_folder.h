@@ -72,6 +72,9 @@ struct RunFolder {
   std::vector<SolverHistory> convergence;
   std::vector<SurfaceSummary> surfaces;
   std::string formFactorsMissing, convergenceMissing;
+  /// A hierarchical run's links.png (its links as blocks of F, written by the run); empty if
+  /// the folder has none. The matrix mode shows it when there is no formfactors.mtx.
+  std::string linksImage;
 
   /// Name of a patch's surface ("#3" when report.json lists fewer surfaces).
   std::string surfaceName(int patch) const;

@@ -60,7 +60,8 @@ ViewSettings settingsFor(const ViewerOptions& o, const ModeChoice& mode) {
 
 /// What a screenshot of `mode` needs from the run folder.
 void requireInputs(const RunFolder& run, const ModeChoice& mode) {
-  if ((mode.mode == ViewMode::Matrix || mode.mode == ViewMode::FormFactorRow) && !run.formFactors)
+  const bool linksOnly = mode.mode == ViewMode::Matrix && !run.linksImage.empty();
+  if ((mode.mode == ViewMode::Matrix || mode.mode == ViewMode::FormFactorRow) && !run.formFactors && !linksOnly)
     throw InputError(run.path + ": " + run.formFactorsMissing);
   if (mode.mode == ViewMode::FormFactorRow && mode.row >= run.patches.size())
     throw InputError("--mode formfactors-row:" + std::to_string(mode.row) + ": no such patch; ids are 0.." +

@@ -87,6 +87,37 @@ TEST_F(ViewerDisplay, EveryModeFillsAnImageOfTheRequestedSize) {
   }
 }
 
+/// A hierarchical run has no formfactors.mtx; the matrix mode shows its links.png instead,
+/// whole and with its aspect (here a magenta left half and a yellow right half).
+TEST_F(ViewerDisplay, MatrixOfAHierarchicalRunShowsItsLinksImage) {
+  std::filesystem::remove(m_dir.path("formfactors.mtx"));
+  Canvas links(200, 100, {255, 0, 255});
+  links.fill(100, 0, 200, 100, {255, 255, 0});
+  writePng(m_dir.path("links.png"), links);
+  const int w = 400, h = 300;
+  const Canvas c = shot("matrix", w, h);
+  // The image is 2:1, scaled to the width (400 × 200) below the title, centred vertically.
+  const Vec3 left = meanColour(c, w * 0.25, h * 0.55), right = meanColour(c, w * 0.75, h * 0.55);
+  EXPECT_GT(left.x, 200);
+  EXPECT_LT(left.y, 60);
+  EXPECT_GT(left.z, 200);
+  EXPECT_GT(right.x, 200);
+  EXPECT_GT(right.y, 200);
+  EXPECT_LT(right.z, 60);
+  // Without either file the mode is refused, naming what is missing.
+  std::filesystem::remove(m_dir.path("links.png"));
+  ViewerOptions o;
+  o.runFolder = folder();
+  o.screenshot = m_dir.path("none.png");
+  o.mode = "matrix";
+  try {
+    runViewer(o);
+    FAIL() << "matrix mode without formfactors.mtx or links.png should be refused";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("formfactors.mtx"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(ViewerDisplay, RadiosityShowsRedLeftGreenRightAndBackground) {
   const int w = 320, h = 240;
   const Canvas c = shot("radiosity", w, h);
