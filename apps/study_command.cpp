@@ -253,9 +253,13 @@ void addStudyCommand(CLI::App& app) {
                   "Mesh of the form-factor and solver sweeps (a rung of the mesh ladder)")
       ->check(CLI::IsMember({250, 500, 1000, 2000, 4000}))
       ->capture_default_str();
-  sub->add_option("--seed", cmd->settings.baseline.formFactors.seed, "Seed of every random stream")->capture_default_str();
+  sub->add_option("--seed", cmd->settings.baseline.formFactors.seed, "Seed of every random stream")
+      ->check(Unsigned)
+      ->capture_default_str();
   sub->add_option("--epsilons", cmd->epsilons, "Hierarchical method's ladder of --epsilon, measured after the other knobs")
-      ->check(CLI::PositiveNumber & CLI::Range(0.0, 1.0))
+      ->check(FiniteRange(kMinEpsilon, 1.0) & CLI::Validator([](std::string& t) {  // 1 itself is no threshold
+                return std::strtod(t.c_str(), nullptr) < 1 ? std::string() : "'" + t + "' must be below 1";
+              }, ""))
       ->capture_default_str();
   sub->add_option("--out", cmd->out, "Output folder")->required();
   sub->callback([cmd] { runStudyCommand(*cmd); });

@@ -97,7 +97,9 @@ def classify(rc, output):
         return "crash"  # a signal, an abort or an uncaught exception
     if rc == 0:
         return "success"
-    return "clean error" if "error" in output.lower() else "silent failure"
+    # radkit's own errors say "error"; CLI11's parse errors name the option ("--k: Value 1 not in
+    # range [2 - 100000]") and end with "Run with --help".
+    return "clean error" if "error" in output.lower() or "Run with --help" in output else "silent failure"
 
 
 def main():
