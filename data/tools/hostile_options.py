@@ -85,9 +85,14 @@ def out_value(rng, kind):
                                  "furnace.json"]}[kind])
 
 
-def pick(rng, pool):
+# Options where a generic number within the documented range asks for a long run by design (a
+# study budget of 1e20 s runs every rung): only their own pool, whose values must be refused or quick.
+OWN_POOL_ONLY = {("study", "--max-seconds")}
+
+
+def pick(rng, pool, key=None):
     """A value of the option's own pool, or (one time in three) any hostile number."""
-    return rng.choice(NUMBER) if rng.random() < 0.33 else rng.choice(pool)
+    return rng.choice(NUMBER) if rng.random() < 0.33 and key not in OWN_POOL_ONLY else rng.choice(pool)
 
 
 # command -> (base arguments with SCENE and OUT placeholders, {option: pool}, output kind)
@@ -136,7 +141,7 @@ COMMANDS = {
               "--size": SIZES, "--channel": NAMES + ["r", "g", "b"], "--exposure": ["1e300", "1e-300"],
               "--out": "folder", "--screenshot": "image", "--smooth": None, "--photometric": None}, "image"),
     "study": (["SCENE", "--max-seconds", "1", "--knob-patches", "250", "--epsilons", "1e-2", "--out", "OUT"],
-              {"--max-seconds": ["1e-300", "0.001"], "--knob-patches": ["249", "4000"], "--seed": ["-1"],
+              {"--max-seconds": ["1e-300", "0.001", "nan", "inf", "-1", "", "x"], "--knob-patches": ["249", "4000"], "--seed": ["-1"],
                "--epsilons": ["1", "1e-300"], "--out": "folder"}, "folder"),
     "bench-formfactors": (["bench", "formfactors", "SCENE", "--patches", "24", "--reference-rays", "1000"],
                           {"--reference-rays": ["9223372036854775808", "1"], "--ff-samples": ["2147483648", "1"],
@@ -204,7 +209,7 @@ def make_case(rng, fix, case, seeds):
             if values[name] == "MUT":
                 values[name] = mutated_run_folder(fix, case, rng)
         else:
-            values[name] = pick(rng, pool)
+            values[name] = pick(rng, pool, (label, name))
     run_dir = values.pop("RUN", os.path.join(fix, rng.choice(["run-furnace", "run-hier"])))
     argv = []
     for a in args:
@@ -244,24 +249,27 @@ def run_case(radkit, case, label, argv, out, timeout):
     decoys = [p for p in argv if os.path.isabs(p) and "/fix/" in p] + \
              [os.path.join(case, p) for p in ("notes.txt", "furnace.json", "empty-folder", "run-cube") if p in argv]
     fix_state = {p: snapshot(p) for p in decoys}
-    try:
-        p = subprocess.run([radkit] + argv, cwd=case, capture_output=True, timeout=timeout)
-        text = (p.stdout + p.stderr).decode(errors="replace")
-        outcome = mutate_inputs.classify(p.returncode, text)
-        if p.returncode != 0 and out and os.path.exists(os.path.join(case, out)):
+    rc, text, rss = mutate_inputs.run_radkit(radkit, argv, case, timeout)
+    if rc is None:
+        outcome = "hang"
+    else:
+        outcome = mutate_inputs.classify(rc, text)
+        if rc != 0 and out and os.path.exists(os.path.join(case, out)):
             outcome = "error with output"
-        if p.returncode != 0 and any(snapshot(q) != s for q, s in fix_state.items()):
+        if rc != 0 and any(snapshot(q) != s for q, s in fix_state.items()):
             outcome = "error with output"
-    except subprocess.TimeoutExpired:
-        text, outcome = "", "hang"
+    if rss > mutate_inputs.MEMORY_LIMIT_MB:
+        outcome = "memory"
     left = [e for e in os.listdir(case) if ".partial-" in e or ".old-" in e]
     lines = text.strip().splitlines()
     first = next((l for l in lines if "error" in l.lower()), lines[-1] if lines else "")
-    return outcome, first[:300], bool(left)
+    return outcome, first[:300], bool(left), rss
 
 
-def run_cases(radkit, work, data, n, seed, timeout, jobs, counts, problems, log=None, offset=0):
-    """Runs n hostile-option cases; adds to counts[(command, outcome)] and problems."""
+def run_cases(radkit, work, data, n, seed, timeout, jobs, counts, problems, log=None, offset=0, peak=None):
+    """Runs n hostile-option cases; adds to counts[(command, outcome)], problems and
+    peak[command] (largest peak RSS in MB)."""
+    peak = {} if peak is None else peak
     rng = random.Random(seed * 7919 + 17)
     fix = fixtures(radkit, work, data)
     seeds = mutate_inputs.seeds(data)
@@ -279,12 +287,13 @@ def run_cases(radkit, work, data, n, seed, timeout, jobs, counts, problems, log=
         cases.append((case, label, argv, out))
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
         results = list(pool.map(lambda c: run_case(radkit, c[0], c[1], c[2], c[3], timeout), cases))
-    for (case, label, argv, out), (outcome, first, left) in zip(cases, results):
+    for (case, label, argv, out), (outcome, first, left, rss) in zip(cases, results):
         counts[(label, outcome)] = counts.get((label, outcome), 0) + 1
+        peak[label] = max(peak.get(label, 0.0), rss)
         if left:
             counts[("staging", "left behind")] = counts.get(("staging", "left behind"), 0) + 1
-        line = "%s %s: %s | radkit %s | %s" % (case, label, outcome, " ".join(repr(a) if a == "" or " " in a else a
-                                                                                for a in argv), first)
+        line = "%s %s: %s | %.0f MB | radkit %s | %s" % (
+            case, label, outcome, rss, " ".join(repr(a) if a == "" or " " in a else a for a in argv), first)
         if log:
             log.write(line + "\n")
         if outcome not in ("success", "clean error") or left:
@@ -307,12 +316,15 @@ def main():
     args = ap.parse_args()
     radkit = os.path.abspath(args.radkit)
     os.makedirs(args.work, exist_ok=True)
-    counts, problems = {}, []
+    counts, problems, peak = {}, [], {}
     log = open(args.log, "w") if args.log else None
-    ran = run_cases(radkit, args.work, args.data, args.cases, args.seed, args.timeout, args.jobs, counts, problems, log)
+    ran = run_cases(radkit, args.work, args.data, args.cases, args.seed, args.timeout, args.jobs, counts, problems, log,
+                    peak=peak)
     print("hostile-option cases: %d run" % ran)
     for (command, outcome), v in sorted(counts.items()):
         print("  %-19s %-17s %d" % (command, outcome, v))
+    for command, mb in sorted(peak.items()):
+        print("  %-19s peak %.0f MB" % (command, mb))
     for line in problems:
         print("  " + line)
     return 1 if problems else 0

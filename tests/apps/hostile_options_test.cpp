@@ -71,6 +71,8 @@ INSTANTIATE_TEST_SUITE_P(
         OptionCase{"StudyEpsilonsTiny", "--epsilons 1e-300 --max-seconds 1", {"--epsilons", "[1e-06, 1]"}, "study"},
         OptionCase{"StudyEpsilonsOne", "--epsilons 1 --max-seconds 1", {"--epsilons", "'1' must be below 1"},
                    "study"},
+        OptionCase{"StudyBudgetBelowReference", "--knob-patches 4000 --max-seconds 1",
+                   {"--max-seconds 1 is shorter than the reference of --knob-patches 4000", "8000 patches"}, "study"},
         OptionCase{"RenderReportWithoutReference", "--report r.json --size 8x8 --patches 6",
                    {"--report r.json needs --reference"}, "render"}),
     [](const ::testing::TestParamInfo<OptionCase>& param) { return std::string(param.param.name); });
