@@ -137,14 +137,16 @@ TEST(HostileOptionCli, RenderReportIntoMissingFolder) {
 }
 
 // Benchmarks took any count: --reference-rays 99999999999999999999 ended in "cannot create
-// std::vector larger than max_size()", --dense-patches 10000001 in a message without the option.
+// std::vector larger than max_size()", --dense-patches 10000001 in a message without the option,
+// bench solver --threads 1000000 peaked at 936 MB.
 TEST(HostileOptionCli, BenchRefusesCountsBeyondMemory) {
   const std::string scene = "'" + test::dataPath("furnace.json") + "'";
   const std::vector<std::pair<std::string, std::string>> cases{
       {"bench formfactors " + scene + " --patches 6 --reference-rays 99999999999999999999", "--reference-rays"},
       {"bench formfactors " + scene + " --patches 6 --reference-rays 100000001", "--reference-rays"},
       {"bench hierarchical " + scene + " --dense-patches 10000001", "--dense-patches"},
-      {"bench path-trace " + scene + " --patches 6 --spp 2000000", "--spp"}};
+      {"bench path-trace " + scene + " --patches 6 --spp 2000000", "--spp"},
+      {"bench solver --n 64 --repetitions 1 --threads 1000000", "--threads"}};
   for (const auto& [args, option] : cases) {
     const test::RunResult r = test::runRadkitWithin(120, args);
     EXPECT_NE(r.exitCode, 0) << args << "\n" << r.output;
