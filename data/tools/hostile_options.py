@@ -79,9 +79,9 @@ def mutated_pfm(fix, case, rng):
 
 def out_value(rng, kind):
     """Hostile --out: an existing file, an existing folder, a missing parent, empty, a decoy."""
-    return rng.choice({"folder": ["notes.txt", "empty-folder", "/nonexistent-radkit/o", "", ".", "furnace.json",
+    return rng.choice({"folder": ["notes.txt", "empty-folder", "notes.txt/o", "", ".", "furnace.json",
                                   "run-cube"],
-                       "image": ["notes.txt", "empty-folder", "/nonexistent-radkit/o.png", "", "o.bmp", "o",
+                       "image": ["notes.txt", "empty-folder", "notes.txt/o.png", "missing-folder/o.png", "", "o.bmp", "o",
                                  "furnace.json"]}[kind])
 
 
@@ -126,7 +126,7 @@ COMMANDS = {
                 "--size": SIZES, "--spp": ["1048577", "1"], "--photons": ["1", "18446744073709551616"],
                 "--exposure": ["1e300", "1e-300"], "--tonemap": NAMES + ["filmic"], "--crease-angle": ["181", "180"],
                 "--smooth-error": ["1e300"], "--reference": ["REF"], "--report": ["notes.txt", "empty-folder",
-                                                                                  "/nonexistent-radkit/r.json"],
+                                                                                  "notes.txt/r.json", "missing-folder/r.json"],
                 "--g": NAMES + ["schlick"], "--sampler": NAMES + ["independent"], "--out": "image",
                 "--smooth": None, "--compensated": None, "--unguided": None}, "image"),
     "photons": (["SCENE", "--patches", "24", "--photons", "2000", "--no-image", "--bench-rays", "0", "--out", "OUT"],
@@ -188,10 +188,15 @@ def make_case(rng, fix, case, seeds):
         elif isinstance(pool, str):
             values[name] = out_value(rng, pool)
             decoy = os.path.join(case, values[name])
+            if values[name].startswith("notes.txt/"):  # a folder inside a file: cannot be created
+                shutil.copy(os.path.join(fix, "notes.txt"), os.path.join(case, "notes.txt"))
             if values[name] in ("notes.txt", "furnace.json"):
                 shutil.copy(os.path.join(fix, values[name]), decoy)
             elif values[name] in ("empty-folder", "run-cube"):
                 shutil.copytree(os.path.join(fix, values[name]), decoy)
+        elif name == "--report":
+            values[name] = pick(rng, pool, (label, name))
+            shutil.copy(os.path.join(fix, "notes.txt"), os.path.join(case, "notes.txt"))
         elif pool == ["REF"]:
             values[name] = rng.choice([os.path.join(fix, "ref16.pfm"), os.path.join(fix, "ref32.pfm"),
                                        os.path.join(fix, "notes.txt"), "missing.pfm", "MUT", "MUT"])
