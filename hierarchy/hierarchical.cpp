@@ -272,9 +272,12 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   // stagnation at the rounding floor and a history decimated so it stays bounded.
   ConvergenceMonitor monitor;
   monitor.startResidual = std::numeric_limits<double>::min();
+  HistoryRow lastRow;
+  bool lastKept = true;  // the decimated history must still end with the last sweep
   auto stop = [&](const std::string& exit, const std::string& reason) {
     r.solve.exit = exit;
     r.solve.reason = reason;
+    if (!lastKept) r.solve.history.push_back(lastRow), lastKept = true;
   };
   for (int round = 0; round < settings.rounds; ++round) {
     HierarchicalRound info;
@@ -329,7 +332,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
       const double residual = c.max / emissionNorm;
       r.solve.residual = residual;
       monitor.update(residual, double(iteration));
-      const HistoryRow row{iteration, since(solveStart), residual, c.power, double(iteration)};
+      lastRow = {iteration, since(solveStart), residual, c.power, double(iteration)};
       if (log.progress)
         log.progress("solve, epsilon " + num(info.epsilon),
                      std::clamp(std::log(residual) / std::log(tolerance), 0.0, 1.0));
@@ -338,14 +341,16 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
                              " sweeps" + monitor.rateText());
       } else if (residual <= tolerance) {
         if (last) r.solve.converged = true, stop("converged", "converged");
-      } else if (monitor.stagnated(double(iteration), maxRadiosity(state) / emissionNorm)) {
+      } else if (iteration - monitor.bestSweeps >= kStagnationSweeps &&
+                 monitor.stagnated(double(iteration), maxRadiosity(state) / emissionNorm)) {
         stop("stagnated", "stagnated: no change below " + num(monitor.best) + " for " + num(kStagnationSweeps) +
                               " sweeps" + " after " + std::to_string(iteration) + " sweeps" + monitor.rateText() +
                               " (rounding error: tolerance " + num(tolerance) +
                               " is below what this system reaches; raise --tol)");
       }
       const bool done = residual <= tolerance || !r.solve.exit.empty();
-      if (monitor.keep(iteration, residual) || done) r.solve.history.push_back(row);
+      lastKept = monitor.keep(iteration, residual) || done;
+      if (lastKept) r.solve.history.push_back(lastRow);
       if (done) break;
     }
     info.solveSeconds = since(t);

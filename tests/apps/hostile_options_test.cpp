@@ -173,22 +173,25 @@ TEST(HostileOptionCli, HierarchicalNearSingularSaysWhyItStopped) {
   test::TempDir dir;
   const test::RunResult r = test::runRadkitWithin(
       300, "run '" + closedBox(dir, 0.999999) + "' --method hierarchical --hr-rounds 1 --epsilon 1e-2 --hr-rays 4 "
-           "--max-iterations 5000 --no-render --out '" + dir.path("o") + "'");
+           "--max-iterations 5001 --no-render --out '" + dir.path("o") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::ifstream in(dir.path("o/report.json"));
   const nlohmann::json solver = nlohmann::json::parse(in)["solvers"][0];
   EXPECT_EQ(solver["exit_reason"], "max_iterations") << solver.dump();
-  EXPECT_EQ(solver["iterations"], 5000) << solver.dump();
-  EXPECT_EQ(solver["reason"].get<std::string>().rfind("not converged: maximum iterations (5000)", 0), 0u)
+  EXPECT_EQ(solver["iterations"], 5001) << solver.dump();
+  EXPECT_EQ(solver["reason"].get<std::string>().rfind("not converged: maximum iterations (5001)", 0), 0u)
       << solver.dump();
   ASSERT_TRUE(solver["spectral_radius_estimate"].is_number()) << solver.dump();
   EXPECT_NEAR(solver["spectral_radius_estimate"].get<double>(), 0.999999, 1e-5);
-  // Every sweep up to 1000, then 900 per decade of sweeps: 1000 + 360 rows up to 5000.
+  // Every sweep up to 1000, then 900 per decade of sweeps: 1000 + 360 rows up to 5000, and the
+  // last sweep (5001, not on the decimation grid) kept so the file ends where the run did.
   std::ifstream csv(dir.path("o/convergence.csv"));
   std::size_t rows = 0;
-  for (std::string line; std::getline(csv, line);) ++rows;
+  std::string line, last;
+  while (std::getline(csv, line)) ++rows, last = line;
   EXPECT_GT(rows, 1000u);
   EXPECT_LT(rows, 1500u);
+  EXPECT_NE(last.find(",5001,"), std::string::npos) << last;
 }
 
 // The hierarchical gather's other exits: converged, and the time limit.
