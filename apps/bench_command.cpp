@@ -128,8 +128,9 @@ void addBenchCommands(CLI::App& app) {
   CLI::App* f = bench->add_subcommand("formfactors", "Our visibility-ray rate against raw Embree rtcOccluded1 on the same scene");
   addMeshOptions(*f, ff->mesh);
   addFormFactorOptions(*f, ff->ff);
+  // The segments are stored (about 30 B each) before they are timed.
   f->add_option("--reference-rays", ff->referenceRays, "Raw Embree segments for the reference rate")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1LL, 100000000LL))
       ->capture_default_str();
   f->callback([ff] { runFormFactorBench(*ff); });
 
@@ -139,7 +140,7 @@ void addBenchCommands(CLI::App& app) {
   CLI::App* p = bench->add_subcommand("path-trace", "Path-traced rays per second against raw Embree closest hits on the same scene");
   addMeshOptions(*p, path->mesh, false);
   p->add_option("--spp", path->settings.render.samplesPerPixel, "Samples per pixel of the 128x128 image")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   p->callback([path] { runPathTraceBench(*path); });
 
@@ -147,14 +148,17 @@ void addBenchCommands(CLI::App& app) {
   CLI::App* s = bench->add_subcommand("solver", "Jacobi and Gauss-Seidel sweep bandwidth against a STREAM-like triad");
   s->add_option("--n", sweep->n, "Dense matrix size")->check(CLI::Range(64, 65536))->capture_default_str();
   s->add_option("--repetitions", sweep->repetitions, "Timed rounds of triad, Jacobi step and Gauss-Seidel step (best of each is kept)")->check(CLI::PositiveNumber)->capture_default_str();
-  s->add_option("--threads", sweep->threads, "Threads (0: all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
+  // --threads 1000000 took 936 MB (TBB's arena for the request) before TBB capped the workers.
+  s->add_option("--threads", sweep->threads, "Threads (0: all cores)")->check(CLI::Range(0, 1024))->capture_default_str();
   s->callback([sweep] { runSolverBench(*sweep); });
 
   auto hier = std::make_shared<HierarchicalBench>();
   CLI::App* h = bench->add_subcommand("hierarchical", "Hierarchical radiosity against a dense run of the same scene: time and memory ratios");
   h->add_option("scene", hier->scene, "Scene file")->required()->check(CLI::ExistingFile);
   h->add_option("--epsilon", hier->settings.epsilon, "Link error threshold")->capture_default_str();
-  h->add_option("--dense-patches", hier->densePatches, "Patches of the dense run")->check(CLI::PositiveNumber)->capture_default_str();
+  h->add_option("--dense-patches", hier->densePatches, "Patches of the dense run")
+      ->check(CLI::Range(1, int(kMaxPatches)))
+      ->capture_default_str();
   h->callback([hier] { runHierarchicalBench(*hier); });
 }
 

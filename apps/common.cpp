@@ -1,5 +1,6 @@
 #include "apps/common.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -31,6 +32,42 @@ CLI::Validator finiteNumber(bool allowZero) {
 
 const CLI::Validator FinitePositive = finiteNumber(false);
 const CLI::Validator FiniteNonNegative = finiteNumber(true);
+
+CLI::Validator FiniteRange(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size()) return "'" + text + "' is not a number";
+        if (!(v >= lo && v <= hi))  // false for NaN
+          return "'" + text + "' is not a number in [" + fmt("%g", lo) + ", " + fmt("%g", hi) + "]";
+        return "";
+      },
+      "FINITE in [" + fmt("%g", lo) + " - " + fmt("%g", hi) + "]");
+}
+
+const CLI::Validator Unsigned = CLI::Validator(
+    [](std::string& text) -> std::string {
+      if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+        return "'" + text + "' is not a whole number >= 0";
+      errno = 0;
+      std::strtoull(text.c_str(), nullptr, 10);
+      if (errno == ERANGE) return "'" + text + "' is larger than 18446744073709551615";
+      return "";
+    },
+    "UINT >= 0");
+
+void checkOutputFile(const std::string& option, const std::string& path) {
+  namespace fs = std::filesystem;
+  if (path.empty()) throw InputError(option + " is empty. Fix: give a file name");
+  if (fs::is_directory(path))
+    throw InputError(option + " " + path + " is a folder. Fix: give a file name inside it, e.g. " +
+                     (fs::path(path) / "image.png").string());
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw InputError(option + " " + path + ": folder " + parent.string() +
+                     " does not exist. Fix: create it or write elsewhere");
+}
 
 std::string defaultScenePath() {
   // The source tree's data/ first (a build run from anywhere), then ./data.

@@ -11,6 +11,10 @@
 
 namespace radkit::app {
 
+/// Photons `photons` and `render --shading photon-map` emit at most: each is traced and about
+/// 1/(1 − ρ) of them stored at 36 B, so 1e8 already needs gigabytes (4e9 was allowed and ran on).
+constexpr std::size_t kMaxPhotons = 100000000;
+
 /// The scene and meshing options every geometric subcommand takes.
 struct MeshOptions {
   std::string scene;
@@ -22,6 +26,14 @@ struct MeshOptions {
 /// both at parse time.
 extern const CLI::Validator FinitePositive;
 extern const CLI::Validator FiniteNonNegative;
+/// A finite number in [lo, hi]: CLI::Range lets NaN through for the same reason.
+CLI::Validator FiniteRange(double lo, double hi);
+/// A whole number >= 0 for unsigned options: CLI11 reads "-1" into an unsigned as 2^64 - 1.
+extern const CLI::Validator Unsigned;
+
+/// Refuses a file output (an image, a report) whose path is an existing folder or whose folder
+/// does not exist, before any work is done; throws InputError naming the option.
+void checkOutputFile(const std::string& option, const std::string& path);
 
 /// Adds SCENE (positional; `required` or defaulting to the Cornell box) and --max-area/--patches.
 void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired = true);

@@ -62,7 +62,9 @@ void addFormFactorOptions(CLI::App& c, FormFactorOptions& o) {
   c.add_option("--ff-samples", o.settings.samples, "Rays (or point pairs) per patch pair, K >= 1")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  c.add_option("--seed", o.settings.seed, "Seed of every random stream (same seed, same output)")->capture_default_str();
+  c.add_option("--seed", o.settings.seed, "Seed of every random stream (same seed, same output)")
+      ->check(Unsigned)
+      ->capture_default_str();
   c.add_option("--ff-enforce", o.enforce, "'reciprocity': replace A_iF_ij and A_jF_ji by their mean (off by default)");
   c.add_option("--ff-storage", o.storage, "Form-factor storage precision")
       ->check(CLI::IsMember({"double", "float"}))

@@ -284,12 +284,13 @@ void addPhotonsCommand(CLI::App& app) {
                  "a comparison with the radiosity solution (comparison.csv, difference.png)");
   addMeshOptions(*sub, cmd->mesh, true);
   sub->add_option("--photons", cmd->settings.photons, "Photons emitted")
-      ->check(CLI::Range(std::size_t(1), std::size_t(4000000000)))->capture_default_str();
+      ->check(CLI::Range(std::size_t(1), kMaxPhotons))->capture_default_str();
   sub->add_option("--k", cmd->settings.neighbours, "Photons in each irradiance estimate (k nearest)")
       ->check(CLI::Range(2, 100000))->capture_default_str();
   sub->add_option("--filter", cmd->filter, "Density-estimation kernel")
       ->check(CLI::IsMember({"epanechnikov", "cone"}))->capture_default_str();
-  sub->add_option("--seed", cmd->settings.seed, "Random seed (photon i uses stream (seed, i))")->capture_default_str();
+  sub->add_option("--seed", cmd->settings.seed, "Random seed (photon i uses stream (seed, i))")
+      ->check(Unsigned)->capture_default_str();
   sub->add_option("--gather", cmd->settings.gatherRays, "Final-gathering rays per pixel (0: show the map directly)")
       ->check(CLI::Range(0, 4096))->capture_default_str();
   sub->add_option("--view", cmd->view, "photonmap.png: final gathering or the global map itself")

@@ -146,7 +146,7 @@ void runJob(PipelineCommand& cmd) {
   if (cmd.job == Job::Run && cmd.preset.empty() && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0)
     cmd.mesh.patches = cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
   Scene scene = loadSceneReporting(cmd.mesh.scene);
-  if (cmd.out.empty()) cmd.out = "out/" + scene.name;
+  if (cmd.out.empty() && cmd.job == Job::Run) cmd.out = "out/" + scene.name;  // required for the others
 
   PipelineSettings settings = pipelineSettings(cmd);
   Progress progress;

@@ -21,6 +21,7 @@
 #include "render/photon_map.h"
 #include "render/photon_tracer.h"
 #include "render/shading.h"
+#include "util/output_folder.h"
 #include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
 
 namespace radkit::app {
@@ -153,9 +154,7 @@ RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width
 
 /// Region errors against the reference renders: printed, and written as JSON with --report.
 void compareWithReference(const RenderCommand& cmd, const Scene& scene, const RadianceImage& img,
-                          const std::vector<int>& surfaces, double seconds) {
-  std::vector<RadianceImage> refs;
-  for (const std::string& f : cmd.references) refs.push_back(readPfm(f));
+                          const std::vector<int>& surfaces, double seconds, const std::vector<RadianceImage>& refs) {
   std::vector<std::string> names;
   for (const Surface& s : scene.surfaces) names.push_back(s.name);
   names.push_back("edges");
@@ -189,7 +188,7 @@ void compareWithReference(const RenderCommand& cmd, const Scene& scene, const Ra
   const nlohmann::json j{{"shading", cmd.shading}, {"smooth", cmd.smooth}, {"sampler", cmd.sampler},
                          {"light_sampling", cmd.lightSampling}, {"spp", cmd.spp}, {"width", img.width},
                          {"height", img.height}, {"seconds", seconds}, {"references", cmd.references}, {"regions", rows}};
-  std::ofstream(cmd.report) << j.dump(2) << "\n";
+  writeFileAtomically(cmd.report, j.dump(2) + "\n");
   printField("report", cmd.report);
 }
 
@@ -198,6 +197,23 @@ void runRender(RenderCommand& cmd) {
   cmd.solver.finish();
   int width = 0, height = 0;
   viewer::parseSize(cmd.size, width, height, 1, 16384);  // tests render 8x8 images
+  // Refused before the render, which may take minutes, rather than when it is written.
+  checkOutputFile("--out", cmd.out);
+  if (!cmd.report.empty()) {
+    if (cmd.references.empty())
+      throw InputError("--report " + cmd.report + " needs --reference: the report holds the errors against it");
+    checkOutputFile("--report", cmd.report);
+  }
+  // References are read and their size checked first: a mismatch found after the render left
+  // the image behind.
+  std::vector<RadianceImage> refs;
+  for (const std::string& f : cmd.references) {
+    refs.push_back(readPfm(f));
+    if (refs.back().width != width || refs.back().height != height)
+      throw InputError("--reference " + f + " is " + std::to_string(refs.back().width) + "x" +
+                       std::to_string(refs.back().height) + ", the image --size " + std::to_string(width) + "x" +
+                       std::to_string(height) + ". Fix: render at the reference's --size");
+  }
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
   const Scene scene = loadSceneReporting(cmd.mesh.scene);
   std::string what;
@@ -215,7 +231,7 @@ void runRender(RenderCommand& cmd) {
   if (ext != ".pfm") printField("exposure", std::to_string(exposure));
   printField("wrote", cmd.out);
   printField("seconds", std::to_string(seconds));
-  if (!cmd.references.empty()) compareWithReference(cmd, scene, img, surfaces, seconds);
+  if (!cmd.references.empty()) compareWithReference(cmd, scene, img, surfaces, seconds, refs);
 }
 
 }  // namespace
@@ -247,7 +263,9 @@ void addRenderCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--spp", cmd->spp, "Samples (camera paths) per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT")->capture_default_str();
-  sub->add_option("--photons", cmd->photons, "photon-map: photons emitted")->check(CLI::PositiveNumber)->capture_default_str();
+  sub->add_option("--photons", cmd->photons, "photon-map: photons emitted")
+      ->check(CLI::Range(std::size_t(1), kMaxPhotons))
+      ->capture_default_str();
   sub->add_option("--exposure", cmd->exposure, "Radiance multiplier before tone mapping; 0: automatic")
       ->check(FiniteNonNegative)
       ->capture_default_str();
@@ -257,12 +275,12 @@ void addRenderCommand(CLI::App& app) {
   sub->add_flag("--smooth", cmd->smooth, "radiosity: interpolate between patches (never across creases or jumps)");
   sub->add_option("--crease-angle", cmd->smoothing.creaseAngleDeg,
                   "--smooth, final-gather: patches whose normals differ by more degrees are not averaged")
-      ->check(CLI::Range(0.0, 180.0))
+      ->check(FiniteRange(0.0, 180.0))
       ->capture_default_str();
   sub->add_option("--smooth-error", cmd->smoothing.relativeError,
                   "--smooth, final-gather: a patch's assumed error as a fraction of its B; neighbours that differ "
                   "by more than 3 combined errors are not averaged (a shadow edge stays sharp)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(FiniteNonNegative)
       ->capture_default_str();
   sub->add_flag("--unguided", cmd->unguided,
                 "final-gather: BSDF-sampled gather rays only, without the form-factor-guided samples");

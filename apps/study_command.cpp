@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "apps/common.h"
+#include "geometry/scene_loader.h"
 #include "apps/report.h"
 #include "hierarchy/hierarchical.h"
 #include "radiosity/study.h"
@@ -208,6 +209,14 @@ void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& s
 }
 
 void runStudyCommand(StudyCommand& cmd) {
+  // The reference runs whatever the budget: --knob-patches 4000 with --max-seconds 1 ran an
+  // 8000-patch reference for minutes.
+  const double reference = estimateReferenceSeconds(cmd.settings);
+  if (reference > cmd.settings.maxSeconds)
+    throw InputError("--max-seconds " + fmt("%g", cmd.settings.maxSeconds) + " is shorter than the reference of " +
+                     "--knob-patches " + std::to_string(cmd.settings.knobPatches) + " alone (" +
+                     std::to_string(2 * cmd.settings.knobPatches) + " patches, estimated " +
+                     fmt("%.0f s", reference) + "). Fix: raise --max-seconds or lower --knob-patches");
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
   Scene scene = loadSceneReporting(cmd.mesh.scene);
   Progress progress;
@@ -253,9 +262,13 @@ void addStudyCommand(CLI::App& app) {
                   "Mesh of the form-factor and solver sweeps (a rung of the mesh ladder)")
       ->check(CLI::IsMember({250, 500, 1000, 2000, 4000}))
       ->capture_default_str();
-  sub->add_option("--seed", cmd->settings.baseline.formFactors.seed, "Seed of every random stream")->capture_default_str();
+  sub->add_option("--seed", cmd->settings.baseline.formFactors.seed, "Seed of every random stream")
+      ->check(Unsigned)
+      ->capture_default_str();
   sub->add_option("--epsilons", cmd->epsilons, "Hierarchical method's ladder of --epsilon, measured after the other knobs")
-      ->check(CLI::PositiveNumber & CLI::Range(0.0, 1.0))
+      ->check(FiniteRange(kMinEpsilon, 1.0) & CLI::Validator([](std::string& t) {  // 1 itself is no threshold
+                return std::strtod(t.c_str(), nullptr) < 1 ? std::string() : "'" + t + "' must be below 1";
+              }, ""))
       ->capture_default_str();
   sub->add_option("--out", cmd->out, "Output folder")->required();
   sub->callback([cmd] { runStudyCommand(*cmd); });

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "apps/common.h"
+#include "geometry/scene_loader.h"
 #include "viewer/viewer.h"
 
 namespace radkit::app {
@@ -13,10 +14,15 @@ struct ViewCommand {
   viewer::ViewerOptions options;
   std::string size;
   std::string out;  ///< where a scene's run goes (default out/<scene name>)
+  bool screenshotGiven = false;
 };
 
 void runView(ViewCommand& cmd) {
   viewer::ViewerOptions& o = cmd.options;
+  if (o.runFolder.empty())
+    throw InputError("RUN_DIR is empty. Fix: give a folder written by `radkit run --out DIR`, or a scene file");
+  // An empty --screenshot would open the interactive window, which waits for a user.
+  if (cmd.screenshotGiven || !o.screenshot.empty()) checkOutputFile("--screenshot", o.screenshot);
   // A scene file instead of a run folder: run the main job first, then view its folder.
   if (std::filesystem::is_regular_file(o.runFolder)) o.runFolder = runDefaultJob(o.runFolder, cmd.out);
   if (!cmd.size.empty())
@@ -57,7 +63,11 @@ void addViewCommand(CLI::App& app) {
   sub->add_option("--exposure", o.exposure, "Multiplier on radiance L = B/pi for true colour (0: automatic)")
       ->check(FiniteNonNegative)
       ->capture_default_str();
-  sub->callback([cmd] { runView(*cmd); });
+  CLI::Option* screenshot = sub->get_option("--screenshot");
+  sub->callback([cmd, screenshot] {
+    cmd->screenshotGiven = screenshot->count() > 0;
+    runView(*cmd);
+  });
 }
 
 }  // namespace radkit::app

@@ -21,6 +21,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+/// Largest channel of any node's B: the size the gather's rounding error is relative to.
+double maxRadiosity(const SourceState& state) {
+  double m = 0;
+  for (const Vec3& b : state.radiosity) m = std::max(m, maxComponent(b));
+  return m;
+}
+
 std::string num(double v) {
   std::ostringstream s;
   s.precision(3);
@@ -152,10 +159,10 @@ GatherOrder parseGatherOrder(const std::string& name) {
 }
 
 void validateHierarchicalSettings(const HierarchicalSettings& s) {
-  if (!(s.epsilon > 0) || !std::isfinite(s.epsilon) || s.epsilon >= 1)
+  if (!(s.epsilon >= kMinEpsilon) || s.epsilon >= 1)
     throw std::invalid_argument("--epsilon " + num(s.epsilon) +
-                                " is not a link error threshold: use a number in (0, 1), for example 1e-4 "
-                                "(smaller is more accurate and slower)");
+                                " is not a link error threshold: use a number in [" + num(kMinEpsilon) +
+                                ", 1), for example 1e-4 (smaller is more accurate and slower)");
   if (!(s.minArea >= 0) || !std::isfinite(s.minArea))
     throw std::invalid_argument("--min-area " + num(s.minArea) +
                                 " is not an area: use a positive area in scene units², or 0 for the default");
@@ -267,6 +274,17 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
                         std::to_string(settings.seed);
   Clock::time_point solveStart = Clock::now();
   long iteration = 0;
+  // The dense solvers' rules (solvers/solver.h): exit reasons, a spectral-radius estimate,
+  // stagnation at the rounding floor and a history decimated so it stays bounded.
+  ConvergenceMonitor monitor;
+  monitor.startResidual = std::numeric_limits<double>::min();
+  HistoryRow lastRow;
+  bool lastKept = true;  // the decimated history must still end with the last sweep
+  auto stop = [&](const std::string& exit, const std::string& reason) {
+    r.solve.exit = exit;
+    r.solve.reason = reason;
+    if (!lastKept) r.solve.history.push_back(lastRow), lastKept = true;
+  };
   for (int round = 0; round < settings.rounds; ++round) {
     HierarchicalRound info;
     info.epsilon = settings.epsilon * std::pow(4.0, settings.rounds - 1 - round);
@@ -305,25 +323,44 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     const double tolerance = last ? settings.stopping.tolerance : std::max(settings.stopping.tolerance, kRoundTolerance);
     const long maxSweeps = last ? settings.stopping.maxIterations : 1000;
     for (long sweep = 0;; ++sweep) {
+      const std::string after = " after " + std::to_string(iteration) + " sweeps";
       if (sweep >= maxSweeps) {
-        if (last) r.solve.reason = "stopped at the sweep limit " + std::to_string(maxSweeps) + " before --tol";
+        if (last)
+          stop("max_iterations", "not converged: maximum iterations (" + std::to_string(maxSweeps) +
+                                     ") reached with change " + num(r.solve.residual) + " > tolerance " +
+                                     num(tolerance) + monitor.rateText());
+        break;
+      }
+      if (since(solveStart) >= settings.stopping.maxSeconds) {
+        stop("time_limit", "not converged: time limit " + num(settings.stopping.maxSeconds) + " s reached" + after +
+                               " with change " + num(r.solve.residual) + monitor.rateText());
         break;
       }
       HierarchicalSystem::Change c = r.system->sweep(state);
       ++iteration, ++info.sweeps;
-      double residual = c.max / emissionNorm;
-      r.solve.history.push_back({iteration, since(solveStart), residual, c.power, double(iteration)});
+      const double residual = c.max / emissionNorm;
+      r.solve.residual = residual;
+      monitor.update(residual, double(iteration));
+      lastRow = {iteration, since(solveStart), residual, c.power, double(iteration)};
       if (log.progress)
         log.progress("solve, epsilon " + num(info.epsilon),
                      std::clamp(std::log(residual) / std::log(tolerance), 0.0, 1.0));
       if (!std::isfinite(residual) || residual > 1e12) {
-        r.solve.reason = "diverged: the change grew to " + num(residual);
-        break;
+        stop("diverged", "diverged: the change grew to " + num(residual) + " after " + std::to_string(iteration) +
+                             " sweeps" + monitor.rateText());
+      } else if (residual <= tolerance) {
+        if (last) r.solve.converged = true, stop("converged", "converged");
+      } else if (iteration - monitor.bestSweeps >= kStagnationSweeps &&
+                 monitor.stagnated(double(iteration), maxRadiosity(state) / emissionNorm)) {
+        stop("stagnated", "stagnated: no change below " + num(monitor.best) + " for " + num(kStagnationSweeps) +
+                              " sweeps" + " after " + std::to_string(iteration) + " sweeps" + monitor.rateText() +
+                              " (rounding error: tolerance " + num(tolerance) +
+                              " is below what this system reaches; raise --tol)");
       }
-      if (residual <= tolerance) {
-        if (last) r.solve.converged = true, r.solve.reason = "converged";
-        break;
-      }
+      const bool done = residual <= tolerance || !r.solve.exit.empty();
+      lastKept = monitor.keep(iteration, residual) || done;
+      if (lastKept) r.solve.history.push_back(lastRow);
+      if (done) break;
     }
     info.solveSeconds = since(t);
     r.seconds.refine += info.refineSeconds;
@@ -333,13 +370,14 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     say("hierarchy: epsilon " + num(info.epsilon) + ", " + std::to_string(info.links) + " links, " +
         std::to_string(info.nodes) + " nodes, " + std::to_string(info.rays) + " rays, " +
         std::to_string(info.sweeps) + " sweeps, " + num(info.refineSeconds + info.solveSeconds) + " s");
-    if (r.solve.reason.rfind("diverged", 0) == 0) break;
+    if (r.solve.exit == "diverged" || r.solve.exit == "stagnated" || r.solve.exit == "time_limit") break;
   }
   r.threshold = settings.epsilon * emitted;
   r.solve.iterations = iteration;
   r.solve.seconds = since(solveStart);
   r.solve.residual = r.solve.history.empty() ? 0 : r.solve.history.back().residual;
   r.solve.checkedResidual = r.solve.residual;
+  r.solve.spectralRadius = monitor.rate;
 
   t = Clock::now();
   std::vector<Vec3> nodeH = r.system->leafIrradiance(state);

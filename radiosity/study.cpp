@@ -316,6 +316,12 @@ std::string StudyConfig::label() const {
   return "?";
 }
 
+double estimateReferenceSeconds(const StudySettings& st) {
+  StudyConfig c = makeConfig(StudyKnob::Mesh, st.baseline, 2 * st.knobPatches);
+  c.settings.stopping.tolerance = st.referenceTolerance;
+  return estimateSeconds(c, {});
+}
+
 StudyResult runStudy(const Scene& scene, const StudySettings& st, const PipelineLog& log) {
   auto start = Clock::now();
   auto say = [&](const std::string& line) {

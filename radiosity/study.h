@@ -92,6 +92,10 @@ struct StudyResult {
 /// referenceTolerance); then every error and both Pareto fronts.
 StudyResult runStudy(const Scene& scene, const StudySettings& settings, const PipelineLog& log = {});
 
+/// \brief Seconds the smallest reference (2 × knobPatches) is estimated to take before anything
+///        is measured: the study runs its reference whatever the budget says.
+double estimateReferenceSeconds(const StudySettings& settings);
+
 /// \brief For each patch of `from`, the patch of `onto` that contains its centroid (a ray from
 /// just in front of the centroid back along −n), or −1 when none of the same surface is hit.
 std::vector<int> mapPatches(const PatchMesh& from, const PatchMesh& onto, const Visibility& ontoRays);

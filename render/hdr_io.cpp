@@ -41,6 +41,17 @@ RadianceImage readPfm(const std::string& path) {
   if (!in || magic != "PF" || img.width <= 0 || img.height <= 0 || scale == 0)
     throw std::runtime_error(path + ": not a colour PFM (expected \"PF\", width, height, scale)");
   in.get();  // the single whitespace character before the data
+  // The header's size is checked against the bytes left before allocating: a mutated header
+  // (PF 2000000000 2000000000) asked for 48 EB.
+  const std::streamoff at = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streamoff left = in.tellg() - at;
+  in.seekg(at);
+  if (left < 0 || double(img.width) * img.height * 12 > double(left))
+    throw std::runtime_error(path + ": PFM header says " + std::to_string(img.width) + "x" +
+                             std::to_string(img.height) + " pixels (" +
+                             std::to_string(std::uint64_t(img.width) * std::uint64_t(img.height) * 12) +
+                             " bytes) but " + std::to_string(left) + " bytes follow it. Fix: give a whole PFM file");
   std::string body(std::size_t(img.width) * img.height * 12, '\0');
   if (!in.read(body.data(), std::streamsize(body.size())))
     throw std::runtime_error(path + ": PFM data shorter than " + std::to_string(body.size()) + " bytes");

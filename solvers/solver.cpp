@@ -62,51 +62,13 @@ std::string number(double v) {
   return s.str();
 }
 
-/// What the driver tracks across iterations beyond the solver's own state.
-struct Progress {
-  double startResidual = 0.0;
-  double best = std::numeric_limits<double>::infinity();  ///< lowest residual so far
-  double bestSweeps = 0.0;                                 ///< sweeps() when it was reached
-  double windowSweeps = 0.0, windowResidual = 0.0;         ///< start of the rate window
-  double rate = std::numeric_limits<double>::quiet_NaN();  ///< see SolveResult::spectralRadius
-  int decade = std::numeric_limits<int>::max();            ///< floor(log10) of the last kept residual's decade
-
-  void update(double r, double sweeps) {
-    if (r < best * (1 - 1e-9)) {
-      best = r;
-      bestSweeps = sweeps;
-    }
-    if (sweeps - windowSweeps >= kRateWindowSweeps || std::isnan(rate)) {
-      if (sweeps > windowSweeps && windowResidual > 0 && r >= 0)
-        rate = std::pow(r / windowResidual, 1 / (sweeps - windowSweeps));
-      if (sweeps - windowSweeps >= kRateWindowSweeps) {
-        windowSweeps = sweeps;
-        windowResidual = r;
-      }
-    }
-  }
-  /// Keeps every row up to 1000, then 900 per decade of iterations, and the first row of each
-  /// new decade of the residual (so milestones at powers of ten stay exact).
-  bool keep(long iteration, double r) {
-    bool newDecade = false;
-    if (r > 0 && std::isfinite(r) && int(std::floor(std::log10(r))) < decade) {
-      decade = int(std::floor(std::log10(r)));
-      newDecade = true;
-    }
-    if (iteration < 1000 || newDecade) return true;
-    long step = 1;
-    for (long i = iteration; i >= 1000; i /= 10) step *= 10;
-    return iteration % step == 0;
-  }
-};
-
 std::string rateText(double rate) {
   return std::isnan(rate) ? std::string() : ", estimated spectral radius " + number(rate);
 }
 
 /// Empty when the run goes on; otherwise why it stops (and result.exit, result.converged).
 std::string stopReason(const Solver& solver, const SolverSettings& settings, long iteration,
-                       double seconds, double emissionNorm, const Progress& p, SolveResult& result) {
+                       double seconds, double emissionNorm, const ConvergenceMonitor& p, SolveResult& result) {
   const double r = solver.residual();
   const std::string tail = " after " + std::to_string(iteration) + " iterations";
   result.converged = false;
@@ -141,8 +103,7 @@ std::string stopReason(const Solver& solver, const SolverSettings& settings, lon
   // limit. Only at the floor: far above it, a residual may rise for a long while and still
   // converge (Gauss-Seidel and Southwell at reflectances near 1).
   if (solver.sweeps() - p.bestSweeps >= kStagnationSweeps &&
-      p.best <= 1e4 * std::numeric_limits<double>::epsilon() *
-                    std::max(1.0, maxAbs(solver.radiosity()) / std::max(emissionNorm, 1e-300))) {
+      p.stagnated(solver.sweeps(), maxAbs(solver.radiosity()) / std::max(emissionNorm, 1e-300))) {
     result.exit = "stagnated";
     return "stagnated: no residual below " + number(p.best) + " for " + number(kStagnationSweeps) +
            " sweeps" + tail + rateText(p.rate) + " (rounding error: tolerance " +
@@ -153,6 +114,40 @@ std::string stopReason(const Solver& solver, const SolverSettings& settings, lon
 
 }  // namespace
 
+void ConvergenceMonitor::update(double r, double sweeps) {
+  if (r < best * (1 - 1e-9)) {
+    best = r;
+    bestSweeps = sweeps;
+  }
+  if (sweeps - windowSweeps >= kRateWindowSweeps || std::isnan(rate)) {
+    if (sweeps > windowSweeps && windowResidual > 0 && r >= 0)
+      rate = std::pow(r / windowResidual, 1 / (sweeps - windowSweeps));
+    if (sweeps - windowSweeps >= kRateWindowSweeps) {
+      windowSweeps = sweeps;
+      windowResidual = r;
+    }
+  }
+}
+
+bool ConvergenceMonitor::keep(long iteration, double r) {
+  bool newDecade = false;
+  if (r > 0 && std::isfinite(r) && int(std::floor(std::log10(r))) < decade) {
+    decade = int(std::floor(std::log10(r)));
+    newDecade = true;
+  }
+  if (iteration < 1000 || newDecade) return true;
+  long step = 1;
+  for (long i = iteration; i >= 1000; i /= 10) step *= 10;
+  return iteration % step == 0;
+}
+
+bool ConvergenceMonitor::stagnated(double sweeps, double scale) const {
+  return sweeps - bestSweeps >= kStagnationSweeps &&
+         best <= 1e4 * std::numeric_limits<double>::epsilon() * std::max(1.0, scale);
+}
+
+std::string ConvergenceMonitor::rateText() const { return radkit::rateText(rate); }
+
 SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSettings& settings) {
   SolveResult result;
   result.solver = solver.name();
@@ -161,7 +156,7 @@ SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSet
   result.description = solver.describe();
   const double emissionNorm = system.emissionNorm();
   long iteration = 0;
-  Progress progress;
+  ConvergenceMonitor progress;
   progress.startResidual = std::max(solver.residual(), std::numeric_limits<double>::min());
   progress.windowResidual = solver.residual();
   for (;;) {

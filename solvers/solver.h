@@ -111,6 +111,28 @@ constexpr double kStagnationSweeps = 1000;
 /// Sweeps over which SolveResult::spectralRadius is measured.
 constexpr double kRateWindowSweeps = 50;
 
+/// What solve() tracks across iterations beyond the solver's own state; the hierarchical gather
+/// (hierarchy/hierarchical.cpp) uses it too, so both stop, estimate ρ and keep history alike.
+struct ConvergenceMonitor {
+  double startResidual = 0.0;
+  double best = std::numeric_limits<double>::infinity();  ///< lowest residual so far
+  double bestSweeps = 0.0;                                 ///< sweeps when it was reached
+  double windowSweeps = 0.0, windowResidual = 0.0;         ///< start of the rate window
+  double rate = std::numeric_limits<double>::quiet_NaN();  ///< see SolveResult::spectralRadius
+  int decade = std::numeric_limits<int>::max();            ///< floor(log10) of the last kept residual's decade
+
+  /// Records residual r after `sweeps` sweep-equivalents: the lowest so far and the rate.
+  void update(double r, double sweeps);
+  /// Whether history row `iteration` is kept: every row up to 1000, then 900 per decade of
+  /// iterations, and the first row of each new decade of the residual.
+  bool keep(long iteration, double r);
+  /// No new lowest residual for kStagnationSweeps sweeps, at a residual within 1e4 rounding
+  /// errors of zero (`scale`: largest B over ‖E‖, the size the rounding is relative to).
+  bool stagnated(double sweeps, double scale) const;
+  /// ", estimated spectral radius R", or nothing before the first estimate.
+  std::string rateText() const;
+};
+
 /// \brief Runs solver from B = E until residual <= tolerance, maxIterations steps, maxSeconds,
 ///        stagnation or divergence, recording the history. Throws what start() throws.
 SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSettings& settings);

@@ -45,11 +45,19 @@ bool replaceable(const fs::path& dir) {
 }  // namespace
 
 OutputFolder::OutputFolder(std::string destination) : m_destination(std::move(destination)) {
+  if (m_destination.empty())
+    throw std::runtime_error("the output folder (--out) is empty. Fix: give a folder name, e.g. --out out/run1");
   fs::path dest = fs::absolute(m_destination).lexically_normal();
   if (dest.filename().empty()) dest = dest.parent_path();
+  // The folder is replaced whole: `--out .` would move the working folder away under the shell.
+  std::error_code ec;
+  const fs::path cwd = fs::current_path(ec);
+  const auto [end, rest] = std::mismatch(dest.begin(), dest.end(), cwd.begin(), cwd.end());
+  if (dest == dest.root_path() || (!ec && end == dest.end()))
+    throw std::runtime_error("--out " + m_destination + " is the working folder or contains it, and an output "
+                             "folder is replaced whole. Fix: give a new folder name, e.g. --out out/run1");
   m_destination = dest.string();
   fs::path parent = dest.parent_path();
-  std::error_code ec;
   if (fs::exists(dest) && (!fs::is_directory(dest) || !replaceable(dest)))
     throw std::runtime_error(dest.string() + " exists and is not a radkit output folder (no report.json, "
                              "patches.csv or study.csv), and an output folder is replaced whole. Fix: "
@@ -106,14 +114,27 @@ std::string csvField(const std::string& text) {
 }
 
 void writeFileAtomically(const std::string& path, const std::string& text) {
+  // Renaming onto a folder fails only after the whole file is written, with an OS message.
+  if (fs::is_directory(path))
+    throw std::runtime_error(path + " is a folder, not a file. Fix: give a file name inside it or another path");
   std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw std::runtime_error("cannot write " + tmp);
+    if (!out)
+      throw std::runtime_error("cannot write " + tmp + ". Fix: check that its folder exists and is writable");
     out << text;
-    if (!out) throw std::runtime_error("error while writing " + tmp);
+    if (!out) {
+      out.close();
+      fs::remove(tmp);
+      throw std::runtime_error("error while writing " + tmp + " (disk full?)");
+    }
   }
-  fs::rename(tmp, path);
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp);
+    throw std::runtime_error("cannot replace " + path + ": " + ec.message());
+  }
 }
 
 }  // namespace radkit

@@ -155,6 +155,13 @@ FormFactorRows readFormFactorsMtx(const std::string& path) {
   long long rows = 0, cols = 0, entries = 0;
   if (!(std::istringstream(line) >> rows >> cols >> entries) || rows != cols || rows <= 0 || entries < 0)
     failLine(path, lineNo, "expected the size line 'n n nonzeros' of a square matrix");
+  // Counts are checked before allocating: "n n 4000000000" asked for 64 GB. An entry line has
+  // at least 6 bytes ("1 1 0\n"); radkit meshes at most 10 000 000 patches.
+  const std::uintmax_t bytes = std::filesystem::file_size(path);
+  if (rows > 10000000 || entries > (long long)(bytes / 6) || double(entries) > double(rows) * double(rows))
+    failLine(path, lineNo, "the size line says " + std::to_string(rows) + " rows and " + std::to_string(entries) +
+                               " entries, more than a " + std::to_string(bytes) + "-byte file of at most " +
+                               "10000000 patches holds. Fix: write the file again with `radkit run --write-matrix`");
   std::vector<int> row(entries), col(entries);
   std::vector<double> val(entries);
   for (long long k = 0; k < entries; ++k) {
@@ -197,7 +204,10 @@ std::vector<SolverHistory> readConvergenceCsv(const std::string& path) {
   for (std::size_t k = 0; k < t.rows.size(); ++k) {
     const auto& r = t.rows[k];
     const long long line = static_cast<long long>(k) + 2;
-    int iteration = int(toNumber(r[cIter], path, line, "iteration"));
+    const double it = toNumber(r[cIter], path, line, "iteration");
+    if (!(it >= 0 && it <= 2147483647))  // converting NaN or 1e20 to int is undefined
+      failLine(path, line, "column 'iteration': '" + r[cIter] + "' is not an iteration count >= 0");
+    const int iteration = int(it);
     // A new block when the solver changes or its iteration count starts again.
     if (runs.empty() || runs.back().solver != r[cSolver] || iteration <= runs.back().iteration.back())
       runs.push_back(SolverHistory{r[cSolver], {}, {}, {}, {}});

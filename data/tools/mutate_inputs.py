@@ -2,15 +2,20 @@
 """Bounded mutation run over radkit's loaders: mutated copies of data/ scenes and of meshes
 derived from data/sphere-interior.off (OFF, ASCII and binary PLY, ASCII and binary STL, OBJ+MTL)
 go through `radkit mesh` (every case), `radkit run` (every fourth, small mesh), `radkit render`
-and `radkit photons` (every eighth each, small), each with a time limit. Counts outcomes:
-success (exit 0), clean error (non-zero exit with an error message and no output), crash (a
-signal, an abort or an uncaught exception), hang (time limit), silent failure or error with
-output (neither should occur), and staging folders left behind. Exits 1 when any case is
-neither a success nor a clean error. Reproducible: the same --seed gives the same inputs.
+and `radkit photons` (every eighth each, small); with --all-commands also `run --method
+hierarchical`, `formfactors` and `solvers` (every eighth each), `bench formfactors|path-trace`
+(every sixteenth), `bench hierarchical` and `study` (every thirty-second). --options N then
+adds N hostile-option cases over every command, `view` and `brdf` included (hostile_options.py).
+Each run has a time limit and its peak memory is measured (GNU time). Counts outcomes: success
+(exit 0), clean error (non-zero exit with a message and no output), crash (a signal, an abort
+or an uncaught exception), hang (time limit), memory (peak RSS over MEMORY_LIMIT_MB), silent
+failure or error with output (none should occur), and staging folders left behind. Exits 1
+when any case is neither a success nor a clean error. The same --seed gives the same inputs.
 
-  python3 data/tools/mutate_inputs.py --radkit build/apps/radkit --cases 1000 --work /tmp/mut
+  tests/viewer/xvfb_run.sh python3 data/tools/mutate_inputs.py --radkit build/apps/radkit \
+      --cases 1000 --all-commands --options 600 --jobs 2 --work /tmp/mut
 """
-import argparse, json, os, random, re, shutil, struct, subprocess, sys
+import argparse, json, os, random, re, shutil, signal, struct, subprocess, sys
 
 HOSTILE = ["nan", "-inf", "inf", "1e999", "-1", "0", "1e20", "4000000000", "-2147483648",
            "99999999999999", "1e-300", "0.5", "x", "", "3.0", "-0"]
@@ -92,12 +97,37 @@ def mutate(data, rng):
     return data
 
 
+# A run whose peak resident memory passes this is counted as "memory": radkit itself takes
+# about 50 MB, and no seed here (scenes under 200 kB, meshes of 320 faces, terrain-51k.off of
+# 5 MB) justifies more than a few hundred.
+MEMORY_LIMIT_MB = 1024
+
+
+def run_radkit(radkit, argv, cwd, timeout):
+    """(exit code or None on time-out, stdout + stderr, peak RSS in MB) of one run under GNU
+    time; a run past the limit is killed with its whole process group."""
+    p = subprocess.Popen(["/usr/bin/time", "-q", "-f", "\n@maxrss %M", radkit] + argv, cwd=cwd,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    try:
+        out, err = p.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.communicate()
+        return None, "", 0.0
+    text = (out + err).decode(errors="replace")
+    m = re.search(r"\n@maxrss (\d+)\s*$", text)
+    rss = int(m.group(1)) / 1024.0 if m else 0.0
+    return p.returncode, text[:m.start()] if m else text, rss
+
+
 def classify(rc, output):
     if rc < 0 or rc >= 128 or "terminate called" in output or "Assertion" in output:
         return "crash"  # a signal, an abort or an uncaught exception
     if rc == 0:
         return "success"
-    return "clean error" if "error" in output.lower() else "silent failure"
+    # radkit's own errors say "error"; CLI11's parse errors name the option ("--k: Value 1 not in
+    # range [2 - 100000]") and end with "Run with --help".
+    return "clean error" if "error" in output.lower() or "Run with --help" in output else "silent failure"
 
 
 def main():
@@ -109,12 +139,18 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--work", default="/tmp/radkit-mutate")
     ap.add_argument("--log", help="write each case's outcome and first error line here")
+    ap.add_argument("--all-commands", action="store_true",
+                    help="also run formfactors, solvers, run --method hierarchical, study and bench on the inputs")
+    ap.add_argument("--options", type=int, default=0,
+                    help="then this many hostile-option cases over every command (hostile_options.py; view "
+                         "needs DISPLAY: run under tests/viewer/xvfb_run.sh)")
+    ap.add_argument("--jobs", type=int, default=1, help="parallel runs of the hostile-option cases")
     args = ap.parse_args()
     args.radkit = os.path.abspath(args.radkit)
     rng = random.Random(args.seed)
     base = seeds(args.data)
     mtl = b"newmtl lamp\nKd 0.5 0.5 0.5\nKe 1 1 1\n"
-    counts, cases = {}, []
+    counts, cases, peak = {}, [], {}
     for n in range(args.cases):
         name, text, kind = base[n % len(base)]
         case = os.path.join(args.work, "case%04d" % n)
@@ -141,33 +177,64 @@ def main():
         if n % 8 == 5:
             commands.append(["photons", target, "--photons", "2000", "--no-radiosity", "--no-image",
                              "--bench-rays", "0", "--out", "o-photons"])
+        if args.all_commands:  # the commands the first runs did not reach, on the same inputs
+            if n % 8 == 2:
+                commands.append(["run", target, "--method", "hierarchical", "--epsilon", "1e-2", "--hr-rays", "4",
+                                 "--no-render", "--out", "o-hier"])
+            if n % 8 == 3:
+                commands.append(["formfactors", target, "--patches", "24", "--out", "o-ff"])
+            if n % 8 == 6:
+                commands.append(["solvers", target, "--patches", "24", "--out", "o-solvers"])
+            if n % 16 == 7:
+                commands.append(["bench", "formfactors", target, "--patches", "24", "--reference-rays", "1000"])
+            if n % 16 == 15:
+                commands.append(["bench", "path-trace", target, "--patches", "24", "--spp", "1"])
+            if n % 32 == 11:
+                commands.append(["bench", "hierarchical", target, "--epsilon", "1e-2", "--dense-patches", "24"])
+            if n % 32 == 27:
+                commands.append(["study", target, "--max-seconds", "1", "--knob-patches", "250", "--epsilons",
+                                 "1e-2", "--out", "o-study"])
         for cmd in commands:
-            try:
-                p = subprocess.run([args.radkit] + cmd, cwd=case, capture_output=True, timeout=args.timeout)
-                outcome = classify(p.returncode, (p.stdout + p.stderr).decode(errors="replace"))
-                rc = p.returncode
-                if rc != 0 and os.path.exists(os.path.join(case, cmd[-1])):
-                    outcome = "error with output"
-            except subprocess.TimeoutExpired:
-                outcome, rc = "hang", None
+            label = cmd[0] if cmd[0] != "bench" else "bench-" + cmd[1]
+            if "hierarchical" in cmd and cmd[0] == "run":
+                label = "run-hierarchical"
+            rc, text, rss = run_radkit(args.radkit, cmd, case, args.timeout)
+            outcome = "hang" if rc is None else classify(rc, text)
+            if rc is not None and rc != 0 and cmd[-2] == "--out" and os.path.exists(os.path.join(case, cmd[-1])):
+                outcome = "error with output"
+            if rss > MEMORY_LIMIT_MB:
+                outcome = "memory"
+            peak[label] = max(peak.get(label, 0.0), rss)
             if args.log:
-                text = (p.stdout + p.stderr).decode(errors="replace") if rc is not None else ""
                 first = next((l for l in text.splitlines() if "error" in l.lower()), "")
                 with open(args.log, "a") as log:
-                    log.write("%s\t%s\t%s\t%s\t%s\n" % (case, name, cmd[0], outcome, first[:300]))
-            key = (cmd[0], outcome)
+                    log.write("%s\t%s\t%s\t%s\t%.0f MB\t%s\n" % (case, name, label, outcome, rss, first[:300]))
+            key = (label, outcome)
             counts[key] = counts.get(key, 0) + 1
             if outcome not in ("success", "clean error"):
-                cases.append("%s %s %s: %s (exit %s)" % (case, cmd[0], name, outcome, rc))
+                cases.append("%s %s %s: %s (exit %s)" % (case, label, name, outcome, rc))
         left = [e for e in os.listdir(case) if ".partial-" in e or ".old-" in e]
         if left:
             counts[("staging", "left behind")] = counts.get(("staging", "left behind"), 0) + 1
         elif not cases or not cases[-1].startswith(case + " "):
             shutil.rmtree(case)  # keep only the cases worth looking at
-    total = sum(v for (c, _), v in counts.items() if c != "staging")
-    print("inputs: %d, command runs: %d" % (args.cases, total))
-    for (command, outcome), v in sorted(counts.items()):
-        print("  %-8s %-12s %d" % (command, outcome, v))
+    mutated_runs = sum(v for (c, _), v in counts.items() if c != "staging")
+    options_ran = 0
+    if args.options:
+        import hostile_options
+        log = open(args.log, "a") if args.log else None
+        options_ran = hostile_options.run_cases(args.radkit, args.work, args.data, args.options, args.seed,
+                                                args.timeout, args.jobs, counts, cases, log, peak=peak)
+    total = sum(v for (c, o), v in counts.items() if c != "staging" and o != "no display")
+    print("mutated inputs: %d (%d command runs); hostile-option cases: %d; command runs in all: %d"
+          % (args.cases, mutated_runs, options_ran, total))
+    outcomes = sorted({o for (c, o) in counts if c != "staging"}, key=lambda o: (o not in ("clean error", "success"), o))
+    print("  %-19s %s  %s" % ("command", "  ".join("%11s" % o for o in outcomes), "peak MB"))
+    for command in sorted({c for (c, _) in counts if c != "staging"}):
+        print("  %-19s %s  %7.0f" % (command, "  ".join("%11d" % counts.get((command, o), 0) for o in outcomes),
+                                      peak.get(command, 0)))
+    if ("staging", "left behind") in counts:
+        print("  staging folders left behind: %d" % counts[("staging", "left behind")])
     for line in cases:
         print("  " + line)
     return 1 if cases else 0

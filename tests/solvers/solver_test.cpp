@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "analytic_systems.h"
 #include "solvers/convergence.h"
 
@@ -125,6 +127,26 @@ TEST(Solve, ExactHistoryIsDecimatedLogarithmically) {
   const SolveResult before = runSolver("jacobi", cubeOneEmitter(0.9999).system, 1e-9, ResidualNorm::Relative,
                                        m.iterations - 1);
   EXPECT_GT(before.residual, 1e-6);
+}
+
+// Point 9 of issue 20: a closed box at ρ = 0.999999 (ρF has spectral radius 0.999999) made
+// Jacobi keep 7.2 M history rows and Southwell run past 90 M steps without a word. With the
+// default iteration limit every solver now stops with an exit reason and a bounded history.
+TEST(Solve, ExactNearSingularClosedBoxStopsWithAReason) {
+  const Problem p = cubeOneEmitter(0.999999);
+  const std::set<std::string> exits{"converged", "max_iterations", "stagnated", "time_limit"};
+  for (const std::string& name : solverNames()) {
+    SolverSettings settings;  // default tolerance and iteration limit
+    auto solver = makeSolver(name);
+    const SolveResult r = solve(*solver, p.system, settings);
+    EXPECT_TRUE(exits.count(r.exit)) << name << ": '" << r.exit << "', " << r.reason;
+    EXPECT_FALSE(r.reason.empty()) << name;
+    EXPECT_LE(r.iterations, settings.maxIterations) << name;
+    // 1000 rows, 900 per further decade of iterations (at most 6 up to 1e8), the residual's
+    // decades and the last row.
+    EXPECT_LT(r.history.size(), 1000u + 900u * 6 + 40u) << name << ": " << r.iterations << " iterations";
+    if (r.iterations > 2 * kRateWindowSweeps && name == "jacobi") EXPECT_NEAR(r.spectralRadius, 0.999999, 1e-6);
+  }
 }
 
 }  // namespace radkit

@@ -137,6 +137,29 @@ TEST_F(RunFolderTest, MalformedFilesNameFileAndLine) {
             std::string::npos);
 }
 
+// Found by data/tools/hostile_options.py (issue 20): a size line beyond the file allocated
+// before reading (4000000000 entries: 64 GB), and an iteration of NaN or 1e20 was converted to int.
+TEST_F(RunFolderTest, HostileCountsAreRefusedBeforeAllocating) {
+  auto errorAfter = [&](const std::string& name, const std::string& text) {
+    overwrite(name, text);
+    std::string e = inputError([&] { readRunFolder(folder()); });
+    test::writeTestRun(folder());
+    return e;
+  };
+  for (const char* size : {"3 3 4000000000", "2000000000 2000000000 1", "3 3 10"}) {
+    const std::string e =
+        errorAfter("formfactors.mtx", std::string("%%MatrixMarket matrix coordinate real general\n") + size + "\n1 1 0.5\n");
+    EXPECT_NE(e.find("formfactors.mtx:2: the size line says"), std::string::npos) << size << ": " << e;
+  }
+  for (const char* iteration : {"nan", "1e20", "-1"}) {
+    const std::string e = errorAfter("convergence.csv", std::string("solver,iteration,seconds,residual,unshot_power\n"
+                                                                     "jacobi,") + iteration + ",0,1,1\n");
+    EXPECT_NE(e.find("convergence.csv:2: column 'iteration': '" + std::string(iteration) +
+                     "' is not an iteration count >= 0"),
+              std::string::npos) << e;
+  }
+}
+
 TEST_F(RunFolderTest, MeshOutputWithoutRadiosityIsRefused) {
   std::ifstream in(file("radiosity.vtp"));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
