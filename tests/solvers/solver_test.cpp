@@ -145,7 +145,9 @@ TEST(Solve, ExactNearSingularClosedBoxStopsWithAReason) {
     // 1000 rows, 900 per further decade of iterations (at most 6 up to 1e8), the residual's
     // decades and the last row.
     EXPECT_LT(r.history.size(), 1000u + 900u * 6 + 40u) << name << ": " << r.iterations << " iterations";
-    if (r.iterations > 2 * kRateWindowSweeps && name == "jacobi") EXPECT_NEAR(r.spectralRadius, 0.999999, 1e-6);
+    if (r.iterations > 2 * kRateWindowSweeps && name == "jacobi") {
+      EXPECT_NEAR(r.spectralRadius, 0.999999, 1e-6);
+    }
   }
 }
 
