@@ -85,6 +85,9 @@ PatchMesh leafMesh(const Hierarchy& h, const std::vector<int>& leaves) {
 /// Rays per leaf for the enclosure test and escape estimate; emitters, whose escaping power
 /// dominates the estimate's error and which are few, get more.
 constexpr int kClosureRays = 32;
+/// Light leaving the surfaces, as a multiple of the emitted light, beyond which τ follows it
+/// (the Cornell box sends out about 2 times its emission, a furnace at ρ = 0.95 20 times).
+constexpr double kAmplification = 10;
 constexpr int kEmitterClosureRays = 1024;
 /// Share of a surface's rays that may miss for it to count as closed (seams, not openings).
 constexpr double kSeamMisses = 1e-3;
@@ -285,10 +288,15 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     r.solve.reason = reason;
     if (!lastKept) r.solve.history.push_back(lastRow), lastKept = true;
   };
+  double amplification = 1;  // light leaving the surfaces over light emitted, from the last solve
   for (int round = 0; round < settings.rounds; ++round) {
     HierarchicalRound info;
     info.epsilon = settings.epsilon * std::pow(4.0, settings.rounds - 1 - round);
-    rs.threshold = info.epsilon * emitted;
+    // τ is a share of the emitted power. Where the surfaces send out far more than that (a
+    // closed box at ρ = 0.999999 sends out 10⁶ times its emission) every link's error grows
+    // with B and refinement would run until memory ran out: τ follows the light leaving the
+    // surfaces once it exceeds kAmplification times the emission.
+    rs.threshold = info.epsilon * emitted * std::max(1.0, amplification / kAmplification);
     rs.round = round;
     rs.last = round + 1 == settings.rounds;
     t = Clock::now();
@@ -366,13 +374,19 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     r.seconds.refine += info.refineSeconds;
     r.seconds.solve += info.solveSeconds;
     if (round + 1 < settings.rounds) links = r.system->links();
+    {
+      double leaving = 0;
+      for (int n = 0; n < h.size(); ++n)
+        if (h[n].isLeaf() && h[n].element) leaving += h[n].area * maxComponent(state.radiosity[n]);
+      amplification = leaving / emitted;
+    }
     r.rounds.push_back(info);
     say("hierarchy: epsilon " + num(info.epsilon) + ", " + std::to_string(info.links) + " links, " +
         std::to_string(info.nodes) + " nodes, " + std::to_string(info.rays) + " rays, " +
         std::to_string(info.sweeps) + " sweeps, " + num(info.refineSeconds + info.solveSeconds) + " s");
     if (r.solve.exit == "diverged" || r.solve.exit == "stagnated" || r.solve.exit == "time_limit") break;
   }
-  r.threshold = settings.epsilon * emitted;
+  r.threshold = rs.threshold;  // the last round's
   r.solve.iterations = iteration;
   r.solve.seconds = since(solveStart);
   r.solve.residual = r.solve.history.empty() ? 0 : r.solve.history.back().residual;

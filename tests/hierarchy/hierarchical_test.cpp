@@ -180,6 +180,26 @@ TEST(Hierarchical, FurnaceWithABoxOnTheFloor) {
   EXPECT_EQ(hr.system->normalisedLeaves(), hr.leaves.size() - under);
 }
 
+/// A closed box at ρ = 0.999999 sends out 10⁶ times what it emits. With τ a share of the
+/// emitted power alone every link's error (which grows with B) exceeded it, and refinement ran
+/// for minutes toward the memory budget (2 M links at 120 s); τ now follows the light leaving
+/// the surfaces, so the default settings end with few links and say why the solve stopped.
+TEST(Hierarchical, NearSingularBoxRefinesBoundedly) {
+  SceneBuilder b;
+  int glow = b.material("glow", {0.999999, 0.999999, 0.999999}, {1, 1, 1});
+  b.cube(2, glow, glow);
+  HierarchicalSettings s;
+  s.stopping.maxIterations = 2000;
+  HierarchicalResult hr = solveHierarchical(b.scene, s);
+  long long links = 0;
+  for (long long k : hr.linksByKind) links += k;
+  EXPECT_LT(links, 1000000);
+  EXPECT_FALSE(hr.solve.exit.empty());
+  EXPECT_GT(hr.threshold, 100 * s.epsilon * 6.0) << "tau should follow the light leaving the surfaces";
+  std::printf("near-singular box: %lld links, %d leaves, exit %s, tau %.3g\n", links, hr.leaves.size(),
+              hr.solve.exit.c_str(), hr.threshold);
+}
+
 /// An open scene: nothing is normalised, and a row sum far above 1 (a coarse ε between nearby
 /// clusters) is capped so the solve still converges at ρ = 0.99.
 TEST(Hierarchical, OpenSceneNearUnitReflectanceConverges) {
