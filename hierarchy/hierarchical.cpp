@@ -127,8 +127,9 @@ std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::ui
         Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
         Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
         std::optional<RayHit> hit = rays.closestHit(x, d, 0.0);
-        misses += !(hit && dot(base.patches[hit->patch].normal, d) < 0);
-        backs += hit && dot(base.patches[hit->patch].normal, d) >= 0;
+        const bool front = hit && dot(base.patches[hit->patch].normal, d) < 0;
+        misses += !front;
+        backs += hit && !front;
       }
       leafClosed[n] = misses == 0;
       hidden[n] = backs == K;  // sees only the backs of faces (a floor under a block): nothing sees it

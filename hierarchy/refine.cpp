@@ -356,30 +356,29 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
   // floor's direct light 1.2 % high at K = 16). Earlier rounds only steer the refinement: they
   // keep a known link's value, and a new unanimous link's decision rays.
   const bool partial = V > 0 && V < 1;
-  if (m_settings.last || (!knownVisibility && partial)) {
-    if (knownVisibility && !partial && se > 0 && se < 0.5)
-      cast = std::clamp(int(std::lround(1 / se - 1)), K, kConfirmRays * K);
-    const int n = partial ? kPartialRays * K : cast;
-    fresh = visibleFraction(r, s, n, 2 * m_settings.round + 1);
-    const VisibilityEstimate& e = fresh;
-    out.rays += n;
-    V = e.visible, se = unanimous(e) ? 1.0 / (n + 1) : e.standardError;
+  const bool elements = R.element && S.element;
+  const bool freshRays = m_settings.last || (!knownVisibility && partial);
+  if (freshRays || !knownVisibility) {
+    int n = cast;  // the rays behind the kept value
+    if (freshRays) {
+      if (knownVisibility && !partial && se > 0 && se < 0.5)
+        cast = std::clamp(int(std::lround(1 / se - 1)), K, kConfirmRays * K);
+      n = partial ? kPartialRays * K : cast;
+      fresh = visibleFraction(r, s, n, 2 * m_settings.round + 1);
+      out.rays += n;
+    } else {
+      fresh = decided;
+    }
+    V = fresh.visible, se = unanimous(fresh) ? 1.0 / (n + 1) : fresh.standardError;
     out.link.visibility = float(V * weight);
     out.link.visibilityError = float(se * weight);
-    for (int k = 0; k < 4; ++k) out.link.quarterVisible[k] = e.quarter[k];
-    if (R.element && S.element) receiverShares(r, s, e, out.link);
-  } else if (!knownVisibility) {
-    fresh = decided;
-    out.link.visibility = float(V);
-    out.link.visibilityError = float(se);
-    for (int k = 0; k < 4; ++k) out.link.quarterVisible[k] = decided.quarter[k];
-    if (R.element && S.element) receiverShares(r, s, decided, out.link);
+    for (int k = 0; k < 4; ++k) out.link.quarterVisible[k] = fresh.quarter[k];
+    if (elements) receiverShares(r, s, fresh, out.link);
   }
   // Kept whatever the fresh rays say: dropping those that found nothing would lose their
   // expected share (the last round's links with V = 0 are removed after refinement).
-  const bool elements = R.element && S.element;
   out.decision = Decision::Keep;
-  if (R.element && S.element) {
+  if (elements) {
     out.link.formFactor = knownVisibility && c.formFactor > 0 ? c.formFactor : elementFormFactor(r, s, fMean);
     // The ratio Σwv/Σw is biased at small K (measured: 2 % too little light on a shadowed
     // receiver at K = 4). With the unoccluded F known, E[w] = πF/A_s over uniform pairs, so
