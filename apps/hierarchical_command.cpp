@@ -102,7 +102,7 @@ void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& o) {
       ->check(CLI::IsMember({"dense", "hierarchical"}))
       ->capture_default_str();
   run.add_option("--epsilon", o.settings.epsilon,
-                 "Hierarchical: largest error a link may carry, as a fraction of the emitted power")
+                 "Hierarchical: largest error a link may carry, as a fraction of the emitted power (of a tenth of the light leaving the surfaces where that exceeds ten times the emission)")
       ->capture_default_str();
   run.add_option("--min-area", o.settings.minArea,
                  "Hierarchical: smallest element (scene units²); 0: " + fmt("%g", kDefaultMinAreaFraction) +
