@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/scene_loader.h"
 #include "viewer/colour_maps.h"
 
 namespace radkit::viewer {
@@ -83,6 +84,10 @@ MatrixView::MatrixView(const RunFolder& run, int maxCells) : m_run(run) {
 
 void MatrixView::showLinksImage() {
   vtkNew<vtkPNGReader> reader;
+  // The reader itself gives a 1×1 image for a file that is not a PNG, without an error.
+  if (!reader->CanReadFile(m_run.linksImage.c_str()))
+    throw InputError(m_run.linksImage + ": not a PNG image. Fix: rerun `radkit run --method hierarchical` into this "
+                     "folder to write it again, or delete it");
   reader->SetFileName(m_run.linksImage.c_str());
   reader->Update();
   int dims[3];

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "tests/common/test_util.h"
@@ -104,12 +105,21 @@ TEST_F(ViewerDisplay, MatrixOfAHierarchicalRunShowsItsLinksImage) {
   EXPECT_GT(right.x, 200);
   EXPECT_GT(right.y, 200);
   EXPECT_LT(right.z, 60);
-  // Without either file the mode is refused, naming what is missing.
-  std::filesystem::remove(m_dir.path("links.png"));
   ViewerOptions o;
   o.runFolder = folder();
   o.screenshot = m_dir.path("none.png");
   o.mode = "matrix";
+  // A links.png that is not a PNG is refused by name, with nothing written.
+  { std::ofstream(m_dir.path("links.png")) << "not an image\n"; }
+  try {
+    runViewer(o);
+    FAIL() << "a links.png that is not a PNG should be refused";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("links.png: not a PNG image"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(o.screenshot));
+  // Without either file the mode is refused, naming what is missing.
+  std::filesystem::remove(m_dir.path("links.png"));
   try {
     runViewer(o);
     FAIL() << "matrix mode without formfactors.mtx or links.png should be refused";
