@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
-#include "render/microfacet.h"
+#include "bsdf/microfacet.h"
 
 namespace radkit::app {
 

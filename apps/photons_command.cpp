@@ -14,11 +14,11 @@
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
 #include "radiosity/radiosity_pipeline.h"
-#include "render/photon_benchmark.h"
-#include "render/photon_comparison.h"
-#include "render/photon_estimate.h"
-#include "render/photon_image.h"
-#include "render/photon_tracer.h"
+#include "photon/benchmark.h"
+#include "photon/comparison.h"
+#include "photon/estimate.h"
+#include "photon/image.h"
+#include "photon/tracer.h"
 #include "util/output_folder.h"
 
 namespace radkit::app {

@@ -17,9 +17,9 @@
 #include "render/hdr_io.h"
 #include "render/image_comparison.h"
 #include "render/path_tracer.h"
-#include "render/photon_image.h"
-#include "render/photon_map.h"
-#include "render/photon_tracer.h"
+#include "photon/image.h"
+#include "photon/map.h"
+#include "photon/tracer.h"
 #include "render/shading.h"
 #include "util/output_folder.h"
 #include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
@@ -45,6 +45,7 @@ struct RenderCommand {
   int spp = 16;
   int rouletteDepth = PathTraceSettings{}.rouletteDepth, maxDepth = PathTraceSettings{}.maxDepth;
   std::size_t photons = 200000;
+  int gatherRays = PhotonSettings{}.gatherRays;
   double exposure = 0;
   bool smooth = false, compensated = false, unguided = false;
   SmoothSettings smoothing;
@@ -59,97 +60,164 @@ std::vector<int> pixelSurfaces(const RadianceImage& img, const PatchMesh& mesh) 
 }
 
 
-/// Radiance image of the chosen mode; `emits` marks pixels that show an emitter.
-RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, int height, std::string& what,
-                         std::vector<bool>& emits, std::vector<int>& surfaces) {
-  const Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(scene.bounds());
+/// What every render mode reads.
+struct ModeInput {
+  const RenderCommand& cmd;
+  const Scene& scene;
+  Camera camera;
+  int width, height;
   BsdfSettings bsdf;
-  bsdf.masking = parseMaskingShadowing(cmd.masking);
-  bsdf.compensated = cmd.compensated;
-  const std::uint64_t seed = cmd.ff.settings.seed;
-  if (cmd.shading == "photon-map") {
-    // Final gathering over the global map plus the caustic map seen directly (Jensen 1996).
-    MeshOptions meshOptions = cmd.mesh;
-    if (meshOptions.maxArea <= 0 && meshOptions.patches <= 0) meshOptions.patches = kDefaultRenderPatches;
-    PatchMesh mesh = meshScene(scene, meshOptions);
-    RayScene rays(mesh);
-    EmitterSampler emitters(scene, mesh);
-    if (emitters.empty())
-      throw InputError(scene.file + ": no surface emits, so no photon can start. Fix: give a material an \"emission\" above zero");
-    PhotonSettings ps;
-    ps.photons = cmd.photons;
-    ps.seed = seed;
-    PhotonMaps maps = buildPhotonMaps(mesh, tracePhotons(scene, mesh, rays, emitters, ps).photons);
-    maps.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
-    const PhotonScene in{scene, mesh, rays, emitters, *maps.global, *maps.caustic};
-    RadianceImage img = renderPhotonImage(in, camera, width, height, PhotonView::FinalGather, ps);
-    what = std::to_string(cmd.photons) + " photons, " + std::to_string(maps.global->size()) + " stored, " +
-           std::to_string(ps.gatherRays) + " gather rays per pixel";
-    emits = emitterPixels(img, scene, mesh);
-    surfaces = pixelSurfaces(img, mesh);
-    return img;
-  }
-  const SamplerType sampler = parseSamplerType(cmd.sampler);
-  const LightSampling light = parseLightSampling(cmd.lightSampling);
-  if (cmd.shading == "path-trace") {
-    PatchMesh mesh = meshScene(scene, cmd.mesh);
-    RayScene rays(mesh);
-    ShadingScene shading(scene, mesh, rays, bsdf, GlossyModel::AsDeclared, light);
-    PathTraceSettings s;
-    s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed, s.sampler = sampler;
-    s.rouletteDepth = cmd.rouletteDepth, s.maxDepth = cmd.maxDepth;
-    MonteCarloImage img = renderPathTraced(shading, camera, s);
-    what = std::to_string(img.paths) + " paths, " + std::to_string(img.rays) + " rays in " +
-           std::to_string(img.seconds) + " s";
-    emits = emitterPixels(img.image, scene, mesh);
-    surfaces = pixelSurfaces(img.image, mesh);
-    return img.image;
-  }
+  SamplerType sampler;
+  LightSampling light;
+  std::uint64_t seed;
+};
+
+/// A mode's image, with the pixels that show an emitter and the surface at each pixel.
+struct ModeImage {
+  RadianceImage image;
+  std::string what;
+  std::vector<bool> emits;
+  std::vector<int> surfaces;
+};
+
+ModeImage finish(RadianceImage img, const Scene& scene, const PatchMesh& mesh, std::string what) {
+  ModeImage out;
+  out.emits = emitterPixels(img, scene, mesh);
+  out.surfaces = pixelSurfaces(img, mesh);
+  out.image = std::move(img);
+  out.what = std::move(what);
+  return out;
+}
+
+/// The mesh of the modes that do not solve radiosity (their own --patches or --max-area).
+PatchMesh ownMesh(const ModeInput& in, bool defaultPatches) {
+  MeshOptions options = in.cmd.mesh;
+  if (defaultPatches && options.maxArea <= 0 && options.patches <= 0) options.patches = kDefaultRenderPatches;
+  return meshScene(in.scene, options);
+}
+
+/// The radiosity solution the two-pass modes shade with.
+PipelineResult solveRadiosity(const ModeInput& in) {
   PipelineSettings settings;
-  settings.mesh = {cmd.mesh.maxArea, cmd.mesh.patches};
+  settings.mesh = {in.cmd.mesh.maxArea, in.cmd.mesh.patches};
   if (settings.mesh.maxArea <= 0 && settings.mesh.targetPatches <= 0) settings.mesh.targetPatches = kDefaultRenderPatches;
-  settings.formFactors = cmd.ff.settings;
-  settings.solvers = cmd.solver.choices;
-  settings.stopping = cmd.solver.stopping;
+  settings.formFactors = in.cmd.ff.settings;
+  settings.solvers = in.cmd.solver.choices;
+  settings.stopping = in.cmd.solver.stopping;
   Progress progress;
   PipelineLog log;
   log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
-  PipelineResult r = runPipeline(scene, settings, log);
+  PipelineResult r = runPipeline(in.scene, settings, log);
   progress.finish();
-  what = std::to_string(r.mesh.size()) + " patches";
-  if (cmd.shading == "radiosity") {
-    ImageSettings s;
-    s.width = width, s.height = height, s.smooth = cmd.smooth, s.smoothing = cmd.smoothing;
-    std::vector<bool> twoSided;
-    for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
-    RadianceImage img = renderRadiosity(r.mesh, *r.rays, camera, r.radiosity, twoSided, s);
-    emits = emitterPixels(img, scene, r.mesh);
-    surfaces = pixelSurfaces(img, r.mesh);
-    return img;
-  }
-  if (cmd.shading == "final-gather") {
-    ShadingScene shading(scene, r.mesh, *r.rays, bsdf, GlossyModel::AsDeclared, light);
-    FinalGatherSettings s;
-    s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed, s.sampler = sampler;
-    s.smoothing = cmd.smoothing;
-    const RadiosityLighting lighting = radiosityLighting(r);
-    std::optional<GatherGuide> guide;
-    if (!cmd.unguided) guide.emplace(r.formFactors->matrix, lighting);
-    MonteCarloImage img = renderFinalGather(shading, camera, lighting, s, guide ? &*guide : nullptr);
-    what += ", " + std::to_string(img.paths) + " gathers in " + std::to_string(img.seconds) + " s";
-    emits = emitterPixels(img.image, scene, r.mesh);
-    surfaces = pixelSurfaces(img.image, r.mesh);
-    return img.image;
-  }
-  const GlossyModel glossy = cmd.shading == "phong" ? GlossyModel::Phong : GlossyModel::CookTorrance;
-  ShadingScene shading(scene, r.mesh, *r.rays, bsdf, glossy, light);
+  return r;
+}
+
+ModeImage renderPhotonMapMode(const ModeInput& in) {
+  // Final gathering over the global map plus the caustic map seen directly (Jensen 1996).
+  const PatchMesh mesh = ownMesh(in, true);
+  const RayScene rays(mesh);
+  const EmitterSampler emitters(in.scene, mesh);
+  if (emitters.empty())
+    throw InputError(in.scene.file + ": no surface emits, so no photon can start. Fix: give a material an \"emission\" above zero");
+  PhotonSettings ps;
+  ps.photons = in.cmd.photons;
+  ps.seed = in.seed;
+  ps.bsdf = in.bsdf;
+  ps.gatherRays = in.cmd.gatherRays;
+  PhotonMaps maps = buildPhotonMaps(mesh, tracePhotons(in.scene, mesh, rays, emitters, ps).photons);
+  maps.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
+  const PhotonScene photons{in.scene, mesh, rays, emitters, *maps.global, *maps.caustic};
+  RadianceImage img = renderPhotonImage(photons, in.camera, in.width, in.height, PhotonView::FinalGather, ps);
+  return finish(std::move(img), in.scene, mesh,
+                std::to_string(in.cmd.photons) + " photons, " + std::to_string(maps.global->size()) + " stored, " +
+                    std::to_string(ps.gatherRays) + " gather rays per pixel");
+}
+
+ModeImage renderPathTraceMode(const ModeInput& in) {
+  const PatchMesh mesh = ownMesh(in, false);
+  const RayScene rays(mesh);
+  const ShadingScene shading(in.scene, mesh, rays, in.bsdf, GlossyModel::AsDeclared, in.light);
+  PathTraceSettings s;
+  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed, s.sampler = in.sampler;
+  s.rouletteDepth = in.cmd.rouletteDepth, s.maxDepth = in.cmd.maxDepth;
+  MonteCarloImage img = renderPathTraced(shading, in.camera, s);
+  return finish(std::move(img.image), in.scene, mesh,
+                std::to_string(img.paths) + " paths, " + std::to_string(img.rays) + " rays in " +
+                    std::to_string(img.seconds) + " s");
+}
+
+ModeImage renderRadiosityMode(const ModeInput& in) {
+  const PipelineResult r = solveRadiosity(in);
+  ImageSettings s;
+  s.width = in.width, s.height = in.height, s.smooth = in.cmd.smooth, s.smoothing = in.cmd.smoothing;
+  std::vector<bool> twoSided;
+  for (const Surface& surf : in.scene.surfaces) twoSided.push_back(in.scene.materials[surf.material].twoSided);
+  RadianceImage img = renderRadiosity(r.mesh, *r.rays, in.camera, r.radiosity, twoSided, s);
+  return finish(std::move(img), in.scene, r.mesh, std::to_string(r.mesh.size()) + " patches");
+}
+
+ModeImage renderFinalGatherMode(const ModeInput& in) {
+  const PipelineResult r = solveRadiosity(in);
+  const ShadingScene shading(in.scene, r.mesh, *r.rays, in.bsdf, GlossyModel::AsDeclared, in.light);
+  FinalGatherSettings s;
+  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed, s.sampler = in.sampler;
+  s.smoothing = in.cmd.smoothing;
+  const RadiosityLighting lighting = radiosityLighting(r);
+  std::optional<GatherGuide> guide;
+  if (!in.cmd.unguided) guide.emplace(r.formFactors->matrix, lighting);
+  MonteCarloImage img = renderFinalGather(shading, in.camera, lighting, s, guide ? &*guide : nullptr);
+  return finish(std::move(img.image), in.scene, r.mesh,
+                std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) + " gathers in " +
+                    std::to_string(img.seconds) + " s");
+}
+
+ModeImage renderTwoPassMode(const ModeInput& in, GlossyModel glossy) {
+  const PipelineResult r = solveRadiosity(in);
+  const ShadingScene shading(in.scene, r.mesh, *r.rays, in.bsdf, glossy, in.light);
   TwoPassSettings s;
-  s.width = width, s.height = height, s.samplesPerPixel = cmd.spp, s.seed = seed, s.sampler = sampler;
-  MonteCarloImage img = renderTwoPass(shading, camera, radiosityLighting(r), s);
-  what += ", " + std::to_string(img.paths) + " camera samples in " + std::to_string(img.seconds) + " s";
-  emits = emitterPixels(img.image, scene, r.mesh);
-  surfaces = pixelSurfaces(img.image, r.mesh);
-  return img.image;
+  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed, s.sampler = in.sampler;
+  MonteCarloImage img = renderTwoPass(shading, in.camera, radiosityLighting(r), s);
+  return finish(std::move(img.image), in.scene, r.mesh,
+                std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) + " camera samples in " +
+                    std::to_string(img.seconds) + " s");
+}
+
+ModeImage renderPhongMode(const ModeInput& in) { return renderTwoPassMode(in, GlossyModel::Phong); }
+ModeImage renderCookTorranceMode(const ModeInput& in) { return renderTwoPassMode(in, GlossyModel::CookTorrance); }
+
+/// The one table of image modes (as solvers/registry.cpp): --shading's choices and help.
+struct RenderMode {
+  const char* name;
+  ModeImage (*render)(const ModeInput&);
+  const char* help;
+};
+
+constexpr RenderMode kRenderModes[] = {
+    {"radiosity", renderRadiosityMode, "the radiosity solution seen by the camera (flat, or --smooth)"},
+    {"phong", renderPhongMode, "two-pass: radiosity for diffuse light, glossy materials shaded as Phong"},
+    {"cook-torrance", renderCookTorranceMode, "two-pass: glossy materials shaded as Cook-Torrance"},
+    {"path-trace", renderPathTraceMode, "unidirectional path tracing with MIS (the reference)"},
+    {"photon-map", renderPhotonMapMode, "photon mapping with final gathering (--photons, --gather-rays)"},
+    {"final-gather", renderFinalGatherMode, "one gather bounce over the radiosity solution"},
+};
+
+/// Radiance image of the chosen mode.
+ModeImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, int height) {
+  BsdfSettings bsdf;
+  bsdf.masking = parseMaskingShadowing(cmd.masking);
+  bsdf.compensated = cmd.compensated;
+  const ModeInput in{cmd,
+                     scene,
+                     scene.camera ? *scene.camera : PinholeCamera::framing(scene.bounds()),
+                     width,
+                     height,
+                     bsdf,
+                     parseSamplerType(cmd.sampler),
+                     parseLightSampling(cmd.lightSampling),
+                     cmd.ff.settings.seed};
+  for (const RenderMode& mode : kRenderModes)
+    if (cmd.shading == mode.name) return mode.render(in);
+  throw InputError("unknown --shading " + cmd.shading);
 }
 
 /// Region errors against the reference renders: printed, and written as JSON with --report.
@@ -216,11 +284,12 @@ void runRender(RenderCommand& cmd) {
   }
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
   const Scene scene = loadSceneReporting(cmd.mesh.scene);
-  std::string what;
-  std::vector<bool> emits;
-  std::vector<int> surfaces;
   const auto start = std::chrono::steady_clock::now();
-  const RadianceImage img = renderMode(cmd, scene, width, height, what, emits, surfaces);
+  ModeImage mode = renderMode(cmd, scene, width, height);
+  const RadianceImage& img = mode.image;
+  const std::string& what = mode.what;
+  const std::vector<bool>& emits = mode.emits;
+  const std::vector<int>& surfaces = mode.surfaces;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double exposure = cmd.exposure > 0 ? cmd.exposure : autoExposure(img, emits);
   const std::string ext = std::filesystem::path(cmd.out).extension().string();
@@ -242,8 +311,14 @@ void addRenderCommand(CLI::App& app) {
   addMeshOptions(*sub, cmd->mesh, false);
   addFormFactorOptions(*sub, cmd->ff);
   addSolverOptions(*sub, cmd->solver, "gauss-seidel");
-  sub->add_option("--shading", cmd->shading, "Image mode")
-      ->check(CLI::IsMember({"radiosity", "phong", "cook-torrance", "path-trace", "photon-map", "final-gather"}))
+  std::vector<std::string> modes;
+  std::string modeHelp = "Image mode:";
+  for (const RenderMode& mode : kRenderModes) {
+    modes.emplace_back(mode.name);
+    modeHelp += std::string("\n  ") + mode.name + ": " + mode.help;
+  }
+  sub->add_option("--shading", cmd->shading, modeHelp)
+      ->check(CLI::IsMember(modes))
       ->capture_default_str();
   sub->add_option("--sampler", cmd->sampler, "Monte Carlo modes: the camera samples' numbers")
       ->check(CLI::IsMember({"independent", "stratified", "sobol"}))
@@ -263,6 +338,9 @@ void addRenderCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--spp", cmd->spp, "Samples (camera paths) per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  sub->add_option("--gather-rays", cmd->gatherRays, "photon-map: final-gathering rays per pixel (0: the map seen directly)")
+      ->check(CLI::Range(0, 65536))
+      ->capture_default_str();
   sub->add_option("--photons", cmd->photons, "photon-map: photons emitted")
       ->check(CLI::Range(std::size_t(1), kMaxPhotons))
       ->capture_default_str();

@@ -202,8 +202,13 @@ Scene loadObjScene(const std::string& path) {
   for (const auto& m : reader.GetMaterials()) {
     Material mat;
     mat.name = m.name;
-    mat.reflectance = {m.diffuse[0], m.diffuse[1], m.diffuse[2]};
+    mat.params.set("reflectance", Vec3{m.diffuse[0], m.diffuse[1], m.diffuse[2]});
     mat.emission = {m.emission[0], m.emission[1], m.emission[2]};
+    try {
+      resolveMaterial(mat);
+    } catch (const BsdfParamError& e) {
+      throw InputError(path + ": MTL material \"" + m.name + "\": Kd " + e.what());
+    }
     scene.materials.push_back(mat);
   }
   std::vector<Vec3> all = objVertices(reader.GetAttrib());

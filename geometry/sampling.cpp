@@ -42,29 +42,6 @@ void latinHypercube(int K, int dims, Rng& rng, std::vector<double>& out,
   }
 }
 
-Frame::Frame(const Vec3& normal) : n(normal) {
-  double sign = std::copysign(1.0, n.z);
-  double a = -1.0 / (sign + n.z);
-  double b = n.x * n.y * a;
-  s = {1 + sign * n.x * n.x * a, sign * b, -sign * n.x};
-  t = {b, sign + n.y * n.y * a, -n.y};
-}
-
-Vec3 sampleCosineHemisphere(double u0, double u1) {
-  // Uniform on the unit disk (r = √u0, φ = 2πu1), projected up: density cos θ/π (Malley).
-  double r = std::sqrt(u0), phi = 2 * M_PI * u1;
-  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u0))};
-}
-
-double cosineHemispherePdf(const Vec3& local) { return local.z > 0 ? local.z / M_PI : 0.0; }
-
-void invertCosineHemisphereSample(const Vec3& local, double& u0, double& u1) {
-  u0 = local.x * local.x + local.y * local.y;
-  double phi = std::atan2(local.y, local.x);
-  if (phi < 0) phi += 2 * M_PI;
-  u1 = phi / (2 * M_PI);
-}
-
 Vec3 sampleUniformTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u0, double u1) {
   double su = std::sqrt(u0);
   double b0 = 1 - su, b1 = u1 * su;

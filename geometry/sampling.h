@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/frame.h"
 #include "geometry/vec3.h"
 
 namespace radkit {
@@ -30,22 +31,6 @@ class Rng {
 /// intervals (one point each) and randomly permuted independently. out[k·dims + d].
 void latinHypercube(int K, int dims, Rng& rng, std::vector<double>& out,
                     std::vector<int>& scratch);
-
-/// Orthonormal frame around a unit normal (Duff et al. 2017, branchless).
-struct Frame {
-  Vec3 s, t, n;
-  explicit Frame(const Vec3& normal);
-  Vec3 toWorld(const Vec3& local) const { return s * local.x + t * local.y + n * local.z; }
-  Vec3 toLocal(const Vec3& w) const { return {dot(w, s), dot(w, t), dot(w, n)}; }
-};
-
-/// \brief Cosine-weighted direction on the hemisphere z > 0 (polar map of the unit disk,
-/// lifted by Malley's method). u in [0,1)².
-Vec3 sampleCosineHemisphere(double u0, double u1);
-/// \brief Density per steradian of sampleCosineHemisphere: cos θ / π (0 below the horizon).
-double cosineHemispherePdf(const Vec3& local);
-/// \brief Inverse of sampleCosineHemisphere: the (u0, u1) that produce the direction.
-void invertCosineHemisphereSample(const Vec3& local, double& u0, double& u1);
 
 /// \brief Uniform point on triangle abc: barycentrics (1−√u0, u1√u0).
 Vec3 sampleUniformTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u0, double u1);

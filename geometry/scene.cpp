@@ -1,24 +1,25 @@
 #include "geometry/scene.h"
 
+#include "bsdf/bsdf.h"
+
 namespace radkit {
 
-Vec3 Material::diffuseAlbedo() const {
-  switch (brdf) {
-    case BrdfModel::Lambert:
-    case BrdfModel::Phong: return reflectance;
-    case BrdfModel::CookTorrance: return reflectance * (1 - metallic);
-    default: return {0, 0, 0};
-  }
+void resolveMaterial(Material& m) {
+  const std::unique_ptr<Bsdf> bsdf = makeBsdf(m.bsdf, m.params);
+  m.albedo = bsdf->diffuseAlbedo();
+  m.delta = bsdf->isDelta();
+  m.description = bsdf->describe();
 }
 
-const char* brdfName(BrdfModel model) {
-  switch (model) {
-    case BrdfModel::Lambert: return "lambert";
-    case BrdfModel::Phong: return "phong";
-    case BrdfModel::CookTorrance: return "cook-torrance";
-    case BrdfModel::Mirror: return "mirror";
-    default: return "glass";
-  }
+Material makeMaterial(const std::string& name, const std::string& bsdf, const std::string& params,
+                      const Vec3& emission) {
+  Material m;
+  m.name = name;
+  m.bsdf = bsdf;
+  m.params = BsdfParams::parse(params);
+  m.emission = emission;
+  resolveMaterial(m);
+  return m;
 }
 
 Bounds3 Scene::bounds() const {

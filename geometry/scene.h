@@ -5,46 +5,40 @@
 #include <string>
 #include <vector>
 
+#include "bsdf/params.h"
 #include "geometry/vec3.h"
 
 namespace radkit {
 
-/// How a surface scatters light. Radiosity sees only the diffuse part (diffuseAlbedo());
-/// the image modes in render/ see the whole model.
-enum class BrdfModel {
-  Lambert,       ///< diffuse albedo `reflectance`
-  Phong,         ///< energy-normalised Phong: kd = reflectance, ks = specular, shininess
-  CookTorrance,  ///< GGX microfacets: baseColor = reflectance, metallic, roughness, F0 or ior
-  Mirror,        ///< perfect specular reflection, colour = specular
-  Glass,         ///< smooth dielectric (Fresnel reflection and refraction), index ior
-};
-
-/// A material. reflectance is the diffuse albedo (or base colour) per RGB channel in [0, 1),
-/// emission the emitted radiosity (exitance) in W/m² per channel, >= 0.
+/// A material: a BSDF by registry name (bsdf/registry.cpp) with the parameters the scene gave
+/// it, emission in W/m² per channel (>= 0) and sidedness. What radiosity needs from the BSDF
+/// is cached by resolveMaterial() when the scene is loaded.
 struct Material {
   std::string name;
-  Vec3 reflectance{0.5, 0.5, 0.5};
   Vec3 emission{0, 0, 0};
   bool twoSided = false;
+  std::string bsdf = "lambert";
+  BsdfParams params;  ///< the BSDF's own keys, as given
 
-  BrdfModel brdf = BrdfModel::Lambert;
-  Vec3 specular{0, 0, 0};  ///< Phong ks; mirror colour (default 1 for mirrors)
-  double shininess = 0;    ///< Phong exponent
-  double metallic = 0;     ///< Cook-Torrance, in [0, 1]
-  double roughness = 0.5;  ///< Cook-Torrance perceptual roughness in (0, 1]; alpha = roughness²
-  Vec3 f0{0.04, 0.04, 0.04};  ///< Cook-Torrance normal-incidence Fresnel of the dielectric part
-  double ior = 1.5;        ///< glass, or Cook-Torrance when given instead of f0
+  // Set by resolveMaterial() from the BSDF:
+  Vec3 albedo{0.5, 0.5, 0.5};  ///< diffuse albedo ρ_d, what the radiosity system uses
+  bool delta = false;          ///< every lobe a Dirac delta (mirror, glass)
+  std::string description;     ///< the BSDF's one-line description
 
   bool emits() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
-  /// The albedo of the Lambertian part, which is what the radiosity system uses: the
-  /// reflectance for Lambert and Phong, (1 − metallic)·base for Cook-Torrance (its specular
-  /// lobe is left to the image modes), zero for mirrors and glass.
-  Vec3 diffuseAlbedo() const;
-  bool isSpecular() const { return brdf == BrdfModel::Mirror || brdf == BrdfModel::Glass; }
+  /// The albedo of the Lambertian part, which is what the radiosity system uses (Lambert's
+  /// reflectance, Phong's kd, (1 − metallic)·base for Cook-Torrance, zero for mirrors and glass).
+  Vec3 diffuseAlbedo() const { return albedo; }
+  bool isSpecular() const { return delta; }
 };
 
-/// "lambert", "phong", "cook-torrance", "mirror", "glass".
-const char* brdfName(BrdfModel model);
+/// \brief Checks material.params with its BSDF (unknown keys, ranges) and caches albedo, delta
+///        and description. \throws BsdfParamError with the BSDF's message (no file or name).
+void resolveMaterial(Material& material);
+
+/// \brief A checked material of BSDF `bsdf` (tests, generated scenes); params as "key=v, ...".
+Material makeMaterial(const std::string& name, const std::string& bsdf, const std::string& params,
+                      const Vec3& emission = {0, 0, 0});
 
 /// One face of a surface: indices into Surface::vertices, counter-clockwise seen from the
 /// front side (normal by the right-hand rule). Three or four vertices after loading.

@@ -87,44 +87,30 @@ class ObjectReader {
   const std::string& m_file;
 };
 
+/// A material: "brdf" names the BSDF, "emission" and "two_sided" belong to every material, and
+/// every other key is the BSDF's own, read and range-checked by it (bsdf/registry.cpp).
 Material readMaterial(const std::string& name, const json& j, const std::string& file) {
   ObjectReader r(j, "material \"" + name + "\"", file);
-  r.allowOnly({"reflectance", "emission", "two_sided", "brdf", "kd", "ks", "shininess", "base_color", "metallic",
-               "roughness", "f0", "ior", "specular"});
+  if (!j.is_object()) r.fail("must be an object");
   Material m;
   m.name = name;
-  const std::string brdf = r.string("brdf", "lambert");
-  const std::map<std::string, BrdfModel> models{{"lambert", BrdfModel::Lambert}, {"phong", BrdfModel::Phong},
-                                                {"cook-torrance", BrdfModel::CookTorrance},
-                                                {"mirror", BrdfModel::Mirror}, {"glass", BrdfModel::Glass}};
-  if (!models.count(brdf)) r.fail("has unknown \"brdf\" \"" + brdf + "\". Fix: use lambert, phong, cook-torrance, mirror or glass");
-  m.brdf = models.at(brdf);
-  // Each model's keys, defaults beside them; a key of another model is an error.
-  auto only = [&](BrdfModel model, const char* key) {
-    if (r.has(key) && m.brdf != model) r.fail("gives \"" + std::string(key) + "\", which " + brdf + " does not use");
-  };
-  for (const char* key : {"kd", "ks", "shininess"}) only(BrdfModel::Phong, key);
-  for (const char* key : {"base_color", "metallic", "roughness", "f0"}) only(BrdfModel::CookTorrance, key);
-  if (r.has("ior") && m.brdf != BrdfModel::Glass && m.brdf != BrdfModel::CookTorrance)
-    r.fail("gives \"ior\", which " + brdf + " does not use");
-  if (r.has("specular") && m.brdf != BrdfModel::Mirror) r.fail("gives \"specular\", which only mirror uses");
-  if (r.has("kd") && r.has("reflectance")) r.fail("gives both \"kd\" and \"reflectance\": they are the same");
-  if (r.has("base_color") && r.has("reflectance")) r.fail("gives both \"base_color\" and \"reflectance\": they are the same");
-  if (r.has("f0") && r.has("ior")) r.fail("gives both \"f0\" and \"ior\": give one");
-  m.reflectance = r.vec3("reflectance", m.isSpecular() ? Vec3{0, 0, 0} : m.reflectance);
-  m.reflectance = r.vec3("kd", r.vec3("base_color", m.reflectance));
+  m.bsdf = r.string("brdf", "lambert");
   m.emission = r.vec3("emission", m.emission);
   m.twoSided = r.boolean("two_sided", false);
-  m.specular = r.vec3("ks", r.vec3("specular", m.brdf == BrdfModel::Mirror ? Vec3{1, 1, 1} : Vec3{0, 0, 0}));
-  m.shininess = r.number("shininess", m.brdf == BrdfModel::Phong ? 32 : 0);
-  m.metallic = r.number("metallic", 0);
-  m.roughness = r.number("roughness", m.roughness);
-  m.ior = r.number("ior", m.ior);
-  if (r.has("ior") && m.brdf == BrdfModel::CookTorrance) {
-    double f = (m.ior - 1) / (m.ior + 1);  // Schlick's F0 from the index of refraction
-    m.f0 = Vec3{1, 1, 1} * (f * f);
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& key = it.key();
+    if (key == "brdf" || key == "emission" || key == "two_sided") continue;
+    const json& v = it.value();
+    if (v.is_string()) m.params.setText(key, v.get<std::string>());
+    else if (v.is_array()) m.params.set(key, r.toVec3(v, key));
+    else m.params.set(key, r.toNumber(v, key));
   }
-  m.f0 = r.vec3("f0", m.f0);
+  try {
+    resolveMaterial(m);
+  } catch (const BsdfParamError& e) {
+    const std::string what = e.what();
+    r.fail(what.rfind("has unknown", 0) == 0 ? what : "(brdf \"" + m.bsdf + "\"): " + what);
+  }
   return m;
 }
 

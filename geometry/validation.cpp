@@ -54,29 +54,8 @@ std::vector<Vec3> facePoints(const Surface& s, const Face& f) {
 void checkMaterials(const Scene& scene) {
   for (const Material& m : scene.materials) {
     std::string where = scene.file + ": material \"" + m.name + "\"";
-    if (!(m.shininess >= 0) || !std::isfinite(m.shininess))
-      throw InputError(where + ": shininess " + fmt(m.shininess) + " must be a finite number >= 0.");
-    if (!(m.metallic >= 0 && m.metallic <= 1))
-      throw InputError(where + ": metallic " + fmt(m.metallic) + " is outside [0, 1].");
-    if (!(m.roughness > 0 && m.roughness <= 1))
-      throw InputError(where + ": roughness " + fmt(m.roughness) + " is outside (0, 1]. Fix: use a small "
-                       "value such as 0.01 for a near-mirror, or brdf \"mirror\".");
-    if (!(m.ior > 1 && m.ior < 10))
-      throw InputError(where + ": ior " + fmt(m.ior) + " must lie in (1, 10).");
     for (int c = 0; c < 3; ++c) {
-      double r = m.reflectance[c], e = m.emission[c];
-      if (!(r >= 0 && r < 1))
-        throw InputError(where + ": reflectance " + fmt(r) + " (channel " + std::to_string(c) +
-                         ") is outside [0, 1). Fix: use a value below 1; a reflectance of 1 "
-                         "makes the radiosity system singular.");
-      double ks = m.specular[c], f0 = m.f0[c];
-      if (!(ks >= 0 && ks <= 1))
-        throw InputError(where + ": specular " + fmt(ks) + " (channel " + std::to_string(c) + ") is outside [0, 1].");
-      if (m.brdf == BrdfModel::Phong && !(r + ks < 1))
-        throw InputError(where + ": kd + ks = " + fmt(r + ks) + " (channel " + std::to_string(c) +
-                         ") must stay below 1 for an energy-conserving Phong material. Fix: lower kd or ks.");
-      if (!(f0 >= 0 && f0 <= 1))
-        throw InputError(where + ": f0 " + fmt(f0) + " (channel " + std::to_string(c) + ") is outside [0, 1].");
+      const double e = m.emission[c];
       if (!(e >= 0) || !std::isfinite(e))
         throw InputError(where + ": emission " + fmt(e) + " (channel " + std::to_string(c) +
                          ") must be a finite number >= 0. Fix: use 0 for surfaces that do not emit.");

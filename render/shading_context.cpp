@@ -19,17 +19,11 @@ LightSampling parseLightSampling(const std::string& name) {
 }
 
 std::unique_ptr<Bsdf> makeShadingBsdf(const Material& m, const BsdfSettings& settings, GlossyModel glossy) {
-  if (glossy == GlossyModel::Phong && m.brdf == BrdfModel::CookTorrance) {
-    // Walter et al. 2007, eq. 35 (Beckmann ↔ Phong), used for GGX: n = 2/α² − 2.
-    const double alpha = std::max(m.roughness * m.roughness, 1e-3);
-    const Vec3 f0 = m.f0 * (1 - m.metallic) + m.reflectance * m.metallic;
-    return makePhongBsdf(m.diffuseAlbedo(), f0, std::max(0.0, 2 / (alpha * alpha) - 2));
-  }
-  if (glossy == GlossyModel::CookTorrance && m.brdf == BrdfModel::Phong) {
-    const double alpha = std::sqrt(2 / (m.shininess + 2));
-    return makeCookTorranceBsdf(m.reflectance, 0, std::sqrt(alpha), m.specular, settings);
-  }
-  return makeBsdf(m, settings);
+  std::unique_ptr<Bsdf> bsdf = makeBsdf(m.bsdf, m.params, settings);
+  std::unique_ptr<Bsdf> substitute;
+  if (glossy == GlossyModel::Phong) substitute = bsdf->asPhong();
+  if (glossy == GlossyModel::CookTorrance) substitute = bsdf->asCookTorrance(settings);
+  return substitute ? std::move(substitute) : std::move(bsdf);
 }
 
 ShadingScene::ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
@@ -38,7 +32,7 @@ ShadingScene::ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visi
   for (const Material& m : scene.materials) {
     m_bsdfs.push_back(makeShadingBsdf(m, bsdf, glossy));
     m_twoSided.push_back(m.twoSided);
-    m_transmits.push_back(m.brdf == BrdfModel::Glass);
+    m_transmits.push_back(m_bsdfs.back()->transmits());
     m_emission.push_back(m.emission);
   }
   for (const Surface& s : scene.surfaces) m_material.push_back(s.material);

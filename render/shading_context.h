@@ -15,7 +15,7 @@
 #include "geometry/ray_scene.h"
 #include "geometry/sampling.h"
 #include "geometry/visibility.h"
-#include "render/bsdf.h"
+#include "bsdf/bsdf.h"
 #include "render/emitters.h"
 #include "render/radiosity_image.h"
 #include "render/sampler.h"

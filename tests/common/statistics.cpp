@@ -66,4 +66,27 @@ double chiSquarePValue(const std::vector<double>& observed, const std::vector<do
 
 double sidakAlpha(double alpha, int tests) { return 1 - std::pow(1 - alpha, 1.0 / tests); }
 
+double studentTCritical(double alpha, double nu) {
+  const bool normal = !std::isfinite(nu) || nu > 1e6;
+  const double logC = normal ? 0 : std::lgamma((nu + 1) / 2) - std::lgamma(nu / 2) - 0.5 * std::log(nu * M_PI);
+  auto density = [&](double x) {
+    return normal ? std::exp(-0.5 * x * x) / std::sqrt(2 * M_PI) : std::exp(logC - (nu + 1) / 2 * std::log1p(x * x / nu));
+  };
+  // P(|T| > t) = 1 − 2 ∫_0^t density.
+  auto tail = [&](double t) {
+    const int n = 4000;
+    const double h = t / n;
+    double sum = density(0) + density(t);
+    for (int i = 1; i < n; ++i) sum += density(i * h) * (i % 2 ? 4 : 2);
+    return 1 - 2 * sum * h / 3;
+  };
+  double lo = 0, hi = 1;
+  while (tail(hi) > alpha) hi *= 2;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (tail(mid) > alpha ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 }  // namespace radkit::test

@@ -19,4 +19,9 @@ double chiSquarePValue(const std::vector<double>& observed, const std::vector<do
 /// Šidák-corrected level for one of m tests at family level alpha: 1 − (1 − α)^(1/m).
 double sidakAlpha(double alpha, int tests);
 
+/// \brief Two-sided critical value of Student's t with nu degrees of freedom (nu > 0, may be
+/// fractional, as Welch–Satterthwaite's): P(|T| > t) = alpha. Simpson's rule on the density
+/// and bisection; nu = ∞ is the normal distribution.
+double studentTCritical(double alpha, double nu);
+
 }  // namespace radkit::test

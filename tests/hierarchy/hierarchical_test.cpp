@@ -28,7 +28,9 @@ struct SceneBuilder {
   }
   int material(const std::string& name, Vec3 rho, Vec3 emission) {
     Material m;
-    m.name = name, m.reflectance = rho, m.emission = emission;
+    m.name = name, m.emission = emission;
+    m.params.set("reflectance", rho);
+    resolveMaterial(m);
     scene.materials.push_back(m);
     return static_cast<int>(scene.materials.size()) - 1;
   }

@@ -5,7 +5,7 @@
 #include "geometry/sampling.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
-#include "render/specular.h"
+#include "bsdf/specular.h"
 #include "tests/common/statistics.h"
 #include "tests/common/test_util.h"
 

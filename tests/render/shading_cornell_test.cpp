@@ -129,9 +129,9 @@ TEST_F(CornellBox, StatisticalPhongModeMatchesRadiosity) {
   // eval, sample and pdf must give B/π as well.
   Scene phong = *s_scene;
   for (Material& m : phong.materials) {
-    m.brdf = BrdfModel::Phong;
-    m.specular = {0, 0, 0};
-    m.shininess = 30;
+    m.bsdf = "phong";
+    m.params.set("shininess", 30);  // ks = 0 by default; kd is the Lambertian "reflectance"
+    resolveMaterial(m);
   }
   ShadingScene shading(phong, s_fine->mesh, *s_fine->rays, {}, GlossyModel::Phong);
   TwoPassSettings s;

@@ -17,8 +17,8 @@ namespace {
 Scene testScene() {
   Scene scene;
   scene.name = "two-walls";
-  scene.materials = {Material{"red", {0.63, 0.065, 0.05}, {0, 0, 0}, false},
-                     Material{"green", {0.14, 0.45, 0.091}, {0, 0, 0}, false}};
+  scene.materials = {makeMaterial("red", "lambert", "reflectance=0.63 0.065 0.05"),
+                     makeMaterial("green", "lambert", "reflectance=0.14 0.45 0.091")};
   Surface left{"left wall", 0, {}, {}, "test"}, right{"right wall", 1, {}, {}, "test"};
   scene.surfaces = {left, right};
   scene.camera = Camera{{0, 0, TestRun::kCameraDistance}, {0, 0, 0}, {0, 1, 0}, TestRun::kFovDeg};
