@@ -75,7 +75,7 @@ struct Tracer {
         power = mul(power, weight);
         sawSpecular = true;
       } else {
-        if (!front && !m.twoSided) {  // only the front side reflects (GUIDE.md)
+        if (!front && !m.twoSided) {  // only the front side reflects (docs/formats.md)
           ++out.stats.absorbed;
           return;
         }
