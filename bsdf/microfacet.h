@@ -2,7 +2,7 @@
 // normals, its Smith masking (and the older geometry terms a course compares), sampling of
 // visible normals, and the directional-albedo tables of Kulla-Conty energy compensation.
 // All directions are local: the macro-surface normal is +z. Formulas:
-// shared/reference/brdf-and-media.md; Heitz 2014 (JCGT 3(2)), Heitz 2018 (JCGT 7(4)),
+// docs/oracles.md (Microfacet BRDF identities); Heitz 2014 (JCGT 3(2)), Heitz 2018 (JCGT 7(4)),
 // Kulla & Conty 2017 ("Revisiting physically based shading at Imageworks").
 #pragma once
 

@@ -1,4 +1,4 @@
-// Per-patch output files: patches.csv (GUIDE.md columns) and a VTK XML PolyData (.vtp) file
+// Per-patch output files: patches.csv (columns in docs/formats.md) and a VTK XML PolyData (.vtp) file
 // for ParaView, written as text without VTK (only viewer/ links VTK).
 #pragma once
 

@@ -1,4 +1,4 @@
-// JSON scene loading (the format in GUIDE.md). Every key is read in one place; keys that
+// JSON scene loading (the format in docs/formats.md). Every key is read in one place; keys that
 // nothing reads are rejected with their location, as pbrt-v4's ReportUnused does.
 #include "geometry/scene_loader.h"
 

@@ -1,4 +1,4 @@
-// Scene loading: JSON scenes (GUIDE.md) and OBJ/MTL files given directly as the scene.
+// Scene loading: JSON scenes (docs/formats.md) and OBJ/MTL files given directly as the scene.
 #pragma once
 
 #include <stdexcept>

@@ -18,7 +18,7 @@ struct SurfaceRadiosity {
   Vec3 radiosity;   ///< W/m²
 };
 
-/// \brief Reads `surface,area,b_r,b_g,b_b[,...]` (GUIDE.md). Throws std::runtime_error naming
+/// \brief Reads `surface,area,b_r,b_g,b_b[,...]` (docs/formats.md). Throws std::runtime_error naming
 /// the file, the line and what to fix.
 std::vector<SurfaceRadiosity> readSurfacesCsv(const std::string& path);
 

@@ -63,7 +63,7 @@ struct Tracer {
         ++out.stats.escaped;
         return;
       }
-      if (!hit->bsdf) {  // the back of a one-sided surface absorbs
+      if (!hit->bsdf) {  // only the front of a one-sided surface reflects (docs/formats.md)
         ++out.stats.absorbed;
         return;
       }

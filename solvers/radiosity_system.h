@@ -12,7 +12,7 @@ namespace radkit {
 
 /// How a solver's residual is measured against the tolerance.
 enum class ResidualNorm {
-  /// ‖E + ρFB − B‖∞ / ‖E‖∞ over all channels (GUIDE.md); absolute ‖·‖∞ when E = 0.
+  /// ‖E + ρFB − B‖∞ / ‖E‖∞ over all channels (docs/formats.md); absolute ‖·‖∞ when E = 0.
   Relative,
   /// max over patches and channels of |r_i| / max(|B_i|, |B_i + r_i|): every patch is measured
   /// against its own radiosity, so a 1e-20 patch is held to the same relative accuracy as a

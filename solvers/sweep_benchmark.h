@@ -1,5 +1,5 @@
 // Sweep throughput of Jacobi and Gauss-Seidel on a dense matrix against a STREAM-like triad
-// measured in the same run and thread count (GUIDE.md "Measuring"). `radkit bench solver`
+// measured in the same run and thread count (docs/benchmarks.md). `radkit bench solver`
 // prints the result as one JSON object.
 #pragma once
 

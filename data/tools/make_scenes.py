@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes radkit's generated data scenes: the Cornell boxes from the measured data
-(shared/reference/cornell-box.md, "CornellBox-Original" RGB set), small analytic scenes, an
+(docs/oracles.md, "CornellBox-Original" RGB set), small analytic scenes, an
 icosphere interior and a 51 200-triangle terrain room for scaling work. Run from data/."""
 import json, math
 

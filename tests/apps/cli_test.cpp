@@ -1,5 +1,5 @@
 // End-to-end through the radkit binary: what a student runs, checked against oracles from
-// shared/reference/ (view factors, closed-form radiosity) and against the scene's layout.
+// docs/oracles.md (view factors, closed-form radiosity) and against the scene's layout.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,7 +37,7 @@ double surfaceFactor(const std::string& csv, const std::string& from, const std:
 
 TEST(FormFactorsCli, HowellParallelAndPerpendicularSquares) {
   test::TempDir dir;
-  // Howell C-11 (X = Y = 1) and C-14 (W = H = 1), shared/reference/view-factors.md.
+  // Howell C-11 (X = Y = 1) and C-14 (W = H = 1), docs/oracles.md.
   auto r = runRadkit("formfactors '" + dataPath("parallel-squares.json") + "' --max-area 0.05 --out '" + dir.path("p") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NEAR(surfaceFactor(dir.path("p/surface_formfactors.csv"), "lower", "upper"), 0.19982489569838746, 1e-4);
@@ -93,7 +93,7 @@ TEST(FormFactorsCli, BadInput) {
 
 TEST(SolversCli, FurnaceEverySolver) {
   test::TempDir dir;
-  // Furnace: B = E/(1 - rho) = 2 on every patch for every solver (closed-form-radiosity.md).
+  // Furnace: B = E/(1 - rho) = 2 on every patch for every solver (docs/oracles.md).
   auto r = runRadkit("solvers '" + dataPath("furnace.json") + "' --max-area 0.05 --out '" + dir.path("f") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   json report = readJson(dir.path("f/report.json"));
@@ -194,7 +194,7 @@ TEST(RunCli, AdaptiveStaysInBudgetAndBalancesEnergy) {
   EXPECT_LE(j["mesh"]["patches"].get<int>(), 150);
   EXPECT_GT(j["mesh"]["patches"].get<int>(), 24);
   // Closed cube: nothing escapes and emitted = absorbed up to F's row-sum deviation
-  // (closed-form-radiosity.md), on a mesh with T-junctions.
+  // (docs/oracles.md), on a mesh with T-junctions.
   EXPECT_LT(j["energy_balance"]["relative_imbalance"].get<double>(), 1e-4);
   EXPECT_LT(j["energy_balance"]["escaped_W"][1].get<double>(), 1e-4 * j["energy_balance"]["emitted_W"][1].get<double>());
 }

@@ -1,4 +1,4 @@
-// GGX microfacet theory against the identities of shared/reference/brdf-and-media.md:
+// GGX microfacet theory against the identities of docs/oracles.md (Microfacet BRDF identities):
 // D normalisation, the weak white furnace, the single-evaluation values, directional albedo
 // (two independent quadratures), E <= 1, a χ² test of the visible-normal sampler, and the
 // white furnace of Kulla-Conty compensation.
@@ -47,7 +47,7 @@ TEST(Microfacet, Construct) {
 }
 
 TEST(Microfacet, ExactSingleEvaluation) {
-  // brdf-and-media.md: α = 0.5, ωo at θ = 45°, φ = 0, ωi at θ = 30°, φ = 180°, F0 = 0.04.
+  // docs/oracles.md: α = 0.5, ωo at θ = 45°, φ = 0, ωi at θ = 30°, φ = 180°, F0 = 0.04.
   const GgxDistribution d(0.5);
   const Vec3 wo = direction(std::cos(M_PI / 4), 0), wi = direction(std::cos(M_PI / 6), M_PI);
   const Vec3 h = normalize(wo + wi);
@@ -101,7 +101,7 @@ TEST(Microfacet, ExactWeakWhiteFurnace) {
 }
 
 TEST(Microfacet, ExactDirectionalAlbedo) {
-  // brdf-and-media.md: E(μo = 1, α = 1) ≈ 0.307 (height-correlated, F = 1).
+  // docs/oracles.md: E(μo = 1, α = 1) ≈ 0.307 (height-correlated, F = 1).
   EXPECT_NEAR(directionalAlbedo(GgxDistribution(1), MaskingShadowing::HeightCorrelated, 1.0), 0.307, 5e-4);
   // Two quadratures that share nothing but f: the visible-normal warp (64² strata) and a
   // 400 × 800 (μi, φi) grid. Both are midpoint rules across the horizon cut-off, so they

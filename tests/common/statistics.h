@@ -9,7 +9,7 @@ namespace radkit::test {
 /// Upper tail of the χ² distribution with k degrees of freedom (regularized Γ(k/2, x/2)).
 double chiSquareTail(double x, int k);
 
-/// \brief χ² goodness of fit of histogram counts against expected counts (STYLE.md): cells
+/// \brief χ² goodness of fit of histogram counts against expected counts (docs/oracles.md): cells
 /// expecting fewer than 5 are pooled, a sample in a cell of zero expectation fails the test
 /// (gtest failure), and when p < alpha both tables are written to `dumpName` as CSV.
 /// \return the p-value.

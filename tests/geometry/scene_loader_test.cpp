@@ -67,7 +67,7 @@ TEST(SceneLoader, CornellBoxAsMeasured) {
   EXPECT_NEAR(scene.camera->fovDeg, 39.3077, 1e-12);
   const Material& light = scene.materials[scene.findMaterial("light")];
   EXPECT_EQ(light.emission, (Vec3{17, 12, 4}));
-  // The light is 130 x 105 mm (shared/reference/cornell-box.md).
+  // The light is 130 x 105 mm (docs/oracles.md, The Cornell box).
   double area = 0;
   for (const Surface& s : scene.surfaces)
     if (s.name == "light")

@@ -1,4 +1,4 @@
-// point-polygon against Howell's closed forms (view-factors.md), with convergence tables.
+// point-polygon against Howell's closed forms (docs/oracles.md), with convergence tables.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Hand-built patch meshes and the closed-form oracles of shared/reference/view-factors.md.
+// Hand-built patch meshes and the closed-form oracles of docs/oracles.md (View factors).
 #pragma once
 
 #include "tests/common/statistics.h"
@@ -43,7 +43,7 @@ MeshBuilder perpendicularRectangles(double l, double w, double h, int n = 1);
 /// Icosphere of radius r around the origin subdivided `level` times, normals inwards.
 MeshBuilder icosphereInterior(int level, double r = 1.0);
 
-// Closed forms (view-factors.md).
+// Closed forms (docs/oracles.md, View factors).
 double c11ParallelRectangles(double X, double Y);
 double c14PerpendicularRectangles(double W, double H);
 double diskOnAxis(double R, double h);

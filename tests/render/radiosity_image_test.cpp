@@ -15,7 +15,7 @@ TEST(PinholeCamera, CornellBoxHandedness) {
   PinholeCamera cam(*scene.camera, 512, 512);
   Vec3 centre = cam.direction(256, 256);
   EXPECT_NEAR(centre.z, 1.0, 1e-12);
-  // cornell-box.md: looking along +z with +y up, +x is the viewer's left.
+  // docs/oracles.md (Cornell box): looking along +z with +y up, +x is the viewer's left.
   EXPECT_GT(cam.direction(0, 256).x, 0);
   EXPECT_GT(cam.direction(256, 0).y, 0);
   // The full vertical field of view is 39.3077°.

@@ -79,7 +79,7 @@ TEST(BrdfCommand, PrintsAlbedo) {
   test::RunResult r = test::runRadkit("brdf --model cook-torrance --alpha 1 --mu 1");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   nlohmann::json j = nlohmann::json::parse(r.output);
-  EXPECT_NEAR(j["E"].get<double>(), 0.307, 1e-3);  // brdf-and-media.md
+  EXPECT_NEAR(j["E"].get<double>(), 0.307, 1e-3);  // docs/oracles.md
   EXPECT_LT(j["E_avg"].get<double>(), 1);
   r = test::runRadkit("brdf --model cook-torrance --alpha 0.6 --mu 0.3 --g separable --compensated");
   ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -1,5 +1,5 @@
 // Radiosity systems with analytic form factors (no geometry) and a long-double direct solve:
-// the oracles of the solver tests (shared/reference/closed-form-radiosity.md).
+// the oracles of the solver tests (docs/oracles.md, Closed-form radiosity).
 #pragma once
 
 #include <memory>

@@ -19,7 +19,7 @@ TEST(ConjugateGradientSolver, ExactSphereUnequalAreas) {
                           grey({1.0, 0, 0, 0, 0.5, 0}));
   const SolveResult r = runSolver("cg", p.system, 1e-13);
   ASSERT_TRUE(r.converged) << r.reason;
-  // B_i = E_i + ρ_i Ē / (1 − ρ̄) with area-weighted means (closed-form-radiosity.md).
+  // B_i = E_i + ρ_i Ē / (1 − ρ̄) with area-weighted means (docs/oracles.md, Closed-form radiosity).
   double total = 0, rhoBar = 0, eBar = 0;
   for (int i = 0; i < 6; ++i) total += area[i];
   for (int i = 0; i < 6; ++i) {
