@@ -4,5 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DRADKIT_TESTS=ON \
-  -DRADKIT_TEST_FOLDERS="solvers;bsdf;geometry;radiosity;hierarchy;render;photon;viewer;apps" >/dev/null
+  -DRADKIT_TEST_FOLDERS="solvers;bsdf;geometry;radiosity;hierarchy;render;photon;viewer;apps;extending" >/dev/null
 cmake --build build -j"${RADKIT_JOBS:-2}"
