@@ -6,6 +6,7 @@
 #include "apps/common.h"
 #include "util/output_folder.h"
 #include "geometry/patch_io.h"
+#include "util/format.h"
 
 namespace radkit::app {
 
@@ -16,11 +17,7 @@ struct MeshCommand {
   std::string out;
 };
 
-std::string number(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+std::string number(double v) { return formatNumber(v); }
 
 void runMesh(const MeshCommand& cmd) {
   Scene scene = loadSceneReporting(cmd.mesh.scene);

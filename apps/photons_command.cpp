@@ -87,8 +87,7 @@ void writeDifference(OutputFolder& folder, const Scene& scene, const PatchMesh& 
   ImageSettings s;
   s.width = s.height = cmd.imageSize;
   s.samplesPerAxis = 1;
-  std::vector<bool> twoSided;
-  for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
+  const std::vector<bool> twoSided = scene.twoSidedSurfaces();
   const Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(mesh.bounds());
   RadianceImage seen = renderRadiosity(mesh, rays, camera, b, twoSided, s);
   writePng(folder.path("difference.png"),
@@ -140,10 +139,7 @@ void traceAndEstimate(PhotonsCommand& cmd, PhotonRun& r) {
   r.mesh = meshScene(r.scene, cmd.mesh);
   r.rays = std::make_unique<RayScene>(r.mesh);
   r.seconds["mesh_and_ray_scene"] = since(t);
-  r.emitters = std::make_unique<EmitterSampler>(r.scene, r.mesh);
-  if (r.emitters->empty())
-    throw InputError(r.scene.file + ": no surface emits, so no photon can start. Fix: give a material an "
-                     "\"emission\" above zero");
+  r.emitters = std::make_unique<EmitterSampler>(photonEmitters(r.scene, r.mesh));
   if (!cmd.compare.empty()) r.reference = radiosityReference(cmd, r.scene, r.mesh);
   r.trace = tracePhotons(r.scene, r.mesh, *r.rays, *r.emitters, cmd.settings);
   r.seconds["trace"] = r.trace.stats.seconds;

@@ -116,9 +116,7 @@ ModeImage renderPhotonMapMode(const ModeInput& in) {
   // Final gathering over the global map plus the caustic map seen directly (Jensen 1996).
   const PatchMesh mesh = ownMesh(in, true);
   const RayScene rays(mesh);
-  const EmitterSampler emitters(in.scene, mesh);
-  if (emitters.empty())
-    throw InputError(in.scene.file + ": no surface emits, so no photon can start. Fix: give a material an \"emission\" above zero");
+  const EmitterSampler emitters = photonEmitters(in.scene, mesh);
   PhotonSettings ps;
   ps.photons = in.cmd.photons;
   ps.seed = in.seed;
@@ -150,8 +148,7 @@ ModeImage renderRadiosityMode(const ModeInput& in) {
   const PipelineResult r = solveRadiosity(in);
   ImageSettings s;
   s.width = in.width, s.height = in.height, s.smooth = in.cmd.smooth, s.smoothing = in.cmd.smoothing;
-  std::vector<bool> twoSided;
-  for (const Surface& surf : in.scene.surfaces) twoSided.push_back(in.scene.materials[surf.material].twoSided);
+  const std::vector<bool> twoSided = in.scene.twoSidedSurfaces();
   RadianceImage img = renderRadiosity(r.mesh, *r.rays, in.camera, r.radiosity, twoSided, s);
   return finish(std::move(img), in.scene, r.mesh, std::to_string(r.mesh.size()) + " patches");
 }

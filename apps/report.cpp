@@ -13,6 +13,7 @@
 #include "solvers/convergence.h"
 #include "util/line_chart.h"
 #include "util/output_folder.h"
+#include "util/process_memory.h"
 
 namespace radkit::app {
 
@@ -96,11 +97,7 @@ void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceRes
   }
 }
 
-std::size_t peakMemoryBytes() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return std::size_t(u.ru_maxrss) * 1024;  // Linux reports KiB
-}
+std::size_t peakMemoryBytes() { return lifetimePeakMemory(); }
 
 void writeJson(const std::string& path, const json& j) { writeFileAtomically(path, j.dump(2) + "\n"); }
 

@@ -1,18 +1,13 @@
 #include "bsdf/params.h"
 
+#include "util/format.h"
+
 #include <cmath>
 #include <sstream>
 
 namespace radkit {
 
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
-}
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
@@ -67,8 +62,8 @@ double BsdfParams::number(const std::string& key, double defaultValue, double lo
   const double x = number(key, defaultValue);
   const bool ok = (openLo ? x > lo : x >= lo) && (openHi ? x < hi : x <= hi);
   if (!ok)
-    throw BsdfParamError("\"" + key + "\" " + fmt(x) + " is outside " + (openLo ? "(" : "[") + fmt(lo) + ", " +
-                         fmt(hi) + (openHi ? ")" : "]") + "." + (fix.empty() ? "" : " Fix: " + fix));
+    throw BsdfParamError("\"" + key + "\" " + formatNumber(x) + " is outside " + (openLo ? "(" : "[") + formatNumber(lo) + ", " +
+                         formatNumber(hi) + (openHi ? ")" : "]") + "." + (fix.empty() ? "" : " Fix: " + fix));
   return x;
 }
 
@@ -105,7 +100,7 @@ std::string BsdfParams::text(const std::string& key, const std::string& defaultV
 void BsdfParams::checkAlbedo(const std::string& key, const Vec3& value) {
   for (int c = 0; c < 3; ++c)
     if (!(value[c] >= 0 && value[c] < 1))
-      throw BsdfParamError("\"" + key + "\" " + fmt(value[c]) + " (" + kChannel[c] +
+      throw BsdfParamError("\"" + key + "\" " + formatNumber(value[c]) + " (" + kChannel[c] +
                            ") is outside [0, 1). Fix: use a value below 1; a reflectance of 1 makes the "
                            "radiosity system singular.");
 }
@@ -113,7 +108,7 @@ void BsdfParams::checkAlbedo(const std::string& key, const Vec3& value) {
 void BsdfParams::checkUnit(const std::string& key, const Vec3& value) {
   for (int c = 0; c < 3; ++c)
     if (!(value[c] >= 0 && value[c] <= 1))
-      throw BsdfParamError("\"" + key + "\" " + fmt(value[c]) + " (" + kChannel[c] + ") is outside [0, 1].");
+      throw BsdfParamError("\"" + key + "\" " + formatNumber(value[c]) + " (" + kChannel[c] + ") is outside [0, 1].");
 }
 
 void BsdfParams::rejectUnused(const std::string& bsdfName) const {

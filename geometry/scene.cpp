@@ -36,6 +36,12 @@ double Scene::metresPerUnit() const {
   return 1.0;
 }
 
+std::vector<bool> Scene::twoSidedSurfaces() const {
+  std::vector<bool> out;
+  for (const Surface& s : surfaces) out.push_back(materials[s.material].twoSided);
+  return out;
+}
+
 int Scene::findMaterial(const std::string& materialName) const {
   for (std::size_t i = 0; i < materials.size(); ++i)
     if (materials[i].name == materialName) return static_cast<int>(i);

@@ -76,6 +76,8 @@ struct Scene {
   /// Metres per scene unit ("mm" -> 1e-3), for converting areas and emission to SI.
   double metresPerUnit() const;
   int findMaterial(const std::string& materialName) const;  ///< -1 when absent
+  /// Per surface: whether its material reflects on both sides (what image modes need).
+  std::vector<bool> twoSidedSurfaces() const;
 };
 
 }  // namespace radkit

@@ -3,6 +3,7 @@
 #include "geometry/validation.h"
 
 #include "geometry/patch_mesh.h"
+#include "util/format.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
@@ -32,12 +33,7 @@ std::string faceName(const Surface& s, std::size_t f) {
   return s.source + ", face " + std::to_string(f);
 }
 
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
-}
+std::string fmt(double v) { return formatNumber(v); }
 
 Vec3 newellNormal(const std::vector<Vec3>& p) {
   Vec3 n;

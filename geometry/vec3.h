@@ -41,7 +41,6 @@ inline bool isFinite(const Vec3& v) {
 /// Luminance Y of a linear RGB triple with the Rec. 709 weights (radiometric RGB → Y).
 constexpr double luminance(const Vec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
 inline double maxComponent(const Vec3& v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
-inline double minComponent(const Vec3& v) { return std::fmin(v.x, std::fmin(v.y, v.z)); }
 
 /// Axis-aligned bounding box.
 struct Bounds3 {

@@ -7,14 +7,9 @@
 #include <cmath>
 
 #include "geometry/sampling.h"
+#include "util/format.h"
 
 namespace radkit {
-
-namespace {
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-}  // namespace
 
 RateMeasurement measureClosestHitRate(const PatchMesh& mesh, const Visibility& rays, std::size_t count,
                                       std::uint64_t seed) {
@@ -36,13 +31,6 @@ RateMeasurement measureClosestHitRate(const PatchMesh& mesh, const Visibility& r
   });
   const double seconds = secondsSince(start);
   return {count, seconds, count ? double(hits.load()) / double(count) : 0.0};
-}
-
-RateMeasurement measureKdTreeBuild(const PatchMesh& mesh, const std::vector<Photon>& photons) {
-  const auto start = std::chrono::steady_clock::now();
-  PhotonMap map(mesh, photons);
-  const double seconds = secondsSince(start);
-  return {map.size(), seconds};
 }
 
 RateMeasurement measureKdTreeQueries(const PhotonMap& map, const PatchMesh& mesh, std::size_t queries, int k,

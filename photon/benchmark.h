@@ -23,9 +23,6 @@ struct RateMeasurement {
 RateMeasurement measureClosestHitRate(const PatchMesh& mesh, const Visibility& rays, std::size_t count,
                                       std::uint64_t seed);
 
-/// \brief Photons per second of building a kd-tree over `photons` (one thread, as nanoflann
-/// builds).
-RateMeasurement measureKdTreeBuild(const PatchMesh& mesh, const std::vector<Photon>& photons);
 
 /// \brief k-nearest irradiance estimates per second (all threads) at `queries` stored
 /// photons' positions (every photons/queries-th one).

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "geometry/ray_scene.h"
+#include "geometry/scene_loader.h"
 #include "geometry/sampling.h"
 #include "render/shading_context.h"
 
@@ -111,6 +112,14 @@ void addStats(PhotonTraceStats& a, const PhotonTraceStats& b) {
 }
 
 }  // namespace
+
+EmitterSampler photonEmitters(const Scene& scene, const PatchMesh& mesh) {
+  EmitterSampler emitters(scene, mesh);
+  if (emitters.empty())
+    throw InputError(scene.file + ": no surface emits, so no photon can start. Fix: give a material an "
+                     "\"emission\" above zero");
+  return emitters;
+}
 
 PhotonEmission samplePhotonEmission(const EmitterSampler& emitters, std::size_t photons, double u0, double u1,
                                     double u2, double u3, double u4) {

@@ -66,6 +66,10 @@ PhotonEmission samplePhotonEmission(const EmitterSampler& emitters, std::size_t 
 /// \brief Density of samplePhotonEmission per unit area and steradian: p_A(patch) · cos θ/π.
 double photonEmissionPdf(const EmitterSampler& emitters, int patch, const Vec3& normal, const Vec3& direction);
 
+/// \brief The emitters photons start from. \throws InputError naming the scene file when no
+/// surface emits.
+EmitterSampler photonEmitters(const Scene& scene, const PatchMesh& mesh);
+
 /// \brief Traces settings.photons paths in parallel (TBB) over blocks of photons; the result
 /// depends only on the scene and the settings, not on the thread count.
 /// Throws std::invalid_argument when the scene has no emitters or photons is 0 or ≥ 2³².

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "radiosity/form_factors.h"
+#include "util/process_memory.h"
 #include "radiosity/patch_pairs.h"
 #include "geometry/sampling.h"
 
@@ -49,19 +50,6 @@ std::vector<Segment> referenceSegments(const PatchMesh& mesh, const RayScene& sc
   return segments;
 }
 
-std::size_t peakResidentBytes() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmHWM:") {
-      std::size_t kib = 0;
-      status >> kib;
-      return kib * 1024;
-    }
-    status.ignore(1 << 12, '\n');
-  }
-  return 0;
-}
 }  // namespace
 
 FormFactorBenchmark benchmarkFormFactors(const PatchMesh& mesh, const RayScene& scene,
@@ -100,7 +88,7 @@ FormFactorBenchmark benchmarkFormFactors(const PatchMesh& mesh, const RayScene& 
     b.referenceOccludedFraction = double(blocked) / double(b.referenceRays);
     b.ratio = b.raysPerSecond / b.referenceRaysPerSecond;
   }
-  b.peakResidentBytes = peakResidentBytes();
+  b.peakResidentBytes = peakMemory();
   return b;
 }
 

@@ -1,5 +1,6 @@
 // The form-factor driver: plan storage, compute rows in parallel, assemble, measure.
 #include "radiosity/form_factors.h"
+#include "util/format.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
@@ -15,10 +16,6 @@
 namespace radkit {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 /// Work counters summed over rows.
 struct Totals {

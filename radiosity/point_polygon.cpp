@@ -14,14 +14,11 @@
 #include "radiosity/occluder_culling.h"
 #include "radiosity/patch_pairs.h"
 #include "geometry/sampling.h"
+#include "util/format.h"
 
 namespace radkit {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 class PointPolygon final : public FormFactorMethod {
  public:

@@ -91,8 +91,7 @@ std::optional<int> pickPatch(const Visibility& rays, const Camera& camera, int w
 
 void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
                        const std::vector<Vec3>& radiosity, const ImageSettings& settings) {
-  std::vector<bool> twoSided;
-  for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
+  const std::vector<bool> twoSided = scene.twoSidedSurfaces();
   Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(mesh.bounds());
   RadianceImage img = renderRadiosity(mesh, rays, camera, radiosity, twoSided, settings);
   writePng(path, toneMap(img, autoExposure(img, scene, mesh)));

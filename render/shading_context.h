@@ -91,7 +91,6 @@ class ShadingScene {
   const PatchMesh& mesh() const { return m_mesh; }
   const Visibility& rays() const { return m_rays; }
   const EmitterSampler& emitters() const { return m_emitters; }
-  const Bsdf& materialBsdf(int material) const { return *m_bsdfs[material]; }
 
   /// \brief First surface along origin + t·dir (dir unit), t > tMin; its local frame.
   std::optional<SurfaceHit> intersect(const Vec3& origin, const Vec3& dir, double tMin = 0) const;

@@ -1,4 +1,5 @@
 #include "solvers/solver.h"
+#include "util/format.h"
 
 #include <chrono>
 #include <cmath>
@@ -49,18 +50,7 @@ void SolverParams::rejectUnused(const std::string& solverName) const {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-std::string number(double v) {
-  std::ostringstream s;
-  s.precision(3);
-  s << v;
-  return s.str();
-}
+std::string number(double v) { return formatNumber(v, 3); }
 
 std::string rateText(double rate) {
   return std::isnan(rate) ? std::string() : ", estimated spectral radius " + number(rate);

@@ -1,5 +1,7 @@
 #include "util/process_memory.h"
 
+#include <sys/resource.h>
+
 #include <fstream>
 #include <string>
 
@@ -13,6 +15,12 @@ std::size_t peakMemory() {
   while (std::getline(status, line))
     if (line.rfind("VmHWM:", 0) == 0) return std::size_t(std::stoll(line.substr(6))) * 1024;
   return 0;
+}
+
+std::size_t lifetimePeakMemory() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return std::size_t(u.ru_maxrss) * 1024;  // Linux reports KiB
 }
 
 }  // namespace radkit

@@ -9,5 +9,7 @@ namespace radkit {
 void resetPeakMemory();
 /// VmHWM of /proc/self/status in bytes (0 where it cannot be read).
 std::size_t peakMemory();
+/// The process's lifetime peak resident memory in bytes (getrusage; unaffected by resets).
+std::size_t lifetimePeakMemory();
 
 }  // namespace radkit

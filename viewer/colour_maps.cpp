@@ -65,12 +65,6 @@ void styleText(vtkTextProperty* text, int pixels, bool panel) {
   }
 }
 
-std::string formatNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-
 void styleScalarBar(vtkScalarBarActor* bar, int pixels) {
   for (vtkTextProperty* t :
        {bar->GetTitleTextProperty(), bar->GetLabelTextProperty(), bar->GetAnnotationTextProperty()}) {

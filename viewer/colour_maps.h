@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "util/format.h"
+
 namespace radkit::viewer {
 
 /// Perceptually uniform maps: inferno (dark to bright, for radiosity) and viridis (for F).
@@ -24,6 +26,7 @@ void styleText(vtkTextProperty* text, int pixels, bool panel = true);
 void styleScalarBar(vtkScalarBarActor* bar, int pixels);
 
 /// "%.4g" of a value, and "(r, g, b)" of a triple.
-std::string formatNumber(double v);
+/// Numbers on colour bars and titles: four significant digits.
+inline std::string formatShort(double v) { return formatNumber(v, 4); }
 
 }  // namespace radkit::viewer

@@ -33,7 +33,7 @@ constexpr double kAboveColour[3] = {1.0, 1.0, 1.0};    // emitters, above the fa
 constexpr double kOutline[3] = {0.2, 0.95, 1.0};
 
 std::string triple(const Vec3& v) {
-  return "(" + formatNumber(v.x) + ", " + formatNumber(v.y) + ", " + formatNumber(v.z) + ")";
+  return "(" + formatShort(v.x) + ", " + formatShort(v.y) + ", " + formatShort(v.z) + ")";
 }
 
 vtkSmartPointer<vtkUnsignedCharArray> colourArray(const std::vector<Vec3>& b, double exposure) {
@@ -165,7 +165,7 @@ void SceneView::showTrueColour(const ViewSettings& s) {
   std::string note;
   if (s.mode == ViewMode::FormFactorRow)
     note = m_run.formFactors ? "  [click a patch to paint its row of F]" : "  [" + m_run.formFactorsMissing + "]";
-  m_title->SetInput((m_run.report.sceneName + ": radiosity, true colour (exposure " + formatNumber(m_exposureUsed) +
+  m_title->SetInput((m_run.report.sceneName + ": radiosity, true colour (exposure " + formatShort(m_exposureUsed) +
                      (s.exposure > 0 ? "" : ", auto") + ", " + (s.smooth ? "smooth" : "flat") + ")" + note)
                         .c_str());
 }
@@ -206,7 +206,7 @@ void SceneView::showFormFactorRow(const ViewSettings& s) {
   for (long long k = m_run.formFactors->rowStart[s.picked]; k < m_run.formFactors->rowStart[s.picked + 1]; ++k)
     sum += m_run.formFactors->value[k];
   m_title->SetInput((m_run.report.sceneName + ": form factors F_ij from patch " + std::to_string(s.picked) +
-                     " (log scale; row sum " + formatNumber(sum) + ")")
+                     " (log scale; row sum " + formatShort(sum) + ")")
                         .c_str());
 }
 
@@ -243,11 +243,11 @@ std::string SceneView::patchInfo(int i) const {
   const PatchData& p = m_run.patches;
   const std::string units = m_run.report.units.empty() ? "units" : m_run.report.units;
   return "patch " + std::to_string(i) + "  surface '" + m_run.surfaceName(i) + "'" +  //
-         "\narea " + formatNumber(p.area[i]) + " " + units + "²" +                    //
+         "\narea " + formatShort(p.area[i]) + " " + units + "²" +                    //
          "\nrho  " + triple(p.reflectance[i]) +                                       //
          "\nE    " + triple(p.emission[i]) + " W/m²" +                                //
          "\nB    " + triple(p.radiosity[i]) + " W/m²" +                               //
-         "\nL_v  " + formatNumber(channelValue(p.radiosity[i], Channel::Luminance, true)) + " cd/m²";
+         "\nL_v  " + formatShort(channelValue(p.radiosity[i], Channel::Luminance, true)) + " cd/m²";
 }
 
 int SceneView::pick(double x, double y) {

@@ -39,7 +39,6 @@ class SceneView {
   int pick(double x, double y);
 
   /// The exposure the last true-colour show() used (the automatic one when settings say 0).
-  double exposureUsed() const { return m_exposureUsed; }
   double autoExposureValue() const { return m_autoExposure; }
 
   /// Back to the scene's camera (after the user rotated or zoomed).

@@ -51,19 +51,6 @@ std::string modeName(ViewMode mode) {
   return "?";
 }
 
-std::string channelName(Channel channel) {
-  switch (channel) {
-    case Channel::Red:
-      return "r";
-    case Channel::Green:
-      return "g";
-    case Channel::Blue:
-      return "b";
-    case Channel::Luminance:
-      return "luminance";
-  }
-  return "?";
-}
 
 double autoExposure(const PatchData& patches) {
   // (luminance of L, area) of every non-emitting patch, sorted by luminance.

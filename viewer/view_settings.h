@@ -29,7 +29,6 @@ ModeChoice parseMode(const std::string& text);
 /// \brief Parses r|g|b|luminance (also red, green, blue, l). \throws radkit::InputError.
 Channel parseChannel(const std::string& text);
 std::string modeName(ViewMode mode);
-std::string channelName(Channel channel);
 
 /// Everything the scene view needs to colour the patches; changed by the keys.
 struct ViewSettings {

@@ -51,7 +51,6 @@ class ViewerWindow {
   /// A click (no drag) at display point (x, y) in `renderer`: picks a patch or a matrix row.
   void onClick(vtkRenderer* renderer, int x, int y);
   vtkRenderer* sceneRenderer() { return m_scene.renderer(); }
-  vtkRenderer* matrixRenderer() { return m_matrix.renderer(); }
   const ViewSettings& settings() const { return m_settings; }
 
  private:

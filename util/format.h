@@ -1,0 +1,25 @@
+// Small helpers every library shares: a number in a message, seconds since a time point.
+// Header-only, so solvers/ and bsdf/, which link nothing of radkit's, can use them.
+#pragma once
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+namespace radkit {
+
+/// A number as printf's %.<digits>g: "0.5", "1e+06"; for messages and reports.
+inline std::string formatNumber(double v, int digits = 6) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+using Clock = std::chrono::steady_clock;
+
+/// Wall seconds since t0.
+inline double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace radkit
