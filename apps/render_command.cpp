@@ -215,7 +215,7 @@ void runRender(RenderCommand& cmd) {
                        std::to_string(height) + ". Fix: render at the reference's --size");
   }
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
-  const Scene scene = loadSceneReporting(cmd.mesh.scene);
+  const Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load);
   std::string what;
   std::vector<bool> emits;
   std::vector<int> surfaces;
