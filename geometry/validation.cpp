@@ -5,6 +5,7 @@
 #include "geometry/patch_mesh.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/intersections.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/Polygon_mesh_processing/merge_border_vertices.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
@@ -479,21 +480,38 @@ std::size_t countSelfIntersections(const Surface& surface) {
   using FacePair = std::pair<CGAL::Surface_mesh<Point3>::Face_index, CGAL::Surface_mesh<Point3>::Face_index>;
   std::vector<FacePair> pairs;
   PMP::self_intersections(faces(mesh), mesh, std::back_inserter(pairs));
-  // Faces that orient_polygon_soup cut apart at a non-manifold edge meet along that edge only:
-  // two triangles with two corners in common that are not coplanar cross nowhere else.
+  // Faces that orient_polygon_soup cut apart at a non-manifold edge or vertex share corners
+  // by position only, and CGAL counts their touching as crossing. Two triangles with an edge
+  // in common meet only there unless coplanar on one side of it; with one corner p in common,
+  // they meet beyond p exactly when the edge opposite p in one meets the other triangle.
   auto corners = [&](CGAL::Surface_mesh<Point3>::Face_index f) {
     std::vector<Point3> p;
     for (auto v : vertices_around_face(mesh.halfedge(f), mesh)) p.push_back(mesh.point(v));
     return p;
   };
+  auto others = [](const std::vector<Point3>& t, const std::vector<Point3>& from) {
+    std::vector<Point3> own;  // t's corners that `from` lacks
+    for (const Point3& q : t)
+      if (std::find(from.begin(), from.end(), q) == from.end()) own.push_back(q);
+    return own;
+  };
   std::size_t crossing = 0;
   for (const FacePair& pair : pairs) {
     const std::vector<Point3> a = corners(pair.first), b = corners(pair.second);
-    std::vector<Point3> own;  // b's corners that a lacks
-    for (const Point3& q : b)
-      if (std::find(a.begin(), a.end(), q) == a.end()) own.push_back(q);
-    const bool edgeOnly = own.size() == 1 && !CGAL::coplanar(a[0], a[1], a[2], own[0]);
-    crossing += !edgeOnly;
+    const std::vector<Point3> onlyA = others(a, b), onlyB = others(b, a);
+    bool touching = false;
+    if (onlyB.size() == 1 && onlyA.size() == 1) {
+      // Coplanar, they touch only when the edge separates their third corners.
+      std::vector<Point3> edge;
+      for (const Point3& q : a)
+        if (q != onlyA[0]) edge.push_back(q);
+      touching = !CGAL::coplanar(a[0], a[1], a[2], onlyB[0]) ||
+                 CGAL::coplanar_orientation(edge[0], edge[1], onlyA[0], onlyB[0]) == CGAL::NEGATIVE;
+    } else if (onlyB.size() == 2 && onlyA.size() == 2) {
+      touching = !CGAL::do_intersect(Kernel::Segment_3(onlyA[0], onlyA[1]), Kernel::Triangle_3(b[0], b[1], b[2])) &&
+                 !CGAL::do_intersect(Kernel::Segment_3(onlyB[0], onlyB[1]), Kernel::Triangle_3(a[0], a[1], a[2]));
+    }
+    crossing += !touching;
   }
   return crossing;
 }
