@@ -69,6 +69,8 @@ TEST(MeshRepair, DuplicateFaceAndFinAreRepairedReportedAndRun) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("removed 1 duplicate face"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("cut 1 non-manifold edge"), std::string::npos) << r.output;
+  // The fin cut off at the diagonal touches the square there and nowhere else.
+  EXPECT_EQ(r.output.find("intersects itself"), std::string::npos) << r.output;
   // Unit square plus the fin: a triangle of base √2 (the diagonal) and height 1.
   const SurfacePatches p = surfacePatches(dir.path("m/patches.csv"));
   EXPECT_NEAR(p.area.at("scan"), 1 + std::sqrt(2.0) / 2, 1e-12);
@@ -196,6 +198,25 @@ TEST(PatchBudget, AFineMeshDoesNotLeaveTheFloorWhole) {
   r = test::runRadkit("mesh '" + test::dataPath("cornell-box.json") + "' --patches 400 --out '" + dir.path("c") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(r.output.find("share"), std::string::npos) << r.output;
+}
+
+// A ball of 320 small faces beside whole walls: rows of F sum above 1 because a wall patch is
+// larger than its distance from the ball, and the warning says so rather than blaming the rays.
+TEST(PatchBudget, RowSumWarningNamesThePatchTooLargeForItsDistance) {
+  test::TempDir dir;
+  const std::string cornell = test::dataPath("cornell-box.json");
+  std::ifstream in(cornell);
+  json scene = json::parse(in);
+  scene["surfaces"].push_back({{"name", "ball"}, {"material", "white"}, {"mesh", test::dataPath("sphere-interior.off")},
+                               {"transform", {{"scale", -100}, {"translate", {420, 100.5, 120}}}}});
+  const std::string path = dir.file("ball.json", scene.dump());
+  test::RunResult r = test::runRadkit("formfactors '" + path + "' --max-area 1e9 --out '" + dir.path("o") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json report = readJson(dir.path("o/report.json"));
+  ASSERT_GT(report["form_factors"]["row_sum"]["max"].get<double>(), 1.01) << "the case this test is about";
+  EXPECT_NE(r.output.find("of \"ball\" sees patch"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the mesh, not visibility noise"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Fix: split"), std::string::npos) << r.output;
 }
 
 }  // namespace
