@@ -30,7 +30,7 @@ struct FormFactorBench {
 
 void runFormFactorBench(FormFactorBench& b) {
   b.ff.finish();
-  Scene scene = loadSceneReporting(b.mesh.scene);
+  Scene scene = loadSceneReporting(b.mesh.scene, b.mesh.load);
   PatchMesh mesh = meshScene(scene, b.mesh);
   RayScene rays(mesh);
   FormFactorBenchmarkSettings s;
@@ -48,7 +48,7 @@ struct PathTraceBench {
 
 void runPathTraceBench(PathTraceBench& b) {
   if (b.mesh.scene.empty()) b.mesh.scene = defaultScenePath();
-  Scene scene = loadSceneReporting(b.mesh.scene);
+  Scene scene = loadSceneReporting(b.mesh.scene, b.mesh.load);
   PatchMesh mesh = meshScene(scene, b.mesh);
   RayScene rays(mesh);
   ShadingScene shading(scene, mesh, rays, BsdfSettings{});

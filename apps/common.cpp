@@ -87,18 +87,47 @@ void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired)
   command.add_option("--patches", options.patches, "Split surfaces into about this many patches in total")
       ->check(CLI::Range(1, int(kMaxPatches)))
       ->excludes(area);
+  std::vector<std::string> units;
+  for (const auto& unit : knownUnits()) units.push_back(unit.first);
+  command.add_option("--units", options.load.units,
+                     "Length unit of the scene's coordinates (default: the scene file's \"units\", else m); "
+                     "areas and powers in reports are converted to m² and W")
+      ->check(CLI::IsMember(units));
+  command.add_flag("--repair", options.load.repair,
+                   "Repair meshes instead of refusing them: weld duplicate vertices, drop duplicate and "
+                   "degenerate faces, cut non-manifold edges and vertices, stitch borders, orient; each "
+                   "change is reported (docs/bring-your-own-model.md)");
 }
 
-Scene loadSceneReporting(const std::string& path) {
-  LoadReport report;
-  Scene scene = loadScene(path, &report);
+Scene loadSceneReporting(const std::string& path, const LoadOptions& load, LoadReport* out) {
+  LoadReport local;
+  LoadReport& report = out ? *out : local;
+  Scene scene = loadScene(path, &report, load);
   for (const std::string& w : report.warnings) std::cerr << "radkit: warning: " << w << '\n';
   return scene;
 }
 
+nlohmann::json loadJson(const LoadReport& report) {
+  nlohmann::json repairs = nlohmann::json::array();
+  for (const MeshRepair& r : report.repairs)
+    repairs.push_back({{"surface", r.surface},
+                       {"welded_vertices", r.weldedVertices},
+                       {"duplicate_faces_removed", r.duplicateFaces},
+                       {"degenerate_faces_removed", r.degenerateFaces},
+                       {"non_manifold_edges_cut", r.nonManifoldEdges},
+                       {"non_manifold_vertices_split", r.nonManifoldVertices},
+                       {"border_edges_stitched", r.stitchedEdges},
+                       {"faces_reversed", r.reversedFaces},
+                       {"summary", r.describe()}});
+  return {{"warnings", report.warnings}, {"repairs", repairs}};
+}
+
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options) {
   try {
-    return subdivide(scene, SubdivisionSettings{options.maxArea, options.patches});
+    std::vector<std::string> warnings;
+    PatchMesh mesh = subdivide(scene, SubdivisionSettings{options.maxArea, options.patches}, &warnings);
+    for (const std::string& w : warnings) std::cerr << "radkit: warning: " << w << '\n';
+    return mesh;
   } catch (const TooManyPatches&) {
     tooManyPatches(scene, options);
   }

@@ -2,11 +2,13 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <string>
 
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
+#include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
 
 namespace radkit::app {
@@ -20,6 +22,7 @@ struct MeshOptions {
   std::string scene;
   double maxArea = 0;
   int patches = 0;
+  LoadOptions load;  ///< --units, --repair
 };
 
 /// CLI11's PositiveNumber lets NaN through (NaN <= 0 is false) and infinity too; these refuse
@@ -35,15 +38,19 @@ extern const CLI::Validator Unsigned;
 /// does not exist, before any work is done; throws InputError naming the option.
 void checkOutputFile(const std::string& option, const std::string& path);
 
-/// Adds SCENE (positional; `required` or defaulting to the Cornell box) and --max-area/--patches.
+/// Adds SCENE (positional; `required` or defaulting to the Cornell box), --max-area/--patches,
+/// --units and --repair.
 void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired = true);
 
 /// The measured Cornell box shipped in data/.
 std::string defaultScenePath();
 
-/// Loads the scene (printing its warnings to stderr) and subdivides it; a mesh beyond
-/// kMaxPatches is an InputError naming the option that asked for it.
-Scene loadSceneReporting(const std::string& path);
+/// Loads the scene (printing its warnings to stderr, and keeping them in `report` when given)
+/// and subdivides it; a mesh beyond kMaxPatches is an InputError naming the option that asked
+/// for it.
+Scene loadSceneReporting(const std::string& path, const LoadOptions& load = {}, LoadReport* report = nullptr);
+/// report.json's "load": the loading warnings and what the mesh repair changed.
+nlohmann::json loadJson(const LoadReport& report);
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
 /// Throws that InputError (for subdivide's TooManyPatches).
 [[noreturn]] void tooManyPatches(const Scene& scene, const MeshOptions& options);

@@ -125,8 +125,10 @@ void finishHierarchicalOptions(HierarchicalOptions& o) {
 void runHierarchicalJob(HierarchicalJob job) {
   auto start = std::chrono::steady_clock::now();
   validateHierarchicalSettings(job.settings);
-  Scene scene = loadSceneReporting(job.scene);
+  LoadReport loaded;
+  Scene scene = loadSceneReporting(job.scene, job.load, &loaded);
   if (job.out.empty()) job.out = "out/" + scene.name;
+  OutputFolder folder(job.out);  // refuses an --out it cannot replace before the work, not after
   Progress progress;
   PipelineLog log;
   log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
@@ -139,7 +141,6 @@ void runHierarchicalJob(HierarchicalJob job) {
   if (r.solve.reason.rfind("diverged", 0) == 0)
     throw std::runtime_error("hierarchical solve " + r.solve.reason + "; nothing written");
 
-  OutputFolder folder(job.out);
   writePatchesCsv(folder.path("patches.csv"), scene, r.leaves, &r.radiosity);
   std::vector<CellArray> extra{{"level", {}}, {"links", {}}, {"row_sum", r.rowSums}};
   for (int n : r.leafNodes) {
@@ -169,6 +170,7 @@ void runHierarchicalJob(HierarchicalJob job) {
                                               {r.escapedStandardError.x, r.escapedStandardError.y,
                                                r.escapedStandardError.z}}}},
                         {"surfaces", surfacesJson(r.surfaces)}};
+  report["load"] = loadJson(loaded);
   report["seconds"] = {{"hierarchy", r.seconds.hierarchy}, {"ray_scene", r.seconds.rayScene},
                        {"links", r.seconds.refine},        {"solve", r.seconds.solve},
                        {"results", r.seconds.results},     {"total", total}};

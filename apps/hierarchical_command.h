@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "geometry/scene_loader.h"
 #include "hierarchy/hierarchical.h"
 #include "hierarchy/link_matrix.h"
 
@@ -24,6 +25,7 @@ void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& options);
 /// What the run command passes on: the scene, the output folder and the shared options.
 struct HierarchicalJob {
   std::string scene, out;
+  LoadOptions load;
   HierarchicalSettings settings;
   LinkColour linkColour = LinkColour::FormFactor;
   bool noRender = false, photometric = false, smooth = false;

@@ -22,7 +22,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints help, the version or the usage error; its codes (105, 106, ...) differ by
+    // kind of usage error, but every error exits 1 (docs/run.md), help and --version 0.
+    return app.exit(e) == 0 ? 0 : 1;
   } catch (const std::bad_alloc&) {
     std::cerr << "radkit: error: out of memory. Fix: use fewer patches (--patches, --max-area) or a smaller "
                  "--memory-budget.\n";

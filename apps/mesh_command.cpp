@@ -20,9 +20,9 @@ struct MeshCommand {
 std::string number(double v) { return formatNumber(v); }
 
 void runMesh(const MeshCommand& cmd) {
-  Scene scene = loadSceneReporting(cmd.mesh.scene);
+  Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load);
+  OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before meshing, not after
   PatchMesh patches = meshScene(scene, cmd.mesh);
-  OutputFolder folder(cmd.out);
   writePatchesCsv(folder.path("patches.csv"), scene, patches, nullptr);
   writePatchesVtp(folder.path("patches.vtp"), scene, patches, nullptr);
   folder.commit();

@@ -3,7 +3,9 @@
 // difference.png and report.json (docs/photon-mapping.md).
 #include <chrono>
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include <nlohmann/json.hpp>
@@ -128,19 +130,56 @@ struct PhotonRun {
   json seconds;
 };
 
+/// Refuses a --compare folder that is not a run of this scene: its surfaces.csv must list the
+/// same surfaces with the same areas, and its report.json (a hand-made reference may have
+/// none) name the same scene (a run of the glossy Cornell box has the plain box's surfaces).
+void checkCompareFolder(const std::string& folder, const Scene& scene, const PatchMesh& mesh) {
+  const std::filesystem::path dir(folder);
+  const std::string fix = ". Fix: give the --out folder of a `radkit run` of " + scene.file;
+  std::ifstream in(dir / "report.json");
+  json report = json::object();
+  if (in) try {
+      report = json::parse(in);
+    } catch (const json::exception& e) {
+      throw InputError("--compare " + folder + ": report.json is not JSON (" + e.what() + ")" + fix);
+    }
+  const json sceneJson = report.is_object() ? report.value("scene", json::object()) : json::object();
+  const std::string name = sceneJson.is_object() ? sceneJson.value("name", scene.name) : scene.name;
+  if (name != scene.name)
+    throw InputError("--compare " + folder + " is a run of scene \"" + name + "\" (" +
+                     (sceneJson.is_object() ? sceneJson.value("file", "?") : "?") + "), not of \"" + scene.name +
+                     "\"" + fix);
+  const std::vector<SurfaceRadiosity> theirs = readSurfacesCsv((dir / "surfaces.csv").string());
+  if (theirs.size() != scene.surfaces.size())
+    throw InputError("--compare " + folder + ": its surfaces.csv has " + std::to_string(theirs.size()) +
+                     " surfaces, this scene " + std::to_string(scene.surfaces.size()) + fix);
+  for (std::size_t s = 0; s < theirs.size(); ++s) {
+    double area = 0;
+    for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i) area += mesh.patches[i].area;
+    // surfaces.csv keeps 17 digits; a hand-written reference may round to 3.
+    if (theirs[s].name != scene.surfaces[s].name || !(std::fabs(theirs[s].area - area) <= 1e-3 * area))
+      throw InputError("--compare " + folder + ": its surface " + std::to_string(s) + " is \"" + theirs[s].name +
+                       "\" of area " + fmt("%.6g", theirs[s].area) + ", this scene's \"" + scene.surfaces[s].name +
+                       "\" of area " + fmt("%.6g", area) + " (the scene changed since that run)" + fix);
+  }
+}
+
 /// Loads, meshes, checks emitters and the --compare folder (before any long work), traces
 /// and estimates.
 void traceAndEstimate(PhotonsCommand& cmd, PhotonRun& r) {
   if (!cmd.compare.empty() && !std::filesystem::exists(std::filesystem::path(cmd.compare) / "surfaces.csv"))
     throw InputError("--compare " + cmd.compare + ": no surfaces.csv there. Fix: give the --out folder of a "
                      "`radkit run` of the same scene");
-  r.scene = loadSceneReporting(cmd.mesh.scene);
+  r.scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load);
   auto t = Clock::now();
   r.mesh = meshScene(r.scene, cmd.mesh);
   r.rays = std::make_unique<RayScene>(r.mesh);
   r.seconds["mesh_and_ray_scene"] = since(t);
   r.emitters = std::make_unique<EmitterSampler>(photonEmitters(r.scene, r.mesh));
-  if (!cmd.compare.empty()) r.reference = radiosityReference(cmd, r.scene, r.mesh);
+  if (!cmd.compare.empty()) {
+    checkCompareFolder(cmd.compare, r.scene, r.mesh);
+    r.reference = radiosityReference(cmd, r.scene, r.mesh);
+  }
   r.trace = tracePhotons(r.scene, r.mesh, *r.rays, *r.emitters, cmd.settings);
   r.seconds["trace"] = r.trace.stats.seconds;
   t = Clock::now();
@@ -247,10 +286,10 @@ void run(PhotonsCommand& cmd) {
   const auto start = Clock::now();
   cmd.settings.filter = cmd.filter == "cone" ? IrradianceFilter::Cone : IrradianceFilter::Epanechnikov;
   if (cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0) cmd.mesh.patches = kDefaultPhotonPatches;
+  OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the work, not after
   PhotonRun r;
   traceAndEstimate(cmd, r);
   buildMaps(cmd, r);
-  OutputFolder folder(cmd.out);
   if (!cmd.noImage) writeImages(folder, cmd, r);
   if (cmd.compare.empty() && !cmd.noRadiosity) {
     r.reference = radiosityReference(cmd, r.scene, r.mesh);

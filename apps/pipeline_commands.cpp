@@ -125,6 +125,7 @@ void runHierarchical(PipelineCommand& cmd) {
   }
   HierarchicalJob job;
   job.scene = cmd.mesh.scene;
+  job.load = cmd.mesh.load;
   job.out = cmd.out;
   job.settings = cmd.hierarchical.settings;
   job.settings.seed = cmd.ff.settings.seed;
@@ -145,8 +146,10 @@ void runJob(PipelineCommand& cmd) {
   // Adaptive refinement starts coarse, at a quarter of its budget, so it has room to refine.
   if (cmd.job == Job::Run && cmd.preset.empty() && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0)
     cmd.mesh.patches = cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
-  Scene scene = loadSceneReporting(cmd.mesh.scene);
+  LoadReport loaded;
+  Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded);
   if (cmd.out.empty() && cmd.job == Job::Run) cmd.out = "out/" + scene.name;  // required for the others
+  OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the work, not after
 
   PipelineSettings settings = pipelineSettings(cmd);
   Progress progress;
@@ -179,13 +182,13 @@ void runJob(PipelineCommand& cmd) {
     throw std::runtime_error(r.solves.front().solver + " " + r.solves.front().reason +
                              "; nothing written");
 
-  OutputFolder folder(cmd.out);
   nlohmann::json report{{"radkit", RADKIT_VERSION},
                         {"command", cmd.job == Job::Run ? "run" : cmd.job == Job::Solvers ? "solvers" : "formfactors"},
                         {"scene", sceneJson(scene)},
                         {"mesh", meshJson(scene, r.mesh)},
                         {"form_factors", toJson(r.formFactors->diagnostics)},
-                        {"warnings", r.warnings}};
+                        {"warnings", r.warnings},
+                        {"load", loadJson(loaded)}};
   if (!cmd.preset.empty()) report["preset"] = {{"name", cmd.preset}, {"description", describePreset(cmd.preset)}};
   if (cmd.adaptive) report["adaptive"] = adaptiveJson;
   writePatchesCsv(folder.path("patches.csv"), scene, r.mesh, r.solves.empty() ? nullptr : &r.radiosity);

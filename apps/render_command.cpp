@@ -280,7 +280,7 @@ void runRender(RenderCommand& cmd) {
                        std::to_string(height) + ". Fix: render at the reference's --size");
   }
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
-  const Scene scene = loadSceneReporting(cmd.mesh.scene);
+  const Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load);
   const auto start = std::chrono::steady_clock::now();
   ModeImage mode = renderMode(cmd, scene, width, height);
   const RadianceImage& img = mode.image;

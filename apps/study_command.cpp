@@ -219,6 +219,7 @@ void runStudyCommand(StudyCommand& cmd) {
                      fmt("%.0f s", reference) + "). Fix: raise --max-seconds or lower --knob-patches");
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
   Scene scene = loadSceneReporting(cmd.mesh.scene);
+  OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the study, not after
   Progress progress;
   PipelineLog log;
   log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
@@ -232,7 +233,6 @@ void runStudyCommand(StudyCommand& cmd) {
   StudyResult r = runStudy(scene, sweeps, log);
   addHierarchicalRows(scene, cmd, r, log);
   progress.finish();
-  OutputFolder folder(cmd.out);
   writeCsv(folder.path("study.csv"), r);
   writeMarkdown(folder.path("study.md"), r, scene, cmd.settings.maxSeconds);
   writeCharts(folder, r, scene.name);

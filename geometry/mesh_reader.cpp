@@ -84,7 +84,7 @@ void restoreFileVertices(RawMesh& raw, const std::vector<std::size_t>& refused) 
 }
 
 /// `declaredFaces`: the count the file's header declares, or -1 when it does not say.
-RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces) {
+RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool repair) {
   PolyMesh mesh;
   mesh.request_face_status();
   mesh.request_edge_status();
@@ -96,11 +96,12 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces) {
                      (errors.text().empty() ? "" : " (" + errors.text() + ")") +
                      ". Fix: check that it is a valid PLY, OFF or STL file.");
   }
-  if (errors.text().find("equal vertices") != std::string::npos)
+  const bool repeatedVertex = errors.text().find("equal vertices") != std::string::npos;
+  if (repeatedVertex && !repair)
     throw InputError(path + ": a face repeats a vertex (degenerate face). Fix: remove the "
-                     "repeated index from the face.");
+                     "repeated index from the face, or give --repair to drop such faces.");
   // A safety net behind checkMeshStructure: OpenMesh drops faces it cannot add without a word.
-  if (declaredFaces >= 0 && (long long)mesh.n_faces() != declaredFaces)
+  if (declaredFaces >= 0 && (long long)mesh.n_faces() != declaredFaces && !repeatedVertex)
     throw InputError(path + ": the file declares " + std::to_string(declaredFaces) + " faces, but only " +
                      std::to_string(mesh.n_faces()) + " could be read" +
                      (errors.text().empty() ? "" : " (" + errors.text() + ")") +
@@ -118,6 +119,7 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces) {
     raw.faces.push_back(std::move(face));
   }
   if (!refused.empty()) restoreFileVertices(raw, refused);
+  if (repeatedVertex && declaredFaces > (long long)raw.faces.size()) raw.droppedFaces = declaredFaces - raw.faces.size();
   return raw;
 }
 
@@ -171,14 +173,14 @@ void compactVertices(const std::vector<Vec3>& all, Surface& surface) {
 
 }  // namespace
 
-RawMesh readMeshFile(const std::string& path) {
+RawMesh readMeshFile(const std::string& path, bool repair) {
   if (!fs::exists(path))
     throw InputError(path + ": mesh file not found. Fix: give a path relative to the scene "
                      "file, or an absolute path.");
   const long long declaredFaces = checkMeshStructure(path);
   checkTextMeshNumbers(path);
   std::string ext = lowerExtension(path);
-  if (ext == ".ply" || ext == ".off" || ext == ".stl") return readWithOpenMesh(path, declaredFaces);
+  if (ext == ".ply" || ext == ".off" || ext == ".stl") return readWithOpenMesh(path, declaredFaces, repair);
   if (ext == ".obj") {
     tinyobj::ObjReader reader = parseObj(path);
     RawMesh raw;

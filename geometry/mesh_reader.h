@@ -13,13 +13,15 @@ namespace radkit {
 struct RawMesh {
   std::vector<Vec3> vertices;
   std::vector<Face> faces;
+  std::size_t droppedFaces = 0;  ///< faces repeating a vertex, dropped when repairing
 };
 
 /// \brief Reads a PLY, OFF, STL or OBJ file into one mesh, vertices in file order; throws
 /// InputError naming the file on a missing file, an unknown extension, unreadable content, a
 /// text number that is not a finite decimal (text_numbers.h) or a face repeating a vertex.
 /// Faces wound against their neighbours and non-manifold edges are left to validateScene.
-RawMesh readMeshFile(const std::string& path);
+/// `repair`: faces repeating a vertex, which OpenMesh's readers drop, are counted instead.
+RawMesh readMeshFile(const std::string& path, bool repair = false);
 
 /// \brief Loads an OBJ with its MTL as a whole scene: each OBJ object or group is a named
 /// surface; MTL Kd becomes reflectance and Ke emission.

@@ -1,6 +1,7 @@
 #include "geometry/scene.h"
 
 #include "bsdf/bsdf.h"
+#include "geometry/scene_loader.h"
 
 namespace radkit {
 
@@ -30,9 +31,8 @@ Bounds3 Scene::bounds() const {
 }
 
 double Scene::metresPerUnit() const {
-  if (units == "mm") return 1e-3;
-  if (units == "cm") return 1e-2;
-  if (units == "km") return 1e3;
+  for (const auto& [name, metres] : knownUnits())
+    if (units == name) return metres;
   return 1.0;
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <string>
@@ -22,6 +23,23 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+/// Scene extents (largest side, metres) outside which loading warns that the unit may be wrong:
+/// a 5 m room written in millimetres and read as metres spans 5 km.
+constexpr double kLargestPlausibleMetres = 200;
+constexpr double kSmallestPlausibleMetres = 1e-2;
+
+std::string unitList() {
+  std::string list;
+  for (const auto& unit : knownUnits()) list += (list.empty() ? "" : "|") + unit.first;
+  return list;
+}
+
+bool isKnownUnit(const std::string& unit) {
+  for (const auto& known : knownUnits())
+    if (known.first == unit) return true;
+  return false;
+}
 
 /// Reads typed fields of one JSON object and rejects keys nobody asked for.
 class ObjectReader {
@@ -153,7 +171,8 @@ void applyTransform(ObjectReader& surface, const json& j, const std::string& fil
     for (Face& f : s.faces) std::reverse(f.vertices.begin(), f.vertices.end());
 }
 
-Surface readSurface(const json& j, std::size_t index, const Scene& scene, const std::string& file) {
+Surface readSurface(const json& j, std::size_t index, const Scene& scene, const std::string& file,
+                    const LoadOptions& options, LoadReport& report) {
   std::string where = "surfaces[" + std::to_string(index) + "]";
   if (j.is_object() && j.contains("name") && j["name"].is_string())
     where += " (\"" + j["name"].get<std::string>() + "\")";
@@ -185,10 +204,13 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
     fs::path meshPath = fs::path(file).parent_path() / j.at("mesh").get<std::string>();
     RawMesh raw;
     try {
-      raw = readMeshFile(meshPath.string());
+      raw = readMeshFile(meshPath.string(), options.repair);
     } catch (const InputError& e) {
       r.fail("reads its mesh: " + std::string(e.what()));
     }
+    if (raw.droppedFaces > 0)
+      report.warnings.push_back(file + ": " + where + " (mesh " + meshPath.string() + "): repair: the reader dropped " +
+                                std::to_string(raw.droppedFaces) + " face(s) that repeat a vertex.");
     s.vertices = std::move(raw.vertices);
     s.faces = std::move(raw.faces);
     s.source += " (mesh " + meshPath.string() + ")";
@@ -213,7 +235,7 @@ Camera readCamera(const json& j, const std::string& file) {
   return c;
 }
 
-Scene loadJsonScene(const std::string& path) {
+Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadReport& report) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the scene file. Fix: check the path.");
   json root;
@@ -230,9 +252,12 @@ Scene loadJsonScene(const std::string& path) {
   ObjectReader r(root, "the scene", path);
   r.allowOnly({"name", "description", "units", "materials", "surfaces", "camera"});
   scene.name = r.string("name", fs::path(path).stem().string());
-  scene.units = r.string("units", "m");
-  const std::set<std::string> units{"m", "mm", "cm", "km"};
-  if (!units.count(scene.units)) r.fail("has unknown \"units\" \"" + scene.units + "\". Fix: use m, cm, mm or km");
+  scene.units = r.string("units", options.units.empty() ? "m" : options.units);
+  if (!isKnownUnit(scene.units))
+    r.fail("has unknown \"units\" \"" + scene.units + "\". Fix: use one of " + unitList());
+  if (!options.units.empty() && scene.units != options.units)
+    r.fail("says \"units\": \"" + scene.units + "\" but --units " + options.units +
+           " was given. Fix: drop --units, or change the scene's \"units\"");
   if (r.has("materials")) {
     const json& mats = root.at("materials");
     if (!mats.is_object()) r.fail("\"materials\" must be an object of named materials");
@@ -242,23 +267,50 @@ Scene loadJsonScene(const std::string& path) {
   const json& surfaces = r.get("surfaces");
   if (!surfaces.is_array()) r.fail("\"surfaces\" must be an array");
   for (std::size_t i = 0; i < surfaces.size(); ++i)
-    scene.surfaces.push_back(readSurface(surfaces[i], i, scene, path));
+    scene.surfaces.push_back(readSurface(surfaces[i], i, scene, path, options, report));
   if (r.has("camera")) scene.camera = readCamera(root.at("camera"), path);
   return scene;
 }
 
+/// A scene whose extent is far from a room's or an object's was probably written in another
+/// unit than the one it is read in: areas and powers would be off by powers of 1000.
+void warnOnImplausibleSize(const Scene& scene, LoadReport& report) {
+  const Bounds3 b = scene.bounds();
+  const Vec3 size = (b.hi - b.lo) * scene.metresPerUnit();
+  const double largest = std::max({size.x, size.y, size.z});
+  if (largest <= kLargestPlausibleMetres && largest >= kSmallestPlausibleMetres) return;
+  char text[160];
+  std::snprintf(text, sizeof text, "%.4g m x %.4g m x %.4g m", size.x, size.y, size.z);
+  report.warnings.push_back(scene.file + ": the scene spans " + text + " read in " + scene.units + ", " +
+                            (largest > kLargestPlausibleMetres ? "large" : "small") +
+                            " for a room or an object. Fix: if its coordinates are in another unit, give --units " +
+                            unitList() + (fs::path(scene.file).extension() == ".json" ? " (or \"units\" in the scene file)" : "") +
+                            ".");
+}
+
 }  // namespace
 
-Scene loadScene(const std::string& path, LoadReport* report) {
+const std::vector<std::pair<std::string, double>>& knownUnits() {
+  static const std::vector<std::pair<std::string, double>> units{
+      {"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}, {"km", 1e3}, {"in", 0.0254}, {"ft", 0.3048}};
+  return units;
+}
+
+Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& options) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   requireRegularFile(path, "scene file");
+  if (!options.units.empty() && !isKnownUnit(options.units))
+    throw InputError("--units " + options.units + " is not a unit radkit knows. Fix: use one of " + unitList() + ".");
+  LoadReport local;
+  LoadReport& out = report ? *report : local;
   Scene scene;
-  if (ext == ".json") scene = loadJsonScene(path);
+  if (ext == ".json") scene = loadJsonScene(path, options, out);
   else if (ext == ".obj") scene = loadObjScene(path);
   else throw InputError(path + ": unknown scene format '" + ext + "'. Fix: give a .json scene or an .obj with its .mtl.");
-  LoadReport local;
-  validateScene(scene, report ? *report : local);
+  if (ext == ".obj" && !options.units.empty()) scene.units = options.units;
+  validateScene(scene, out, options.repair);
+  warnOnImplausibleSize(scene, out);
   return scene;
 }
 

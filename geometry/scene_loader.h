@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/scene.h"
@@ -15,14 +16,42 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// What the mesh repair (LoadOptions::repair) changed in one surface.
+struct MeshRepair {
+  std::string surface;  ///< Surface::source
+  std::size_t weldedVertices = 0;       ///< vertices at the position of an earlier one, merged
+  std::size_t duplicateFaces = 0;       ///< faces repeating another (same winding), removed
+  std::size_t degenerateFaces = 0;      ///< faces repeating a vertex or of zero area, removed
+  std::size_t nonManifoldEdges = 0;     ///< edges of 3+ faces, cut so each side has at most 2
+  std::size_t nonManifoldVertices = 0;  ///< vertices joining separate fans, split
+  std::size_t stitchedEdges = 0;        ///< coincident border edges joined
+  std::size_t reversedFaces = 0;        ///< faces re-wound to match their part's majority
+  bool changed() const;
+  std::string describe() const;  ///< "welded 3 duplicate vertices, removed 1 duplicate face"
+};
+
 /// Warnings collected while loading (non-planar polygons split, self-intersections, ...).
 struct LoadReport {
   std::vector<std::string> warnings;
+  std::vector<MeshRepair> repairs;  ///< surfaces the repair changed, in scene order
 };
+
+/// How to read a scene beyond what its file says.
+struct LoadOptions {
+  /// Length unit of the coordinates (m, cm, mm, km, in, ft); "" keeps the scene file's
+  /// ("units" in JSON, metres for OBJ). Coordinates stay as written: reports convert.
+  std::string units;
+  /// Repair meshes with CGAL's polygon mesh processing (weld, drop duplicate and degenerate
+  /// faces, cut non-manifold edges and vertices, stitch, orient) instead of refusing them.
+  bool repair = false;
+};
+
+/// Units LoadOptions::units and a JSON scene's "units" accept, and their size in metres.
+const std::vector<std::pair<std::string, double>>& knownUnits();
 
 /// \brief Loads a scene file: `.json`, or `.obj` (with its MTL) as a whole scene.
 /// Mesh surfaces (OBJ, PLY, OFF, STL) are read relative to the scene file. The result is
 /// validated (see validation.h): every error throws InputError, warnings go to `report`.
-Scene loadScene(const std::string& path, LoadReport* report = nullptr);
+Scene loadScene(const std::string& path, LoadReport* report = nullptr, const LoadOptions& options = {});
 
 }  // namespace radkit

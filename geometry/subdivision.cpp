@@ -225,15 +225,15 @@ double maxFaceAreaLimitViolation(const PatchMesh& mesh, int begin, double maxAre
 }
 
 /// Edge length h giving about `target` patches in total (counts fall as h grows).
-double lengthForPatchCount(const std::vector<SurfaceTopology>& tops, long long target) {
+double lengthForPatchCount(const std::vector<const SurfaceTopology*>& tops, long long target) {
   auto total = [&](double h) {
     long long c = 0;
-    for (const auto& t : tops) c += patchCount(t, classCounts(t, h));
+    for (const SurfaceTopology* t : tops) c += patchCount(*t, classCounts(*t, h));
     return c;
   };
   double longest = 0;
-  for (const auto& t : tops)
-    for (double len : t.classLength) longest = std::max(longest, len);
+  for (const SurfaceTopology* t : tops)
+    for (double len : t->classLength) longest = std::max(longest, len);
   double lo = longest * 1e-6, hi = longest * (1 + 1e-9);
   for (int it = 0; it < 100 && hi / lo > 1 + 1e-9; ++it) {
     double mid = std::sqrt(lo * hi);
@@ -243,9 +243,69 @@ double lengthForPatchCount(const std::vector<SurfaceTopology>& tops, long long t
   return std::llabs(total(lo) - target) < std::llabs(total(hi) - target) ? lo : hi;
 }
 
+double surfaceArea(const SurfaceTopology& t) {
+  double area = 0;
+  for (auto f : t.mesh.faces()) {
+    std::vector<Vec3> p;
+    for (auto v : t.mesh.fv_range(f)) p.push_back(toVec3(t.mesh.point(v)));
+    Vec3 n;
+    for (std::size_t k = 0; k < p.size(); ++k) n += cross(p[k], p[(k + 1) % p.size()]);
+    area += 0.5 * length(n);
+  }
+  return area;
+}
+
+/// Per-surface edge lengths for a patch target spread by area (see subdivide in the header):
+/// hGlobal everywhere unless surfaces with more faces than their share starve the others.
+std::vector<double> spreadByArea(const Scene& scene, const std::vector<SurfaceTopology>& tops, long long target,
+                                 double hGlobal, std::vector<std::string>* warnings) {
+  std::vector<double> h(tops.size(), hGlobal), share(tops.size());
+  double total = 0;
+  for (std::size_t s = 0; s < tops.size(); ++s) total += share[s] = surfaceArea(tops[s]);
+  if (!(total > 0)) return h;
+  std::vector<const SurfaceTopology*> open;  // surfaces with room in their share
+  std::vector<std::size_t> full, starved;
+  double openShare = 0;
+  for (std::size_t s = 0; s < tops.size(); ++s) {
+    share[s] *= double(target) / total;
+    if (double(tops[s].mesh.n_faces()) > share[s]) {
+      full.push_back(s);
+      continue;
+    }
+    open.push_back(&tops[s]);
+    openShare += share[s];
+    if (4.0 * double(patchCount(tops[s], classCounts(tops[s], hGlobal))) < share[s]) starved.push_back(s);
+  }
+  if (full.empty() || starved.empty()) return h;
+  const double hOpen = lengthForPatchCount(open, std::max(1LL, std::llround(openShare)));
+  long long fullFaces = 0;
+  std::size_t biggest = full.front();
+  for (std::size_t s : full) {
+    fullFaces += tops[s].mesh.n_faces();
+    if (tops[s].mesh.n_faces() > tops[biggest].mesh.n_faces()) biggest = s;
+  }
+  for (std::size_t s = 0; s < tops.size(); ++s)
+    if (std::find(full.begin(), full.end(), s) == full.end()) h[s] = hOpen;
+  if (warnings) {
+    const Surface& mesh = scene.surfaces[biggest];
+    warnings->push_back(
+        mesh.source + ": its " + std::to_string(tops[biggest].mesh.n_faces()) + " faces" +
+        (full.size() > 1 ? " (" + std::to_string(fullFaces) + " in the " + std::to_string(full.size()) +
+                               " surfaces finer than their share)"
+                         : "") +
+        " exceed their area's share (" + std::to_string(std::llround(share[biggest])) + ") of the " +
+        std::to_string(target) + "-patch target, which left " + std::to_string(starved.size()) + " other surface" +
+        (starved.size() == 1 ? "" : "s") + " (\"" + scene.surfaces[starved.front()].name + "\"" +
+        (starved.size() > 1 ? ", ..." : "") + ") nearly whole. They were split to their own share instead, so " +
+        "the scene has more patches than the target. Fix: give --max-area for one patch size everywhere, or "
+        "simplify the mesh.");
+  }
+  return h;
+}
+
 }  // namespace
 
-PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings) {
+PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings, std::vector<std::string>* warnings) {
   if (!(settings.maxArea >= 0) || !std::isfinite(settings.maxArea) || settings.targetPatches < 0)
     throw std::invalid_argument("subdivide: maxArea and targetPatches must be finite and >= 0");
   if (settings.targetPatches > kMaxPatches) tooManyPatches();
@@ -257,12 +317,17 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings) {
         throw InputError(s.source + " is too large to measure: its edge lengths overflow a double. Fix: "
                          "scale the scene down (coordinates beyond about 1e150 overflow).");
   }
-  double hGlobal = settings.targetPatches > 0 ? lengthForPatchCount(tops, settings.targetPatches) : 0;
+  std::vector<const SurfaceTopology*> all;
+  for (const SurfaceTopology& t : tops) all.push_back(&t);
+  const double hGlobal = settings.targetPatches > 0 ? lengthForPatchCount(all, settings.targetPatches) : 0;
+  const std::vector<double> hSurface = settings.targetPatches > 0
+                                           ? spreadByArea(scene, tops, settings.targetPatches, hGlobal, warnings)
+                                           : std::vector<double>(tops.size(), 0.0);
 
   PatchMesh out;
   for (std::size_t s = 0; s < tops.size(); ++s) {
     out.surfaceBegin.push_back(out.size());
-    double h = hGlobal;
+    double h = hSurface[s];
     if (settings.maxArea > 0) {
       double hArea = std::sqrt(settings.maxArea);
       h = h > 0 ? std::min(h, hArea) : hArea;

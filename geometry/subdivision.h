@@ -2,6 +2,8 @@
 #pragma once
 
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
@@ -27,6 +29,13 @@ struct SubdivisionSettings {
 /// no T-junctions inside a surface; a single-quad surface gets an n×m grid of near-square
 /// patches. Patch areas sum to the surface area. Throws TooManyPatches when the settings
 /// would need more than kMaxPatches patches, InputError when a surface's edge lengths overflow.
-PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings);
+///
+/// A target is spread by area: each surface's share is target × its area / total area. When
+/// surfaces with more faces than their share (a fine imported mesh) would leave others with
+/// under a quarter of theirs, those others get their share anyway, so a floor under a scanned
+/// model is split finely enough to show its shadow; the total then exceeds the target, and a
+/// warning naming the mesh goes to `warnings` (when given).
+PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings,
+                    std::vector<std::string>* warnings = nullptr);
 
 }  // namespace radkit

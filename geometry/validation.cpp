@@ -6,9 +6,15 @@
 #include "util/format.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/intersections.h>
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
+#include <CGAL/Polygon_mesh_processing/merge_border_vertices.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -70,14 +76,15 @@ void checkFace(const Surface& s, std::size_t f) {
       throw InputError(faceName(s, f) + " names vertex " + std::to_string(v) + ", which does not exist.");
   std::set<int> seen(face.vertices.begin(), face.vertices.end());
   if (seen.size() != face.vertices.size())
-    throw InputError(faceName(s, f) + " repeats a vertex (degenerate face). Fix: remove the repeated point.");
+    throw InputError(faceName(s, f) + " repeats a vertex (degenerate face). Fix: remove the repeated point, "
+                     "or give --repair to drop such faces.");
   std::vector<Vec3> p = facePoints(s, face);
   bool allCollinear = true;
   for (std::size_t k = 2; k < p.size() && allCollinear; ++k)
     allCollinear = CGAL::collinear(toCgal(p[0]), toCgal(p[1]), toCgal(p[k]));
   if (allCollinear || length(newellNormal(p)) == 0)
     throw InputError(faceName(s, f) + " is degenerate: its vertices are collinear, so its area "
-                     "is zero. Fix: remove the face or correct its vertices.");
+                     "is zero. Fix: remove the face or correct its vertices, or give --repair to drop such faces.");
 }
 
 /// Two faces of one surface running an edge the same way.
@@ -106,14 +113,18 @@ std::optional<EdgeClash> firstEdgeClash(const Surface& s) {
 struct OrientationRecord {
   std::vector<char> reversed;
   std::vector<std::array<std::size_t, 3>> nonManifoldEdges;  ///< vertex, vertex, faces
+  std::size_t nonManifoldVertices = 0;
+  std::set<std::pair<std::size_t, std::size_t>> seen;  ///< non-manifold edges reported
 };
 struct OrientationVisitor : PMP::Default_orientation_visitor {
   OrientationRecord* record;
   explicit OrientationVisitor(OrientationRecord* r) : record(r) {}
   void polygon_orientation_reversed(std::size_t p) { record->reversed[p] ^= 1; }
   void non_manifold_edge(std::size_t a, std::size_t b, std::size_t faces) {
-    record->nonManifoldEdges.push_back({a, b, faces});
+    // CGAL reports an edge once per face beyond the second; keep one entry per edge.
+    if (record->seen.insert(std::minmax(a, b)).second) record->nonManifoldEdges.push_back({a, b, faces});
   }
+  void non_manifold_vertex(std::size_t, std::size_t) { ++record->nonManifoldVertices; }
 };
 
 /// Faces that share an edge (either direction), as one label per face.
@@ -154,7 +165,7 @@ void repairOrientation(Surface& s, LoadReport& report) {
     if (!inserted)
       throw InputError(faceName(s, f) + " repeats face " + std::to_string(it->second) +
                        " (same vertices, same winding). Fix: remove one of them (or reverse it, "
-                       "for a sheet lit from both sides).");
+                       "for a sheet lit from both sides), or give --repair to remove every such copy.");
   }
   std::vector<Point3> points;
   for (const Vec3& v : s.vertices) points.push_back(toCgal(v));
@@ -167,8 +178,9 @@ void repairOrientation(Surface& s, LoadReport& report) {
     const auto& e = record.nonManifoldEdges.front();
     throw InputError(s.source + ": the edge between vertices " + std::to_string(e[0]) + " and " +
                      std::to_string(e[1]) + " is shared by " + std::to_string(e[2]) +
-                     " faces (non-manifold), so no side of them is the front. Fix: split the "
-                     "surface so that every edge has at most two faces.");
+                     " faces (non-manifold), so no side of them is the front. Fix: give --repair to "
+                     "cut such edges (and report what changed), or split the surface so that every "
+                     "edge has at most two faces.");
   }
   const std::vector<std::size_t> part = edgeConnectedParts(s);
   std::map<std::size_t, std::pair<std::size_t, std::size_t>> counts;  // part: reversed, faces
@@ -193,7 +205,8 @@ void repairOrientation(Surface& s, LoadReport& report) {
                      " run the edge between vertices " + std::to_string(clash->edge.first) +
                      " and " + std::to_string(clash->edge.second) + " the same way whichever "
                      "faces are reversed: the surface has one side only (like a Möbius strip). "
-                     "Fix: cut it into surfaces that each have a front and a back.");
+                     "Fix: cut it into surfaces that each have a front and a back, or give --repair "
+                     "to cut it along one edge.");
   std::string list;
   for (std::size_t k = 0; k < flipped.size() && k < 10; ++k) list += (k ? ", " : "") + std::to_string(flipped[k]);
   if (flipped.size() > 10) list += " and " + std::to_string(flipped.size() - 10) + " more";
@@ -203,6 +216,30 @@ void repairOrientation(Surface& s, LoadReport& report) {
                             (one ? "its" : "their") + " neighbours and reversed to match them (" +
                             (one ? "face " : "faces ") + list + "). Fix: reverse " +
                             (one ? "it" : "them") + " in the input to silence this warning.");
+}
+
+/// Winds each edge-connected part the way most of its input faces were (on a tie, as its first
+/// face was): CGAL reversed the faces flagged in `reversed`. Returns how many faces end up
+/// wound against their input.
+std::size_t keepMajorityWinding(Surface& s, const std::vector<char>& reversed) {
+  const std::vector<std::size_t> part = edgeConnectedParts(s);
+  std::map<std::size_t, std::pair<std::size_t, std::size_t>> counts;  // part: reversed, faces
+  for (std::size_t f = 0; f < part.size(); ++f) {
+    counts[part[f]].first += reversed[f];
+    counts[part[f]].second += 1;
+  }
+  std::map<std::size_t, bool> flipPart;
+  for (std::size_t f = 0; f < part.size(); ++f)
+    if (!flipPart.count(part[f])) {
+      const auto [rev, faces] = counts[part[f]];
+      flipPart[part[f]] = 2 * rev > faces || (2 * rev == faces && reversed[f]);
+    }
+  std::size_t against = 0;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (flipPart[part[f]]) std::reverse(s.faces[f].vertices.begin(), s.faces[f].vertices.end());
+    against += bool(reversed[f]) != flipPart[part[f]];
+  }
+  return against;
 }
 
 /// Drops vertices that lie exactly on the line through their neighbours (exact predicate).
@@ -316,7 +353,91 @@ void normaliseFaces(Surface& s, LoadReport& report) {
   s.faces = std::move(out);
 }
 
+/// Vertices at the position of an earlier vertex of the surface: faces meeting there are not
+/// joined, which subdivision turns into cracks and T-junctions.
+std::size_t unweldedVertices(const Surface& s) {
+  std::set<std::array<double, 3>> seen;
+  std::size_t repeats = 0;
+  for (const Vec3& v : s.vertices) repeats += !seen.insert({v.x, v.y, v.z}).second;
+  return repeats;
+}
+
+std::string count(std::size_t n, const std::string& one, const std::string& many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
 }  // namespace
+
+bool MeshRepair::changed() const {
+  return weldedVertices + duplicateFaces + degenerateFaces + nonManifoldEdges + nonManifoldVertices + stitchedEdges +
+             reversedFaces > 0;
+}
+
+std::string MeshRepair::describe() const {
+  std::vector<std::string> parts;
+  if (weldedVertices) parts.push_back("welded " + count(weldedVertices, "duplicate vertex", "duplicate vertices"));
+  if (duplicateFaces) parts.push_back("removed " + count(duplicateFaces, "duplicate face", "duplicate faces"));
+  if (degenerateFaces) parts.push_back("removed " + count(degenerateFaces, "degenerate face", "degenerate faces"));
+  if (nonManifoldEdges) parts.push_back("cut " + count(nonManifoldEdges, "non-manifold edge", "non-manifold edges"));
+  if (nonManifoldVertices)
+    parts.push_back("split " + count(nonManifoldVertices, "non-manifold vertex", "non-manifold vertices"));
+  if (stitchedEdges) parts.push_back("stitched " + count(stitchedEdges, "border edge", "border edges"));
+  if (reversedFaces) parts.push_back("reversed " + count(reversedFaces, "face", "faces") + " to match their neighbours");
+  std::string text;
+  for (const std::string& p : parts) text += (text.empty() ? "" : ", ") + p;
+  return text.empty() ? "nothing to repair" : text;
+}
+
+MeshRepair repairMesh(Surface& s) {
+  MeshRepair r;
+  r.surface = s.source;
+  std::vector<Point3> points;
+  for (const Vec3& v : s.vertices) points.push_back(toCgal(v));
+  std::vector<std::vector<std::size_t>> polygons;
+  for (const Face& f : s.faces) polygons.emplace_back(f.vertices.begin(), f.vertices.end());
+  r.weldedVertices = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
+  // A face repeating a vertex or with all vertices on a line has no area and no front.
+  const std::size_t before = polygons.size();
+  polygons.erase(std::remove_if(polygons.begin(), polygons.end(),
+                                [&](const std::vector<std::size_t>& p) {
+                                  if (std::set<std::size_t>(p.begin(), p.end()).size() != p.size() || p.size() < 3)
+                                    return true;
+                                  for (std::size_t k = 2; k < p.size(); ++k)
+                                    if (!CGAL::collinear(points[p[0]], points[p[1]], points[p[k]])) return false;
+                                  return true;
+                                }),
+                 polygons.end());
+  r.degenerateFaces = before - polygons.size();
+  // Copies wound the other way are kept: they make a sheet lit from both sides.
+  r.duplicateFaces = PMP::merge_duplicate_polygons_in_polygon_soup(
+      points, polygons, CGAL::parameters::erase_all_duplicates(false).require_same_orientation(true));
+  PMP::remove_isolated_points_in_polygon_soup(points, polygons);
+  if (polygons.empty())
+    throw InputError(s.source + ": no face is left after removing degenerate and duplicate faces. Fix: "
+                     "check the mesh's faces.");
+  OrientationRecord record;
+  record.reversed.assign(polygons.size(), 0);
+  PMP::orient_polygon_soup(points, polygons, CGAL::parameters::visitor(OrientationVisitor(&record)));
+  r.nonManifoldEdges = record.nonManifoldEdges.size();
+  r.nonManifoldVertices = record.nonManifoldVertices;
+  CGAL::Surface_mesh<Point3> mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  r.stitchedEdges = PMP::stitch_borders(mesh);
+  const std::size_t vertices = mesh.number_of_vertices();
+  PMP::merge_duplicated_vertices_in_boundary_cycles(mesh);
+  r.weldedVertices += vertices - mesh.number_of_vertices();
+  r.nonManifoldVertices += PMP::duplicate_non_manifold_vertices(mesh);
+  mesh.collect_garbage();  // faces keep their order: `record.reversed` still indexes them
+  points.clear();
+  polygons.clear();
+  PMP::polygon_mesh_to_polygon_soup(mesh, points, polygons);
+  s.vertices.clear();
+  for (const Point3& p : points) s.vertices.push_back({p.x(), p.y(), p.z()});
+  s.faces.clear();
+  for (const auto& p : polygons) s.faces.push_back(Face{std::vector<int>(p.begin(), p.end())});
+  r.reversedFaces = keepMajorityWinding(s, record.reversed);
+  return r;
+}
 
 std::size_t countSelfIntersections(const Surface& surface) {
   std::vector<Point3> points;
@@ -325,6 +446,8 @@ std::size_t countSelfIntersections(const Surface& surface) {
   for (const Face& f : surface.faces)
     for (std::size_t k = 1; k + 1 < f.vertices.size(); ++k)
       triangles.push_back({std::size_t(f.vertices[0]), std::size_t(f.vertices[k]), std::size_t(f.vertices[k + 1])});
+  // Faces that meet at copies of a vertex would count as crossing: weld them first.
+  PMP::merge_duplicate_points_in_polygon_soup(points, triangles);
   // orient_polygon_soup duplicates non-manifold vertices so that the soup becomes a mesh.
   PMP::orient_polygon_soup(points, triangles);
   CGAL::Surface_mesh<Point3> mesh;
@@ -332,10 +455,43 @@ std::size_t countSelfIntersections(const Surface& surface) {
   using FacePair = std::pair<CGAL::Surface_mesh<Point3>::Face_index, CGAL::Surface_mesh<Point3>::Face_index>;
   std::vector<FacePair> pairs;
   PMP::self_intersections(faces(mesh), mesh, std::back_inserter(pairs));
-  return pairs.size();
+  // Faces that orient_polygon_soup cut apart at a non-manifold edge or vertex share corners
+  // by position only, and CGAL counts their touching as crossing. Two triangles with an edge
+  // in common meet only there unless coplanar on one side of it; with one corner p in common,
+  // they meet beyond p exactly when the edge opposite p in one meets the other triangle.
+  auto corners = [&](CGAL::Surface_mesh<Point3>::Face_index f) {
+    std::vector<Point3> p;
+    for (auto v : vertices_around_face(mesh.halfedge(f), mesh)) p.push_back(mesh.point(v));
+    return p;
+  };
+  auto others = [](const std::vector<Point3>& t, const std::vector<Point3>& from) {
+    std::vector<Point3> own;  // t's corners that `from` lacks
+    for (const Point3& q : t)
+      if (std::find(from.begin(), from.end(), q) == from.end()) own.push_back(q);
+    return own;
+  };
+  std::size_t crossing = 0;
+  for (const FacePair& pair : pairs) {
+    const std::vector<Point3> a = corners(pair.first), b = corners(pair.second);
+    const std::vector<Point3> onlyA = others(a, b), onlyB = others(b, a);
+    bool touching = false;
+    if (onlyB.size() == 1 && onlyA.size() == 1) {
+      // Coplanar, they touch only when the edge separates their third corners.
+      std::vector<Point3> edge;
+      for (const Point3& q : a)
+        if (q != onlyA[0]) edge.push_back(q);
+      touching = !CGAL::coplanar(a[0], a[1], a[2], onlyB[0]) ||
+                 CGAL::coplanar_orientation(edge[0], edge[1], onlyA[0], onlyB[0]) == CGAL::NEGATIVE;
+    } else if (onlyB.size() == 2 && onlyA.size() == 2) {
+      touching = !CGAL::do_intersect(Kernel::Segment_3(onlyA[0], onlyA[1]), Kernel::Triangle_3(b[0], b[1], b[2])) &&
+                 !CGAL::do_intersect(Kernel::Segment_3(onlyB[0], onlyB[1]), Kernel::Triangle_3(a[0], a[1], a[2]));
+    }
+    crossing += !touching;
+  }
+  return crossing;
 }
 
-void validateScene(Scene& scene, LoadReport& report) {
+void validateScene(Scene& scene, LoadReport& report, bool repair) {
   if (scene.surfaces.empty())
     throw InputError(scene.file + ": the scene has no surfaces. Fix: add at least one surface.");
   checkMaterials(scene);
@@ -355,6 +511,21 @@ void validateScene(Scene& scene, LoadReport& report) {
                          fmt(std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)})) +
                          ", beyond the " + fmt(kMaxCoordinate) + " the ray tracer handles. Fix: "
                          "use a larger unit or move the scene nearer the origin.");
+    }
+    if (repair) {
+      for (std::size_t f = 0; f < s.faces.size(); ++f)
+        for (int v : s.faces[f].vertices)
+          if (v < 0 || v >= int(s.vertices.size()))
+            throw InputError(faceName(s, f) + " names vertex " + std::to_string(v) + ", which does not exist.");
+      MeshRepair r = repairMesh(s);
+      if (r.changed()) {
+        report.warnings.push_back(s.source + ": repaired: " + r.describe() + ".");
+        report.repairs.push_back(std::move(r));
+      }
+    } else if (std::size_t n = unweldedVertices(s)) {
+      report.warnings.push_back(s.source + ": " + count(n, "vertex repeats", "vertices repeat") +
+                                " the position of another, so the faces there are not joined. Fix: give "
+                                "--repair to weld them.");
     }
     for (std::size_t f = 0; f < s.faces.size(); ++f) checkFace(s, f);
     repairOrientation(s, report);

@@ -19,7 +19,16 @@ constexpr double kPlanarityTolerance = 1e-7;
 /// orient_polygon_soup), each edge-connected part keeping the winding most of its faces had.
 /// Normalises: polygons with more than four vertices, non-convex and non-planar quads are
 /// triangulated (non-planar ones with a warning). Warns on self-intersections (CGAL).
-void validateScene(Scene& scene, LoadReport& report);
+/// `repair`: each surface first goes through repairMesh, which turns repeated and degenerate
+/// faces and non-manifold edges into repairs (LoadReport::repairs) instead of errors.
+void validateScene(Scene& scene, LoadReport& report, bool repair = false);
+
+/// \brief Repairs a surface with CGAL's polygon mesh processing: welds vertices at one
+/// position, drops faces repeating a vertex or of zero area (exact predicate) and duplicate
+/// faces of the same winding, cuts non-manifold edges and vertices (orient_polygon_soup,
+/// duplicate_non_manifold_vertices), stitches coincident borders, and winds each
+/// edge-connected part the way most of its faces were. Face indices are renumbered.
+MeshRepair repairMesh(Surface& surface);
 
 /// Largest |coordinate| validateScene accepts (scene units).
 constexpr double kMaxCoordinate = 1e15;

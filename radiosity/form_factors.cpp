@@ -194,6 +194,10 @@ FormFactorResult computeFormFactors(const PatchMesh& mesh, const Visibility& vis
   FormFactorDiagnostics& d = result.diagnostics;
   Clock::time_point t = Clock::now();
   std::unique_ptr<FormFactorMethod> method = makeFormFactorMethod(mesh, visibility, settings);
+  const double scalar = settings.precision == FormFactorPrecision::Double ? 8 : 4;
+  if (log && double(mesh.size()) * mesh.size() * scalar > double(settings.memoryBudget))
+    log("form factors: dense F does not fit --memory-budget; sizing sparse storage from the pairs that face "
+        "each other (up to " + std::to_string((long long)mesh.size() * (mesh.size() - 1) / 2) + " tests)");
   result.plan = planStorage(mesh, settings);
   if (log) log("form factors: " + result.plan.describe());
   d.phaseSeconds.push_back({"setup", secondsSince(t)});

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "radiosity/form_factor_storage.h"
+#include "solvers/kernels.h"
 #include "solvers/registry.h"
 
 namespace radkit {
@@ -39,10 +41,32 @@ std::vector<std::string> numericalWarnings(const Scene& scene, const PipelineRes
     for (double v : r.system.reflectance[c]) rhoMax = std::max(rhoMax, v);
   const double excess = std::max(0.0, r.formFactors->diagnostics.rowSumMax - 1);
   const double amplified = excess * rhoMax / (1 - rhoMax);
-  if (amplified > 1e-2)  // the 1 % the run's accuracy targets
-    out.push_back("form-factor rows sum to up to 1 + " + sci(excess) + "; with reflectance up to " + sci(rhoMax) +
-                  " this can add up to " + sci(amplified) + " relative energy (visibility noise). Fix: raise "
-                  "--ff-samples or refine the mesh");
+  if (amplified > 1e-2) {  // the 1 % the run's accuracy targets
+    // The worst row's largest term: a patch larger than its distance from the row's patch
+    // breaks the small-patch approximation, whatever the visibility rays say.
+    const std::vector<double> rows = rowSums(r.formFactors->matrix);
+    const int i = int(std::max_element(rows.begin(), rows.end()) - rows.begin());
+    int j = -1;
+    double fMax = 0;
+    forEachNonZero(r.formFactors->matrix, [&](int row, int col, double v) {
+      if (row == i && v > fMax) fMax = v, j = col;
+    });
+    const std::string head = "form-factor rows sum to up to 1 + " + sci(excess) + "; with reflectance up to " +
+                             sci(rhoMax) + " this can add up to " + sci(amplified) + " relative energy";
+    const Patch* from = &r.mesh.patches[i];
+    const Patch* to = j >= 0 ? &r.mesh.patches[j] : nullptr;
+    const double distance = to ? length(to->centroid - from->centroid) : 0;
+    if (to && std::sqrt(to->area) > distance) {
+      out.push_back(head + ": patch " + std::to_string(i) + " of \"" + scene.surfaces[from->surface].name +
+                    "\" sees patch " + std::to_string(j) + " of \"" + scene.surfaces[to->surface].name + "\", " +
+                    sci(std::sqrt(to->area)) + " " + scene.units + " across but only " + sci(distance) + " " +
+                    scene.units + " away, too large for its form factor to be estimated (the mesh, not visibility "
+                    "noise). Fix: split \"" + scene.surfaces[to->surface].name + "\" finer: --max-area " +
+                    sci(distance * distance) + " or more --patches");
+    } else {
+      out.push_back(head + " (visibility noise). Fix: raise --ff-samples or refine the mesh");
+    }
+  }
   return out;
 }
 
@@ -79,9 +103,13 @@ SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system,
 
 PipelineResult runPipeline(const Scene& scene, const PipelineSettings& settings, const PipelineLog& log) {
   auto t = Clock::now();
-  PatchMesh mesh = subdivide(scene, settings.mesh);
+  std::vector<std::string> meshWarnings;
+  PatchMesh mesh = subdivide(scene, settings.mesh, &meshWarnings);
   double meshSeconds = since(t);
+  for (const std::string& w : meshWarnings)
+    if (log.message) log.message("warning: " + w);
   PipelineResult r = runPipeline(scene, std::move(mesh), settings, log);
+  r.warnings.insert(r.warnings.begin(), meshWarnings.begin(), meshWarnings.end());
   r.seconds.mesh = meshSeconds;
   return r;
 }
