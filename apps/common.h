@@ -41,9 +41,13 @@ void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired 
 /// The measured Cornell box shipped in data/.
 std::string defaultScenePath();
 
+/// Adds --camera to a command that draws (an image, render.png, the viewer).
+void addCameraOption(CLI::App& command, std::string& camera);
+
 /// Loads the scene (printing its warnings to stderr) and subdivides it; a mesh beyond
-/// kMaxPatches is an InputError naming the option that asked for it.
-Scene loadSceneReporting(const std::string& path);
+/// kMaxPatches is an InputError naming the option that asked for it. A non-empty `camera`
+/// (a --camera value) replaces the scene's camera, so images and report.json agree.
+Scene loadSceneReporting(const std::string& path, const std::string& camera = "");
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
 /// Throws that InputError (for subdivide's TooManyPatches).
 [[noreturn]] void tooManyPatches(const Scene& scene, const MeshOptions& options);

@@ -125,7 +125,7 @@ void finishHierarchicalOptions(HierarchicalOptions& o) {
 void runHierarchicalJob(HierarchicalJob job) {
   auto start = std::chrono::steady_clock::now();
   validateHierarchicalSettings(job.settings);
-  Scene scene = loadSceneReporting(job.scene);
+  Scene scene = loadSceneReporting(job.scene, job.camera);
   if (job.out.empty()) job.out = "out/" + scene.name;
   Progress progress;
   PipelineLog log;

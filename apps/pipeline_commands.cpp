@@ -29,7 +29,7 @@ struct PipelineCommand {
   std::string out;
   bool noRender = false, photometric = false, smooth = false, writeMatrix = false;
   int imageSize = 512;
-  std::string preset;
+  std::string preset, camera;
   bool adaptive = false;
   AdaptiveSettings adaptiveSettings;
   HierarchicalOptions hierarchical;
@@ -133,6 +133,7 @@ void runHierarchical(PipelineCommand& cmd) {
   job.linkColour = cmd.hierarchical.linkColour == "power" ? LinkColour::Power : LinkColour::FormFactor;
   job.noRender = cmd.noRender, job.photometric = cmd.photometric, job.smooth = cmd.smooth;
   job.imageSize = cmd.imageSize;
+  job.camera = cmd.camera;
   runHierarchicalJob(job);
 }
 
@@ -145,7 +146,7 @@ void runJob(PipelineCommand& cmd) {
   // Adaptive refinement starts coarse, at a quarter of its budget, so it has room to refine.
   if (cmd.job == Job::Run && cmd.preset.empty() && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0)
     cmd.mesh.patches = cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
-  Scene scene = loadSceneReporting(cmd.mesh.scene);
+  Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.camera);
   if (cmd.out.empty() && cmd.job == Job::Run) cmd.out = "out/" + scene.name;  // required for the others
 
   PipelineSettings settings = pipelineSettings(cmd);
@@ -253,6 +254,7 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
         ->check(FinitePositive)->capture_default_str();
     sub->add_option("--adaptive-rounds", cmd->adaptiveSettings.maxRounds, "Adaptive: refine-and-solve rounds at most")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
+    addCameraOption(*sub, cmd->camera);
     sub->add_option("--image-size", cmd->imageSize, "Side of render.png in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
     addHierarchicalOptions(*sub, cmd->hierarchical);
     cmd->hierarchical.denseOnly = {sub->get_option("--patches"), sub->get_option("--max-area"),

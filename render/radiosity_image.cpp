@@ -93,7 +93,7 @@ void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchM
                        const std::vector<Vec3>& radiosity, const ImageSettings& settings) {
   std::vector<bool> twoSided;
   for (const Surface& surf : scene.surfaces) twoSided.push_back(scene.materials[surf.material].twoSided);
-  Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(mesh.bounds());
+  Camera camera = sceneCamera(scene, mesh);
   RadianceImage img = renderRadiosity(mesh, rays, camera, radiosity, twoSided, settings);
   writePng(path, toneMap(img, autoExposure(img, scene, mesh)));
 }
