@@ -1,5 +1,7 @@
 // radkit render: one camera image of a scene by one shading mode (radiosity, two-pass Phong
 // or Cook-Torrance, path tracing, photon mapping), as PNG (tone mapped) or PFM (linear radiance).
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +16,7 @@
 #include "apps/report.h"
 #include "geometry/scene_loader.h"
 #include "render/camera.h"
+#include "render/exr_io.h"
 #include "render/final_gather.h"
 #include "render/hdr_io.h"
 #include "render/image_comparison.h"
@@ -205,6 +208,12 @@ void runRender(RenderCommand& cmd) {
       throw InputError("--report " + cmd.report + " needs --reference: the report holds the errors against it");
     checkOutputFile("--report", cmd.report);
   }
+  std::string ext = std::filesystem::path(cmd.out).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".png" && ext != ".pfm" && ext != ".exr")
+    throw InputError("--out " + cmd.out + ": '" + ext + "' is not an image format render writes (PNG bytes under "
+                     "another name would mislead). Fix: end the name in .png (tone mapped), .exr or .pfm (linear "
+                     "radiance, W/m²/sr)");
   // References are read and their size checked first: a mismatch found after the render left
   // the image behind.
   std::vector<RadianceImage> refs;
@@ -224,12 +233,12 @@ void runRender(RenderCommand& cmd) {
   const RadianceImage img = renderMode(cmd, scene, width, height, what, emits, surfaces);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double exposure = cmd.exposure > 0 ? cmd.exposure : autoExposure(img, emits);
-  const std::string ext = std::filesystem::path(cmd.out).extension().string();
   if (ext == ".pfm") writePfm(cmd.out, img);
+  else if (ext == ".exr") writeExr(cmd.out, img);
   else writePng(cmd.out, toneMapCurve(img, exposure, cmd.tonemap == "filmic" ? ToneCurve::Filmic : ToneCurve::Srgb));
   printField("scene", scene.name + " (" + scene.file + ")");
   printField("shading", cmd.shading + ": " + what);
-  if (ext != ".pfm") printField("exposure", std::to_string(exposure));
+  if (ext == ".png") printField("exposure", std::to_string(exposure));
   printField("wrote", cmd.out);
   printField("seconds", std::to_string(seconds));
   if (!cmd.references.empty()) compareWithReference(cmd, scene, img, surfaces, seconds, refs);
@@ -295,7 +304,7 @@ void addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"height-correlated", "separable", "schlick", "cook-torrance"}))
       ->capture_default_str();
   sub->add_flag("--compensated", cmd->compensated, "Cook-Torrance: Kulla-Conty multiple-scattering compensation");
-  sub->add_option("--out", cmd->out, "Image file: .png (tone mapped) or .pfm (linear radiance, W/m²/sr)")->required();
+  sub->add_option("--out", cmd->out, "Image file: .png (tone mapped), or .exr or .pfm (linear radiance, W/m²/sr, 32-bit float)")->required();
   sub->callback([cmd] { runRender(*cmd); });
 }
 
