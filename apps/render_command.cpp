@@ -51,6 +51,7 @@ struct RenderCommand {
   std::size_t photons = 200000;
   double exposure = 0;
   bool smooth = false, compensated = false, unguided = false;
+  CLI::Option* sppOption = nullptr;  ///< photon-map takes --spp only when given
   SmoothSettings smoothing;
 };
 
@@ -87,8 +88,18 @@ RadianceImage renderMode(const RenderCommand& cmd, const Scene& scene, int width
     maps.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
     const PhotonScene in{scene, mesh, rays, emitters, *maps.global, *maps.caustic};
     RadianceImage img = renderPhotonImage(in, camera, width, height, PhotonView::FinalGather, ps);
+    // One jittered ray per pixel per pass; --spp given asks for more passes, averaged (each
+    // pass its own camera stream). Without it one pass, as before: a pass costs its gathers.
+    const int passes = cmd.sppOption && cmd.sppOption->count() > 0 ? cmd.spp : 1;
+    for (int pass = 1; pass < passes; ++pass) {
+      PhotonSettings more = ps;
+      more.seed = seed + std::uint64_t(pass);
+      const RadianceImage next = renderPhotonImage(in, camera, width, height, PhotonView::FinalGather, more);
+      for (std::size_t k = 0; k < img.radiance.size(); ++k) img.radiance[k] = img.radiance[k] + next.radiance[k];
+    }
+    for (Vec3& v : img.radiance) v = v / double(passes);
     what = std::to_string(cmd.photons) + " photons, " + std::to_string(maps.global->size()) + " stored, " +
-           std::to_string(ps.gatherRays) + " gather rays per pixel";
+           std::to_string(ps.gatherRays) + " gather rays per pixel, " + std::to_string(passes) + " pass(es)";
     emits = emitterPixels(img, scene, mesh);
     surfaces = pixelSurfaces(img, mesh);
     return img;
@@ -272,7 +283,11 @@ void addRenderCommand(CLI::App& app) {
                   "path-trace: the most vertices a path has (fewer drop light: for variance studies only)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  sub->add_option("--spp", cmd->spp, "Samples (camera paths) per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  cmd->sppOption = sub->add_option("--spp", cmd->spp,
+                                   "Samples (camera paths) per pixel; photon-map: passes of one ray per pixel, 1 "
+                                   "unless given")
+                       ->check(CLI::Range(1, 1 << 20))
+                       ->capture_default_str();
   sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--photons", cmd->photons, "photon-map: photons emitted")
       ->check(CLI::Range(std::size_t(1), kMaxPhotons))

@@ -1,4 +1,4 @@
-// radkit render end to end: the image formats.
+// radkit render end to end: the image formats, and photon-map's --spp.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -40,6 +40,19 @@ TEST(RenderFormats, UnsupportedExtensionIsRefusedBeforeRendering) {
     EXPECT_NE(r.output.find("Fix: end the name in .png"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.path(name))) << name;
   }
+}
+
+TEST(RenderFormats, PhotonMapTakesSpp) {
+  // --spp given: passes of one jittered ray per pixel, averaged; not given: one pass as before.
+  test::TempDir dir;
+  const std::string common = "render --shading photon-map --patches 60 --photons 2000 --size 8x8 --out ";
+  ASSERT_EQ(test::runRadkit(common + dir.path("default.pfm")).exitCode, 0);
+  ASSERT_EQ(test::runRadkit(common + dir.path("one.pfm") + " --spp 1").exitCode, 0);
+  ASSERT_EQ(test::runRadkit(common + dir.path("four.pfm") + " --spp 4").exitCode, 0);
+  const RadianceImage d = readPfm(dir.path("default.pfm")), one = readPfm(dir.path("one.pfm")),
+                      four = readPfm(dir.path("four.pfm"));
+  EXPECT_EQ(d.radiance, one.radiance);
+  EXPECT_NE(one.radiance, four.radiance) << "--spp 4 must average four passes";
 }
 
 }  // namespace
