@@ -2,6 +2,7 @@
 #include "radiosity/form_factor_writers.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -41,10 +42,17 @@ void writeMatrixMarket(const std::string& path, const FormFactorMatrix& f,
     for (const std::string& c : comments) out << "% " << c << "\n";
     const int n = matrixSize(f);
     out << n << " " << n << " " << nonZeros << "\n";
-    char line[64];
+    // to_chars: the shortest text that reads back to the same value, several times faster
+    // than printf's %.17g, which dominated the write.
+    char line[80];
     forEachNonZero(f, [&](int i, int j, double v) {
-      const int length = std::snprintf(line, sizeof line, single ? "%d %d %.9g\n" : "%d %d %.17g\n", i + 1, j + 1, v);
-      out.write(line, length);
+      char* p = std::to_chars(line, line + 16, i + 1).ptr;
+      *p++ = ' ';
+      p = std::to_chars(p, p + 16, j + 1).ptr;
+      *p++ = ' ';
+      p = single ? std::to_chars(p, line + 78, float(v)).ptr : std::to_chars(p, line + 78, v).ptr;
+      *p++ = '\n';
+      out.write(line, p - line);
     });
   });
 }

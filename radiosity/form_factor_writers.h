@@ -17,7 +17,8 @@ DenseMatrix<double> surfaceFormFactors(const PatchMesh& mesh, const FormFactorMa
 
 /// \brief Writes F as Matrix Market `coordinate real general`: row i+1, column j+1, F_ij, for
 /// every stored non-zero; `comments` become `%` lines after the banner (describe the run).
-/// Values are printed with 17 significant digits (9 for float storage). Streamed: the text
+/// Values are printed as the shortest text that reads back exactly (std::to_chars; float
+/// storage as floats). Streamed: the text
 /// is never held in memory whole.
 void writeMatrixMarket(const std::string& path, const FormFactorMatrix& f,
                        const std::vector<std::string>& comments);
