@@ -14,6 +14,7 @@
 #include "geometry/ray_scene.h"
 #include "hierarchy/hierarchical.h"
 #include "radiosity/ff_benchmark.h"
+#include "render/camera.h"
 #include "render/path_benchmark.h"
 #include "solvers/sweep_benchmark.h"
 #include "util/process_memory.h"
@@ -43,16 +44,17 @@ void runFormFactorBench(FormFactorBench& b) {
 
 struct PathTraceBench {
   MeshOptions mesh;
+  std::string camera;
   PathTraceBenchmarkSettings settings;
 };
 
 void runPathTraceBench(PathTraceBench& b) {
   if (b.mesh.scene.empty()) b.mesh.scene = defaultScenePath();
-  Scene scene = loadSceneReporting(b.mesh.scene, b.mesh.load);
+  Scene scene = loadSceneReporting(b.mesh.scene, b.mesh.load, nullptr, b.camera);
   PatchMesh mesh = meshScene(scene, b.mesh);
   RayScene rays(mesh);
   ShadingScene shading(scene, mesh, rays, BsdfSettings{});
-  Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(mesh.bounds());
+  Camera camera = sceneCamera(scene, mesh);
   nlohmann::json j = toJson(benchmarkPathTracer(shading, camera, b.settings));
   j["scene"] = scene.name;
   std::cout << j.dump(2) << std::endl;
@@ -139,6 +141,7 @@ void addBenchCommands(CLI::App& app) {
   path->settings.render.samplesPerPixel = 64;
   CLI::App* p = bench->add_subcommand("path-trace", "Path-traced rays per second against raw Embree closest hits on the same scene");
   addMeshOptions(*p, path->mesh, false);
+  addCameraOption(*p, path->camera);
   p->add_option("--spp", path->settings.render.samplesPerPixel, "Samples per pixel of the 128x128 image")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();

@@ -6,10 +6,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "geometry/scene_loader.h"
+#include "render/camera.h"
 
 namespace radkit::app {
 
@@ -99,11 +101,22 @@ void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired)
                    "change is reported (docs/bring-your-own-model.md)");
 }
 
-Scene loadSceneReporting(const std::string& path, const LoadOptions& load, LoadReport* out) {
+void addCameraOption(CLI::App& command, std::string& camera) {
+  command.add_option("--camera", camera,
+                     "Camera px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]]: position, look-at, up (default 0,1,0), vertical "
+                     "field of view in degrees (default 40); replaces the scene's. Without either, the camera "
+                     "looks into the scene from its most front-facing side");
+}
+
+Scene loadSceneReporting(const std::string& path, const LoadOptions& load, LoadReport* out, const std::string& camera) {
+  // Parsed before the scene loads: a typo is refused before minutes of work.
+  std::optional<Camera> given;
+  if (!camera.empty()) given = parseCamera("--camera", camera);
   LoadReport local;
   LoadReport& report = out ? *out : local;
   Scene scene = loadScene(path, &report, load);
   for (const std::string& w : report.warnings) std::cerr << "radkit: warning: " << w << '\n';
+  if (given) scene.camera = given;
   return scene;
 }
 

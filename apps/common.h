@@ -45,10 +45,15 @@ void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired 
 /// The measured Cornell box shipped in data/.
 std::string defaultScenePath();
 
+/// Adds --camera to a command that draws (an image, render.png, the viewer).
+void addCameraOption(CLI::App& command, std::string& camera);
+
 /// Loads the scene (printing its warnings to stderr, and keeping them in `report` when given)
 /// and subdivides it; a mesh beyond kMaxPatches is an InputError naming the option that asked
-/// for it.
-Scene loadSceneReporting(const std::string& path, const LoadOptions& load = {}, LoadReport* report = nullptr);
+/// for it. A non-empty `camera` (a --camera value) replaces the scene's camera, so images and
+/// report.json agree.
+Scene loadSceneReporting(const std::string& path, const LoadOptions& load = {}, LoadReport* report = nullptr,
+                         const std::string& camera = "");
 /// report.json's "load": the loading warnings and what the mesh repair changed.
 nlohmann::json loadJson(const LoadReport& report);
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options);

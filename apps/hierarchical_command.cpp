@@ -126,7 +126,7 @@ void runHierarchicalJob(HierarchicalJob job) {
   auto start = std::chrono::steady_clock::now();
   validateHierarchicalSettings(job.settings);
   LoadReport loaded;
-  Scene scene = loadSceneReporting(job.scene, job.load, &loaded);
+  Scene scene = loadSceneReporting(job.scene, job.load, &loaded, job.camera);
   if (job.out.empty()) job.out = "out/" + scene.name;
   OutputFolder folder(job.out);  // refuses an --out it cannot replace before the work, not after
   Progress progress;

@@ -24,7 +24,7 @@ void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& options);
 
 /// What the run command passes on: the scene, the output folder and the shared options.
 struct HierarchicalJob {
-  std::string scene, out;
+  std::string scene, out, camera;
   LoadOptions load;
   HierarchicalSettings settings;
   LinkColour linkColour = LinkColour::FormFactor;

@@ -16,6 +16,7 @@
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
 #include "radiosity/radiosity_pipeline.h"
+#include "render/camera.h"
 #include "photon/benchmark.h"
 #include "photon/comparison.h"
 #include "photon/estimate.h"
@@ -37,7 +38,7 @@ constexpr int kDefaultPhotonPatches = 1000;
 struct PhotonsCommand {
   MeshOptions mesh;
   PhotonSettings settings;
-  std::string filter = "epanechnikov", view = "gather", compare, out;
+  std::string filter = "epanechnikov", view = "gather", compare, out, camera;
   int imageSize = 256;
   bool noRadiosity = false, noImage = false;
   long long benchRays = 1000000;
@@ -90,7 +91,7 @@ void writeDifference(OutputFolder& folder, const Scene& scene, const PatchMesh& 
   s.width = s.height = cmd.imageSize;
   s.samplesPerAxis = 1;
   const std::vector<bool> twoSided = scene.twoSidedSurfaces();
-  const Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(mesh.bounds());
+  const Camera camera = sceneCamera(scene, mesh);
   RadianceImage seen = renderRadiosity(mesh, rays, camera, b, twoSided, s);
   writePng(folder.path("difference.png"),
            differenceImage(seen, b, se, rad, ref.patches.empty() ? "z per surface" : "z per patch"));
@@ -170,7 +171,7 @@ void traceAndEstimate(PhotonsCommand& cmd, PhotonRun& r) {
   if (!cmd.compare.empty() && !std::filesystem::exists(std::filesystem::path(cmd.compare) / "surfaces.csv"))
     throw InputError("--compare " + cmd.compare + ": no surfaces.csv there. Fix: give the --out folder of a "
                      "`radkit run` of the same scene");
-  r.scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load);
+  r.scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, nullptr, cmd.camera);
   auto t = Clock::now();
   r.mesh = meshScene(r.scene, cmd.mesh);
   r.rays = std::make_unique<RayScene>(r.mesh);
@@ -211,7 +212,7 @@ void buildMaps(const PhotonsCommand& cmd, PhotonRun& r) {
 void writeImages(OutputFolder& folder, const PhotonsCommand& cmd, PhotonRun& r) {
   const auto t = Clock::now();
   const PhotonScene in{r.scene, r.mesh, *r.rays, *r.emitters, *r.global, *r.caustic};
-  const Camera camera = r.scene.camera ? *r.scene.camera : PinholeCamera::framing(r.mesh.bounds());
+  const Camera camera = sceneCamera(r.scene, r.mesh);
   const int n = cmd.imageSize;
   RadianceImage image = renderPhotonImage(in, camera, n, n, r.view, cmd.settings);
   const double exposure = photonImageExposure(in, image);
@@ -318,6 +319,7 @@ void addPhotonsCommand(CLI::App& app) {
       "photons", "Photon mapping (Jensen): per-patch radiosity with standard errors, photonmap.png, caustics.png, and "
                  "a comparison with the radiosity solution (comparison.csv, difference.png)");
   addMeshOptions(*sub, cmd->mesh, true);
+  addCameraOption(*sub, cmd->camera);
   sub->add_option("--photons", cmd->settings.photons, "Photons emitted")
       ->check(CLI::Range(std::size_t(1), kMaxPhotons))->capture_default_str();
   sub->add_option("--k", cmd->settings.neighbours, "Photons in each irradiance estimate (k nearest)")

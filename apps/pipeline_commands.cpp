@@ -1,4 +1,5 @@
 // radkit formfactors, radkit solvers and radkit run: one pipeline, three selections of output.
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -29,7 +30,7 @@ struct PipelineCommand {
   std::string out;
   bool noRender = false, photometric = false, smooth = false, writeMatrix = false;
   int imageSize = 512;
-  std::string preset;
+  std::string preset, camera;
   bool adaptive = false;
   AdaptiveSettings adaptiveSettings;
   HierarchicalOptions hierarchical;
@@ -64,20 +65,23 @@ PipelineSettings pipelineSettings(const PipelineCommand& cmd) {
 /// of a 32 000-patch run (docs/run.md), in about 13 s on two cores.
 constexpr int kDefaultRunPatches = 4000;
 
-/// Patches above which `run` leaves formfactors.mtx out unless asked (it grows as n²).
-constexpr int kMatrixFileLimit = 1500;
-
-void writeFormFactorFiles(OutputFolder& folder, const Scene& scene, const PipelineResult& r, bool matrixFile) {
+/// Writes the form-factor files; returns the seconds spent on formfactors.bin and .mtx.
+double writeFormFactorFiles(OutputFolder& folder, const Scene& scene, const PipelineResult& r, bool matrixFile) {
   std::vector<std::string> names = surfaceNames(scene);
   const FormFactorMatrix& f = r.formFactors->matrix;
   writeSurfaceFormFactors(folder.path("surface_formfactors.csv"), r.mesh, names, f);
   HeatMapSettings heat;
   heat.title = scene.name + ": F_ij, " + std::to_string(r.mesh.size()) + " patches, " + r.formFactors->diagnostics.method;
   writeFormFactorHeatMap(folder.path("formfactors.png"), r.mesh, names, f, heat);
+  // The viewer's matrix and row views read the compact binary, written on every run (4 bytes
+  // per entry at most); the Matrix Market text (about 25 bytes per entry) only when asked.
+  const auto start = std::chrono::steady_clock::now();
+  writeFormFactorBinary(folder.path("formfactors.bin"), f);
   if (matrixFile)
     writeMatrixMarket(folder.path("formfactors.mtx"), f,
                       {"radkit form factors of " + scene.file, r.formFactors->diagnostics.description,
                        "row i, column j: F_ij (patch ids from 0 in patches.csv are i-1, j-1)"});
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd) {
@@ -87,7 +91,8 @@ void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult&
   writeRadiosityPng(folder.path("render.png"), scene, r.mesh, *r.rays, r.radiosity, s);
 }
 
-void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd, double total) {
+void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd, double total,
+                  double matrixSeconds) {
   const FormFactorDiagnostics& d = r.formFactors->diagnostics;
   std::printf("\n");
   printField("scene", scene.name + " (" + scene.file + ")");
@@ -98,7 +103,8 @@ void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCom
                              fmt("%.2e", d.maxRelativeReciprocityError));
   printField("seconds", "mesh " + fmt("%.2f", r.seconds.mesh) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
                             ", form factors " + fmt("%.2f", r.seconds.formFactors) + ", solve " +
-                            fmt("%.2f", r.seconds.solve) + ", total " + fmt("%.2f", total));
+                            fmt("%.2f", r.seconds.solve) + ", F files " + fmt("%.2f", matrixSeconds) +
+                            (cmd.writeMatrix ? " (with .mtx)" : "") + ", total " + fmt("%.2f", total));
   for (const SolveResult& s : r.solves)
     printField(s.solver, std::to_string(s.iterations) + " iterations, residual " + fmt("%.2e", s.checkedResidual) +
                              ", " + fmt("%.3f s", s.seconds) + (s.converged ? "" : "  NOT CONVERGED: " + s.reason));
@@ -134,6 +140,7 @@ void runHierarchical(PipelineCommand& cmd) {
   job.linkColour = cmd.hierarchical.linkColour == "power" ? LinkColour::Power : LinkColour::FormFactor;
   job.noRender = cmd.noRender, job.photometric = cmd.photometric, job.smooth = cmd.smooth;
   job.imageSize = cmd.imageSize;
+  job.camera = cmd.camera;
   runHierarchicalJob(job);
 }
 
@@ -147,7 +154,7 @@ void runJob(PipelineCommand& cmd) {
   if (cmd.job == Job::Run && cmd.preset.empty() && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0)
     cmd.mesh.patches = cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
   LoadReport loaded;
-  Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded);
+  Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded, cmd.camera);
   if (cmd.out.empty() && cmd.job == Job::Run) cmd.out = "out/" + scene.name;  // required for the others
   OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the work, not after
 
@@ -192,8 +199,8 @@ void runJob(PipelineCommand& cmd) {
   if (!cmd.preset.empty()) report["preset"] = {{"name", cmd.preset}, {"description", describePreset(cmd.preset)}};
   if (cmd.adaptive) report["adaptive"] = adaptiveJson;
   writePatchesCsv(folder.path("patches.csv"), scene, r.mesh, r.solves.empty() ? nullptr : &r.radiosity);
-  if (cmd.job != Job::Solvers)
-    writeFormFactorFiles(folder, scene, r, cmd.job == Job::FormFactors || cmd.writeMatrix || r.mesh.size() <= kMatrixFileLimit);
+  double matrixSeconds = 0;
+  if (cmd.job != Job::Solvers) matrixSeconds = writeFormFactorFiles(folder, scene, r, cmd.writeMatrix);
   if (!r.solves.empty()) {
     writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), r.solves);
     nlohmann::json solves = nlohmann::json::array();
@@ -212,11 +219,11 @@ void runJob(PipelineCommand& cmd) {
   double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report["seconds"] = {{"mesh", r.seconds.mesh},       {"ray_scene", r.seconds.rayScene},
                        {"form_factors", r.seconds.formFactors}, {"solve", r.seconds.solve},
-                       {"results", r.seconds.results}, {"total", total}};
+                       {"results", r.seconds.results}, {"matrix_files", matrixSeconds}, {"total", total}};
   report["peak_memory_bytes"] = peakMemoryBytes();
   writeJson(folder.path("report.json"), report);
   folder.commit();
-  printSummary(scene, r, cmd, total);
+  printSummary(scene, r, cmd, total, matrixSeconds);
 }
 
 CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std::string& help) {
@@ -238,14 +245,16 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
     addSolverOptions(*sub, cmd->solver, job == Job::Solvers ? "jacobi,gauss-seidel,sor,southwell,cg" : "gauss-seidel");
     cmd->tolFlag = {sub->get_option("--tol")};
   }
+  if (job != Job::Solvers)
+    sub->add_flag("--write-matrix", cmd->writeMatrix,
+                  "Also write F as Matrix Market text, formfactors.mtx (about 25 bytes per non-zero; the viewer "
+                  "needs only formfactors.bin, written always)");
   auto* out = sub->add_option("--out", cmd->out, job == Job::Run ? "Output folder (default out/<scene name>)" : "Output folder");
   if (job != Job::Run) out->required();
   if (job == Job::Run) {
     sub->add_flag("--no-render", cmd->noRender, "Skip render.png");
     sub->add_flag("--photometric", cmd->photometric, "Add luminance (cd/m²) and illuminance (lux) to surfaces.csv");
     sub->add_flag("--smooth", cmd->smooth, "Interpolate radiosity between patches in render.png");
-    sub->add_flag("--write-matrix", cmd->writeMatrix,
-                  "Write formfactors.mtx even above " + std::to_string(kMatrixFileLimit) + " patches");
     sub->add_flag("--adaptive", cmd->adaptive,
                   "Refine patches where radiosity changes most between neighbours and across shadow boundaries, "
                   "re-solve, repeat (starts from --patches/--max-area, else a quarter of the budget; "
@@ -256,6 +265,7 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
         ->check(FinitePositive)->capture_default_str();
     sub->add_option("--adaptive-rounds", cmd->adaptiveSettings.maxRounds, "Adaptive: refine-and-solve rounds at most")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
+    addCameraOption(*sub, cmd->camera);
     sub->add_option("--image-size", cmd->imageSize, "Side of render.png in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
     addHierarchicalOptions(*sub, cmd->hierarchical);
     cmd->hierarchical.denseOnly = {sub->get_option("--patches"), sub->get_option("--max-area"),
@@ -280,7 +290,8 @@ std::string runDefaultJob(const std::string& scenePath, const std::string& outDi
 
 void addPipelineCommands(CLI::App& app) {
   addPipelineCommand(app, Job::FormFactors, "formfactors",
-                     "Compute the form-factor matrix: formfactors.mtx, surface_formfactors.csv, formfactors.png, report.json");
+                     "Compute the form-factor matrix: formfactors.bin (and with --write-matrix formfactors.mtx), "
+                     "surface_formfactors.csv, formfactors.png, report.json");
   addPipelineCommand(app, Job::Solvers, "solvers",
                      "Build F once and run several solvers from the same start: convergence.csv/.png, solution-<solver>.csv");
   addPipelineCommand(app, Job::Run, "run",

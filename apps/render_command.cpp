@@ -1,5 +1,7 @@
 // radkit render: one camera image of a scene by one shading mode (radiosity, two-pass Phong
 // or Cook-Torrance, path tracing, photon mapping), as PNG (tone mapped) or PFM (linear radiance).
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +15,8 @@
 #include "apps/options.h"
 #include "apps/report.h"
 #include "geometry/scene_loader.h"
+#include "render/camera.h"
+#include "render/exr_io.h"
 #include "render/final_gather.h"
 #include "render/hdr_io.h"
 #include "render/image_comparison.h"
@@ -37,7 +41,7 @@ struct RenderCommand {
   FormFactorOptions ff;
   SolverOptions solver;
   std::string shading = "path-trace", size = "512x512", tonemap = "srgb", masking = "height-correlated", out;
-  std::string sampler = "sobol", report;
+  std::string sampler = "sobol", report, camera;
   /// Solid angle lowers the Cornell box's error by 3 % at equal samples but costs 30 % more
   /// time (docs/images.md), so area stays the default.
   std::string lightSampling = "area";
@@ -48,6 +52,7 @@ struct RenderCommand {
   int gatherRays = PhotonSettings{}.gatherRays;
   double exposure = 0;
   bool smooth = false, compensated = false, unguided = false;
+  CLI::Option* sppOption = nullptr;  ///< photon-map takes --spp only when given
   SmoothSettings smoothing;
 };
 
@@ -126,9 +131,19 @@ ModeImage renderPhotonMapMode(const ModeInput& in) {
   maps.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
   const PhotonScene photons{in.scene, mesh, rays, emitters, *maps.global, *maps.caustic};
   RadianceImage img = renderPhotonImage(photons, in.camera, in.width, in.height, PhotonView::FinalGather, ps);
+  // One jittered ray per pixel per pass; --spp given asks for more passes, averaged (each
+  // pass its own camera stream). Without it one pass: a pass costs its gathers.
+  const int passes = in.cmd.sppOption && in.cmd.sppOption->count() > 0 ? in.cmd.spp : 1;
+  for (int pass = 1; pass < passes; ++pass) {
+    PhotonSettings more = ps;
+    more.seed = in.seed + std::uint64_t(pass);
+    const RadianceImage next = renderPhotonImage(photons, in.camera, in.width, in.height, PhotonView::FinalGather, more);
+    for (std::size_t k = 0; k < img.radiance.size(); ++k) img.radiance[k] = img.radiance[k] + next.radiance[k];
+  }
+  for (Vec3& v : img.radiance) v = v / double(passes);
   return finish(std::move(img), in.scene, mesh,
                 std::to_string(in.cmd.photons) + " photons, " + std::to_string(maps.global->size()) + " stored, " +
-                    std::to_string(ps.gatherRays) + " gather rays per pixel");
+                    std::to_string(ps.gatherRays) + " gather rays per pixel, " + std::to_string(passes) + " pass(es)");
 }
 
 ModeImage renderPathTraceMode(const ModeInput& in) {
@@ -205,7 +220,7 @@ ModeImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, in
   bsdf.compensated = cmd.compensated;
   const ModeInput in{cmd,
                      scene,
-                     scene.camera ? *scene.camera : PinholeCamera::framing(scene.bounds()),
+                     scene.camera ? *scene.camera : automaticCamera(scene),
                      width,
                      height,
                      bsdf,
@@ -269,6 +284,12 @@ void runRender(RenderCommand& cmd) {
       throw InputError("--report " + cmd.report + " needs --reference: the report holds the errors against it");
     checkOutputFile("--report", cmd.report);
   }
+  std::string ext = std::filesystem::path(cmd.out).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".png" && ext != ".pfm" && ext != ".exr")
+    throw InputError("--out " + cmd.out + ": '" + ext + "' is not an image format render writes (PNG bytes under "
+                     "another name would mislead). Fix: end the name in .png (tone mapped), .exr or .pfm (linear "
+                     "radiance, W/m²/sr)");
   // References are read and their size checked first: a mismatch found after the render left
   // the image behind.
   std::vector<RadianceImage> refs;
@@ -280,7 +301,7 @@ void runRender(RenderCommand& cmd) {
                        std::to_string(height) + ". Fix: render at the reference's --size");
   }
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
-  const Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load);
+  const Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, nullptr, cmd.camera);
   const auto start = std::chrono::steady_clock::now();
   ModeImage mode = renderMode(cmd, scene, width, height);
   const RadianceImage& img = mode.image;
@@ -289,12 +310,12 @@ void runRender(RenderCommand& cmd) {
   const std::vector<int>& surfaces = mode.surfaces;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double exposure = cmd.exposure > 0 ? cmd.exposure : autoExposure(img, emits);
-  const std::string ext = std::filesystem::path(cmd.out).extension().string();
   if (ext == ".pfm") writePfm(cmd.out, img);
+  else if (ext == ".exr") writeExr(cmd.out, img);
   else writePng(cmd.out, toneMapCurve(img, exposure, cmd.tonemap == "filmic" ? ToneCurve::Filmic : ToneCurve::Srgb));
   printField("scene", scene.name + " (" + scene.file + ")");
   printField("shading", cmd.shading + ": " + what);
-  if (ext != ".pfm") printField("exposure", std::to_string(exposure));
+  if (ext == ".png") printField("exposure", std::to_string(exposure));
   printField("wrote", cmd.out);
   printField("seconds", std::to_string(seconds));
   if (!cmd.references.empty()) compareWithReference(cmd, scene, img, surfaces, seconds, refs);
@@ -306,6 +327,7 @@ void addRenderCommand(CLI::App& app) {
   auto cmd = std::make_shared<RenderCommand>();
   CLI::App* sub = app.add_subcommand("render", "One camera image: radiosity, two-pass Phong / Cook-Torrance, or a path-traced reference");
   addMeshOptions(*sub, cmd->mesh, false);
+  addCameraOption(*sub, cmd->camera);
   addFormFactorOptions(*sub, cmd->ff);
   addSolverOptions(*sub, cmd->solver, "gauss-seidel");
   std::vector<std::string> modes;
@@ -333,7 +355,11 @@ void addRenderCommand(CLI::App& app) {
                   "path-trace: the most vertices a path has (fewer drop light: for variance studies only)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  sub->add_option("--spp", cmd->spp, "Samples (camera paths) per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  cmd->sppOption = sub->add_option("--spp", cmd->spp,
+                                   "Samples (camera paths) per pixel; photon-map: passes of one ray per pixel, 1 "
+                                   "unless given")
+                       ->check(CLI::Range(1, 1 << 20))
+                       ->capture_default_str();
   sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--gather-rays", cmd->gatherRays, "photon-map: final-gathering rays per pixel (0: the map seen directly)")
       ->check(CLI::Range(0, 65536))
@@ -368,7 +394,7 @@ void addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"height-correlated", "separable", "schlick", "cook-torrance"}))
       ->capture_default_str();
   sub->add_flag("--compensated", cmd->compensated, "Cook-Torrance: Kulla-Conty multiple-scattering compensation");
-  sub->add_option("--out", cmd->out, "Image file: .png (tone mapped) or .pfm (linear radiance, W/m²/sr)")->required();
+  sub->add_option("--out", cmd->out, "Image file: .png (tone mapped), or .exr or .pfm (linear radiance, W/m²/sr, 32-bit float)")->required();
   sub->callback([cmd] { runRender(*cmd); });
 }
 

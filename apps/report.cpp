@@ -104,13 +104,16 @@ void writeJson(const std::string& path, const json& j) { writeFileAtomically(pat
 void writeConvergence(const std::string& csvPath, const std::string& pngPath, const std::vector<SolveResult>& solves) {
   std::ostringstream csv;
   writeConvergenceHeader(csv);
-  ChartPanel byIteration{"Residual against iteration", "iteration", "relative residual", false, true, {}};
+  // Work, not iterations, on x: a Southwell shot updates one row (1/n of a sweep), so its
+  // thousands of shots would squash the sweeping solvers against x = 0.
+  ChartPanel byIteration{"Residual against work", "sweep-equivalents (a Southwell shot = 1/n sweep)",
+                         "relative residual", false, true, {}};
   ChartPanel bySeconds{"Residual against time", "seconds", "relative residual", true, true, {}};
   for (const SolveResult& s : solves) {
     writeConvergenceRows(csv, s);
     ChartSeries it{s.solver, {}, {}}, sec{s.solver, {}, {}};
     for (const HistoryRow& h : s.history) {
-      it.x.push_back(double(h.iteration));
+      it.x.push_back(h.sweeps);
       it.y.push_back(h.residual);
       sec.x.push_back(h.seconds);
       sec.y.push_back(h.residual);

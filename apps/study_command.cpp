@@ -147,29 +147,34 @@ std::vector<const StudyRow*> rowsOf(const StudyResult& r, std::initializer_list<
   return out;
 }
 
+/// A chart with no point in it (a knob the budget left out) is not written.
+void writeChart(OutputFolder& folder, const std::string& name, const std::vector<ChartPanel>& panels) {
+  if (chartPoints(panels) > 0) writeLineChartPng(folder.path(name), panels);
+}
+
 void writeCharts(OutputFolder& folder, const StudyResult& r, const std::string& scene) {
   const std::string s = "seconds (all stages)", es = "surface error (max rel.)", ep = "patch error (rel. L1)";
   auto mesh = rowsOf(r, {StudyKnob::Mesh, StudyKnob::Hierarchical});
-  writeLineChartPng(folder.path("study-mesh.png"),
-                    {panel(mesh, totalS, surfaceE, byKnob, scene + ": mesh density", s, es),
-                     panel(mesh, totalS, patchE, byKnob, scene + ": mesh density", s, ep)});
+  writeChart(folder, "study-mesh.png",
+             {panel(mesh, totalS, surfaceE, byKnob, scene + ": mesh density", s, es),
+              panel(mesh, totalS, patchE, byKnob, scene + ": mesh density", s, ep)});
   auto ff = rowsOf(r, {StudyKnob::FormFactors});
-  writeLineChartPng(folder.path("study-formfactors.png"),
-                    {panel(ff, totalS, surfaceE, byMethod, scene + ": form factors (K along each line)", s, es),
-                     panel(ff, totalS, patchE, byMethod, scene + ": form factors (K along each line)", s, ep)});
+  writeChart(folder, "study-formfactors.png",
+             {panel(ff, totalS, surfaceE, byMethod, scene + ": form factors (K along each line)", s, es),
+              panel(ff, totalS, patchE, byMethod, scene + ": form factors (K along each line)", s, ep)});
   auto sv = rowsOf(r, {StudyKnob::Solver});
-  writeLineChartPng(folder.path("study-solver.png"),
-                    {panel(sv, solveS, surfaceE, bySolver, scene + ": solver and tolerance", "solve seconds", es),
-                     panel(sv, solveS, patchE, bySolver, scene + ": solver and tolerance", "solve seconds", ep)});
+  writeChart(folder, "study-solver.png",
+             {panel(sv, solveS, surfaceE, bySolver, scene + ": solver and tolerance", "solve seconds", es),
+              panel(sv, solveS, patchE, bySolver, scene + ": solver and tolerance", "solve seconds", ep)});
   auto ad = rowsOf(r, {StudyKnob::Mesh, StudyKnob::Adaptive});
-  writeLineChartPng(folder.path("study-adaptive.png"),
-                    {panel(ad, patchesOf, patchE, byKnob, scene + ": adaptive against uniform", "patches", ep),
-                     panel(ad, totalS, patchE, byKnob, scene + ": adaptive against uniform", s, ep)});
+  writeChart(folder, "study-adaptive.png",
+             {panel(ad, patchesOf, patchE, byKnob, scene + ": adaptive against uniform", "patches", ep),
+              panel(ad, totalS, patchE, byKnob, scene + ": adaptive against uniform", s, ep)});
   auto all = rowsOf(r, {StudyKnob::Mesh, StudyKnob::FormFactors, StudyKnob::Solver, StudyKnob::Adaptive,
                         StudyKnob::Hierarchical});
-  writeLineChartPng(folder.path("study-pareto.png"),
-                    {panel(all, totalS, surfaceE, byKnob, scene + ": every configuration", s, es),
-                     panel(all, totalS, patchE, byKnob, scene + ": every configuration", s, ep)});
+  writeChart(folder, "study-pareto.png",
+             {panel(all, totalS, surfaceE, byKnob, scene + ": every configuration", s, es),
+              panel(all, totalS, patchE, byKnob, scene + ": every configuration", s, ep)});
 }
 
 void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& scene, double maxSeconds) {

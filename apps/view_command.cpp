@@ -4,6 +4,7 @@
 
 #include "apps/common.h"
 #include "geometry/scene_loader.h"
+#include "render/camera.h"
 #include "viewer/viewer.h"
 
 namespace radkit::app {
@@ -13,6 +14,7 @@ namespace {
 struct ViewCommand {
   viewer::ViewerOptions options;
   std::string size;
+  std::string camera;
   std::string out;  ///< where a scene's run goes (default out/<scene name>)
   bool screenshotGiven = false;
 };
@@ -24,6 +26,7 @@ void runView(ViewCommand& cmd) {
   // An empty --screenshot would open the interactive window, which waits for a user.
   if (cmd.screenshotGiven || !o.screenshot.empty()) checkOutputFile("--screenshot", o.screenshot);
   // A scene file instead of a run folder: run the main job first, then view its folder.
+  if (!cmd.camera.empty()) o.camera = parseCamera("--camera", cmd.camera);
   if (std::filesystem::is_regular_file(o.runFolder)) o.runFolder = runDefaultJob(o.runFolder, cmd.out);
   if (!cmd.size.empty())
     viewer::parseSize(cmd.size, o.width, o.height);
@@ -56,6 +59,7 @@ void addViewCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--size", cmd->size,
                   "Image or window size WIDTHxHEIGHT (default 1024x768 for screenshots, 1440x860 for the window)");
+  addCameraOption(*sub, cmd->camera);
   sub->add_flag("--smooth", o.smooth, "Interpolate radiosity between patches instead of flat patches");
   sub->add_option("--channel", o.channel, "False-colour quantity: r | g | b | luminance")->capture_default_str();
   sub->add_flag("--photometric", o.photometric,

@@ -222,6 +222,43 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
   return s;
 }
 
+/// surfaces[i] {"include": "model.obj"}: every surface of an OBJ, with its MTL materials
+/// (read by loadObjScene) unless the scene defines a material of the same name, which then
+/// overrides it. The scene's units, camera and "transform" apply to the included geometry.
+void includeObj(const json& j, std::size_t index, Scene& scene, const std::string& file) {
+  const std::string where = "surfaces[" + std::to_string(index) + "]";
+  ObjectReader r(j, where, file);
+  r.allowOnly({"include", "transform"});
+  if (!j.at("include").is_string()) r.fail("\"include\" must be the file name of an .obj");
+  const fs::path objPath = fs::path(file).parent_path() / j.at("include").get<std::string>();
+  std::string ext = objPath.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".obj") r.fail("includes " + objPath.string() + ", not an .obj. Fix: include an OBJ scene (with its MTL), or give a \"mesh\" surface");
+  if (!fs::exists(objPath))
+    r.fail("includes " + objPath.string() + ", which does not exist. Fix: give the OBJ's path relative to " + file);
+  Scene obj;
+  try {
+    requireRegularFile(objPath.string(), "included OBJ");
+    obj = loadObjScene(objPath.string());
+  } catch (const InputError& e) {
+    r.fail("includes an OBJ: " + std::string(e.what()));
+  }
+  std::vector<int> material(obj.materials.size());
+  for (std::size_t m = 0; m < obj.materials.size(); ++m) {
+    material[m] = scene.findMaterial(obj.materials[m].name);
+    if (material[m] < 0) {
+      material[m] = int(scene.materials.size());
+      scene.materials.push_back(obj.materials[m]);
+    }
+  }
+  for (Surface& s : obj.surfaces) {
+    s.material = material[s.material];
+    s.source = file + ": " + where + " (" + s.source + ")";
+    if (r.has("transform")) applyTransform(r, j.at("transform"), file, s);
+    scene.surfaces.push_back(std::move(s));
+  }
+}
+
 Camera readCamera(const json& j, const std::string& file) {
   ObjectReader r(j, "camera", file);
   r.allowOnly({"position", "look_at", "up", "fov_deg"});
@@ -266,8 +303,10 @@ Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadRep
   }
   const json& surfaces = r.get("surfaces");
   if (!surfaces.is_array()) r.fail("\"surfaces\" must be an array");
-  for (std::size_t i = 0; i < surfaces.size(); ++i)
-    scene.surfaces.push_back(readSurface(surfaces[i], i, scene, path, options, report));
+  for (std::size_t i = 0; i < surfaces.size(); ++i) {
+    if (surfaces[i].is_object() && surfaces[i].contains("include")) includeObj(surfaces[i], i, scene, path);
+    else scene.surfaces.push_back(readSurface(surfaces[i], i, scene, path, options, report));
+  }
   if (r.has("camera")) scene.camera = readCamera(root.at("camera"), path);
   return scene;
 }

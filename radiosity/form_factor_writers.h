@@ -17,9 +17,20 @@ DenseMatrix<double> surfaceFormFactors(const PatchMesh& mesh, const FormFactorMa
 
 /// \brief Writes F as Matrix Market `coordinate real general`: row i+1, column j+1, F_ij, for
 /// every stored non-zero; `comments` become `%` lines after the banner (describe the run).
-/// Values are printed with 17 significant digits (9 for float storage).
+/// Values are printed as the shortest text that reads back exactly (std::to_chars; float
+/// storage as floats). Streamed: the text
+/// is never held in memory whole.
 void writeMatrixMarket(const std::string& path, const FormFactorMatrix& f,
                        const std::vector<std::string>& comments);
+
+/// Magic of formfactors.bin, version 1.
+constexpr char kFormFactorBinaryMagic[9] = "RADKITF1";
+
+/// \brief Writes F compactly for the viewer (formfactors.bin), streamed row by row, all
+/// numbers little-endian: the 8-byte magic, int64 n, int64 non-zeros, then per row an int32
+/// k and either (k >= 0) k uint32 columns ascending and k float32 values, or (k = −1, when
+/// that is smaller) n float32 values. At most 4n² + 4n + 24 bytes.
+void writeFormFactorBinary(const std::string& path, const FormFactorMatrix& f);
 
 /// \brief Writes `from,to,F` for every ordered pair of surfaces (names quoted when needed).
 /// \param surfaceNames one name per surface of the mesh (see surfaceNames()).

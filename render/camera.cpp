@@ -1,7 +1,11 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
+
+#include "geometry/scene_loader.h"  // InputError
 
 namespace radkit {
 
@@ -36,14 +40,127 @@ bool PinholeCamera::project(const Vec3& point, double& x, double& y) const {
   return true;
 }
 
-Camera PinholeCamera::framing(const Bounds3& b) {
+Camera PinholeCamera::framing(const Bounds3& b, const Vec3& side) {
   Camera c;
   Vec3 centre = (b.lo + b.hi) * 0.5;
   double radius = 0.5 * b.diagonal();
   c.lookAt = centre;
   c.fovDeg = 40;
-  c.position = centre - Vec3{0, 0, radius / std::tan(20 * M_PI / 180) * 1.1};
-  c.up = {0, 1, 0};
+  c.position = centre + side * (radius / std::tan(20 * M_PI / 180) * 1.1);
+  // Seen from above or below, +y is the view direction: -z (or +z) is up instead.
+  c.up = std::fabs(side.y) > 0.5 ? Vec3{0, 0, -side.y} : Vec3{0, 1, 0};
+  return c;
+}
+
+namespace {
+
+/// Cells of the depth buffer that scores each side: enough to tell an open box from a
+/// closed one, cheap for 10⁵ triangles.
+constexpr int kGrid = 64;
+
+/// Cells where the nearest surface, seen orthographically from `side`, shows its front.
+long long frontCells(const std::vector<Triangle>& triangles, const Bounds3& b, int axis, double sign) {
+  const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+  const double u0 = b.lo[ua], v0 = b.lo[va];
+  const double du = std::max(b.hi[ua] - u0, 1e-300) / kGrid, dv = std::max(b.hi[va] - v0, 1e-300) / kGrid;
+  std::vector<double> depth(kGrid * kGrid, -INFINITY);
+  std::vector<char> front(kGrid * kGrid, 0);
+  for (const Triangle& t : triangles) {
+    const double facing = cross(t[1] - t[0], t[2] - t[0])[axis] * sign;
+    if (facing == 0) continue;  // edge-on: covers no cell
+    double pu[3], pv[3], pd[3];
+    for (int k = 0; k < 3; ++k) pu[k] = (t[k][ua] - u0) / du, pv[k] = (t[k][va] - v0) / dv, pd[k] = t[k][axis] * sign;
+    const double area = (pu[1] - pu[0]) * (pv[2] - pv[0]) - (pu[2] - pu[0]) * (pv[1] - pv[0]);
+    if (area == 0) continue;
+    const int i0 = std::max(0, int(std::floor(std::min({pu[0], pu[1], pu[2]}) - 0.5)));
+    const int i1 = std::min(kGrid - 1, int(std::ceil(std::max({pu[0], pu[1], pu[2]}) - 0.5)));
+    const int j0 = std::max(0, int(std::floor(std::min({pv[0], pv[1], pv[2]}) - 0.5)));
+    const int j1 = std::min(kGrid - 1, int(std::ceil(std::max({pv[0], pv[1], pv[2]}) - 0.5)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const double x = i + 0.5, y = j + 0.5;
+        // Barycentric weights of the cell centre.
+        const double w1 = ((x - pu[0]) * (pv[2] - pv[0]) - (pu[2] - pu[0]) * (y - pv[0])) / area;
+        const double w2 = ((pu[1] - pu[0]) * (y - pv[0]) - (x - pu[0]) * (pv[1] - pv[0])) / area;
+        const double w0 = 1 - w1 - w2;
+        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+        const double d = w0 * pd[0] + w1 * pd[1] + w2 * pd[2];
+        const int cell = j * kGrid + i;
+        if (d > depth[cell]) depth[cell] = d, front[cell] = facing > 0;
+      }
+  }
+  return std::count(front.begin(), front.end(), char(1));
+}
+
+void addPolygon(std::vector<Triangle>& out, const std::vector<Vec3>& points, const int* index, int count) {
+  for (int k = 1; k + 1 < count; ++k) out.push_back({points[index[0]], points[index[k]], points[index[k + 1]]});
+}
+
+}  // namespace
+
+Camera automaticCamera(const std::vector<Triangle>& triangles) {
+  Bounds3 b;
+  for (const Triangle& t : triangles)
+    for (const Vec3& p : t) b.extend(p);
+  if (b.empty()) return PinholeCamera::framing(Bounds3{{-1, -1, -1}, {1, 1, 1}});
+  // −z first: the old default, kept on ties.
+  const int axes[6] = {2, 2, 0, 0, 1, 1};
+  const double signs[6] = {-1, 1, -1, 1, 1, -1};
+  int best = 0;
+  long long bestCells = -1;
+  for (int k = 0; k < 6; ++k) {
+    const long long cells = frontCells(triangles, b, axes[k], signs[k]);
+    if (cells > bestCells) best = k, bestCells = cells;
+  }
+  Vec3 side{0, 0, 0};
+  side[axes[best]] = signs[best];
+  return PinholeCamera::framing(b, side);
+}
+
+Camera automaticCamera(const Scene& scene) {
+  std::vector<Triangle> triangles;
+  for (const Surface& s : scene.surfaces)
+    for (const Face& f : s.faces) addPolygon(triangles, s.vertices, f.vertices.data(), int(f.vertices.size()));
+  return automaticCamera(triangles);
+}
+
+Camera automaticCamera(const PatchMesh& mesh) {
+  std::vector<Triangle> triangles;
+  for (const Patch& p : mesh.patches) addPolygon(triangles, mesh.vertices, p.vertex.data(), p.vertexCount);
+  return automaticCamera(triangles);
+}
+
+Camera sceneCamera(const Scene& scene, const PatchMesh& mesh) {
+  return scene.camera ? *scene.camera : automaticCamera(mesh);
+}
+
+Camera parseCamera(const std::string& option, const std::string& text) {
+  const std::string fix = ". Fix: give px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]] (position, look-at, up, vertical field "
+                          "of view in degrees), e.g. 0,1,4,0,1,0";
+  std::vector<double> v;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, comma - at);
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(x))
+      throw InputError(option + " '" + text + "': '" + item + "' is not a finite number" + fix);
+    v.push_back(x);
+    at = comma + 1;
+  }
+  if (v.size() != 6 && v.size() != 9 && v.size() != 10)
+    throw InputError(option + " '" + text + "' has " + std::to_string(v.size()) + " numbers, not 6, 9 or 10" + fix);
+  Camera c;
+  c.position = {v[0], v[1], v[2]};
+  c.lookAt = {v[3], v[4], v[5]};
+  c.up = v.size() >= 9 ? Vec3{v[6], v[7], v[8]} : Vec3{0, 1, 0};
+  c.fovDeg = v.size() == 10 ? v[9] : 40;
+  if (length(c.lookAt - c.position) == 0) throw InputError(option + " '" + text + "': the look-at is the position" + fix);
+  if (length(cross(c.lookAt - c.position, c.up)) == 0)
+    throw InputError(option + " '" + text + "': up is parallel to the view direction. Fix: give another up, e.g. 0,0,1");
+  if (!(c.fovDeg > 0 && c.fovDeg < 180))
+    throw InputError(option + " '" + text + "': the field of view must lie in (0, 180) degrees" + fix);
   return c;
 }
 

@@ -1,6 +1,11 @@
 // PinholeCamera: primary rays for a Camera (position, look-at, up, vertical field of view).
 #pragma once
 
+#include <array>
+#include <string>
+#include <vector>
+
+#include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
 #include "geometry/vec3.h"
 
@@ -20,13 +25,33 @@ class PinholeCamera {
   int width() const { return m_width; }
   int height() const { return m_height; }
 
-  /// A camera that frames the whole scene from the -z side (for scenes with no camera).
-  static Camera framing(const Bounds3& bounds);
+  /// A camera that frames the whole box from the side `side` points to (a unit axis, by
+  /// default −z), looking back along it with a 40° field of view.
+  static Camera framing(const Bounds3& bounds, const Vec3& side = {0, 0, -1});
 
  private:
   Vec3 m_origin, m_forward, m_right, m_up;
   double m_tanHalfFov;
   int m_width, m_height;
 };
+
+using Triangle = std::array<Vec3, 3>;
+
+/// \brief The camera for a scene that gives none, one function for every image and the
+/// viewer: it looks along the axis (±x, ±y, ±z) from which the most front faces are seen
+/// unoccluded (an orthographic 64×64 depth buffer per side), and frames the bounding box.
+/// An open box is seen through its open side, a closed model from its most front-facing
+/// side; ties (a closed room seen from outside) keep the −z side. Deterministic.
+Camera automaticCamera(const std::vector<Triangle>& triangles);
+Camera automaticCamera(const Scene& scene);
+Camera automaticCamera(const PatchMesh& mesh);
+
+/// The scene's camera, or automaticCamera(mesh) when it has none.
+Camera sceneCamera(const Scene& scene, const PatchMesh& mesh);
+
+/// \brief Parses a --camera value "px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]]" (position, look-at,
+/// up, vertical field of view in degrees; up +y and 40° when left out).
+/// \throws InputError naming `option` and the fix.
+Camera parseCamera(const std::string& option, const std::string& text);
 
 }  // namespace radkit

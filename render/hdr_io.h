@@ -1,6 +1,6 @@
 // High-dynamic-range output: Portable Float Map (.pfm) files and the filmic tone curve.
-// (.exr is left out: no OpenEXR or tinyexr package is installed; PFM needs no library and
-// loads in ImageMagick, GIMP, Photoshop, HDRView and Python's imageio.)
+// (.exr is in exr_io.h, through OpenEXR; PFM needs no library and loads in ImageMagick,
+// GIMP, Photoshop, HDRView and Python's imageio.)
 #pragma once
 
 #include <string>

@@ -92,7 +92,7 @@ std::optional<int> pickPatch(const Visibility& rays, const Camera& camera, int w
 void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
                        const std::vector<Vec3>& radiosity, const ImageSettings& settings) {
   const std::vector<bool> twoSided = scene.twoSidedSurfaces();
-  Camera camera = scene.camera ? *scene.camera : PinholeCamera::framing(mesh.bounds());
+  Camera camera = sceneCamera(scene, mesh);
   RadianceImage img = renderRadiosity(mesh, rays, camera, radiosity, twoSided, settings);
   writePng(path, toneMap(img, autoExposure(img, scene, mesh)));
 }

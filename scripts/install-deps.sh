@@ -9,6 +9,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libstb-dev
   libgtest-dev libbenchmark-dev
   libvtk9-dev xvfb xauth libplplot-dev plplot-driver-cairo libnanoflann-dev
+  libopenexr-dev  # render --out x.exr
   clang libclang-rt-14-dev  # scripts/run-sanitizers.sh
 )
 

@@ -27,6 +27,10 @@ struct Range {
   }
 };
 
+/// Marker glyphs (UTF-8, drawn by the cairo driver's fonts), one per series.
+const char* const kMarkers[] = {"●", "■", "▲", "◆", "▼", "✚", "✖", "★"};
+constexpr int kMarkerCount = sizeof kMarkers / sizeof kMarkers[0];
+
 /// Data in axis space: log10 for logarithmic axes, dropping what cannot be shown.
 void axisData(const ChartSeries& s, const ChartPanel& p, std::vector<PLFLT>& x, std::vector<PLFLT>& y) {
   for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k) {
@@ -45,9 +49,18 @@ void labelAxis(PLINT axis, PLFLT value, char* label, PLINT length, PLPointer dat
   else std::snprintf(label, std::size_t(length), "%g", value);
 }
 
-void drawPanel(const ChartPanel& p) {
+void drawPanel(const ChartPanel& given) {
+  ChartPanel p = given;
+  std::vector<double> allX, allY;
+  for (const ChartSeries& s : p.series) {
+    allX.insert(allX.end(), s.x.begin(), s.x.end());
+    allY.insert(allY.end(), s.y.begin(), s.y.end());
+  }
+  p.logX = p.logX || needsLogAxis(allX);
+  p.logY = p.logY || needsLogAxis(allY);
   pladv(0);
-  plvpor(0.17, 0.95, 0.14, 0.9);
+  // The right quarter holds the legend, outside the curves.
+  plvpor(0.15, p.series.empty() ? 0.95 : 0.70, 0.14, 0.9);
   Range rx, ry;
   std::vector<std::vector<PLFLT>> xs(p.series.size()), ys(p.series.size());
   for (std::size_t i = 0; i < p.series.size(); ++i) {
@@ -68,18 +81,28 @@ void drawPanel(const ChartPanel& p) {
         p.logY ? "bcnstvog" : "bcnstvg", p.logY ? decadeStep(ry) : 0, p.logY ? 1 : 0);
   plslabelfunc(nullptr, nullptr);
   pllab(p.xLabel.c_str(), p.yLabel.c_str(), p.title.c_str());
-  std::vector<const char*> names;
+  std::vector<const char*> names, symbols;
   std::vector<PLINT> colours, opts;
   std::vector<PLFLT> widths;
   for (std::size_t i = 0; i < p.series.size(); ++i) {
     int colour = 2 + int(i % kPaletteSize);
+    const char* marker = kMarkers[i % kMarkerCount];
     plcol0(colour);
     plwidth(2.0);
-    if (xs[i].size() == 1) plpoin(1, xs[i].data(), ys[i].data(), 17);
-    else if (!xs[i].empty()) plline(PLINT(xs[i].size()), xs[i].data(), ys[i].data());
+    if (xs[i].size() > 1) plline(PLINT(xs[i].size()), xs[i].data(), ys[i].data());
+    // Evenly spaced markers, shifted per series so coinciding curves still show each one.
+    const std::size_t n = xs[i].size();
+    std::vector<PLFLT> mx, my;
+    const std::size_t step = std::max<std::size_t>(1, (n + kMarkersPerSeries - 1) / kMarkersPerSeries);
+    for (std::size_t k = (i * step / 3) % step; k < n; k += step) mx.push_back(xs[i][k]), my.push_back(ys[i][k]);
+    if (n > 0 && (n - 1) % step != (i * step / 3) % step) mx.push_back(xs[i][n - 1]), my.push_back(ys[i][n - 1]);
+    plschr(0, 0.7);
+    if (!mx.empty()) plstring(PLINT(mx.size()), mx.data(), my.data(), marker);
+    plschr(0, 0.85);
     names.push_back(p.series[i].name.c_str());
+    symbols.push_back(marker);
     colours.push_back(colour);
-    opts.push_back(PL_LEGEND_LINE);
+    opts.push_back(PL_LEGEND_LINE | PL_LEGEND_SYMBOL);
     widths.push_back(2.0);
   }
   plwidth(1.0);
@@ -89,16 +112,34 @@ void drawPanel(const ChartPanel& p) {
   } else {
     PLFLT legendW = 0, legendH = 0;
     std::vector<PLINT> zeros(names.size(), 0), styles(names.size(), 1);
-    std::vector<PLFLT> scales(names.size(), 1.0), zeroWidths(names.size(), 0.0);
-    std::vector<const char*> symbols(names.size(), "");
-    pllegend(&legendW, &legendH, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX, PL_POSITION_BOTTOM | PL_POSITION_LEFT,
-             0.02, 0.02, 0.1, 0, 1, 1, 0, 0, PLINT(names.size()), opts.data(), 1.0, 0.9, 2.0, 0, colours.data(),
-             names.data(), zeros.data(), zeros.data(), scales.data(), zeroWidths.data(), colours.data(), styles.data(),
-             widths.data(), colours.data(), scales.data(), zeros.data(), symbols.data());
+    std::vector<PLFLT> scales(names.size(), 1.0), zeroWidths(names.size(), 0.0), symbolScales(names.size(), 0.7);
+    std::vector<PLINT> ones(names.size(), 1);
+    pllegend(&legendW, &legendH, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
+             PL_POSITION_RIGHT | PL_POSITION_OUTSIDE, 0.02, 0.0, 0.06, 0, 1, 1, 0, 0,
+             PLINT(names.size()), opts.data(), 1.0, 0.8, 2.0, 0, colours.data(), names.data(), zeros.data(),
+             zeros.data(), scales.data(), zeroWidths.data(), colours.data(), styles.data(), widths.data(),
+             colours.data(), symbolScales.data(), ones.data(), symbols.data());
   }
 }
 
 }  // namespace
+
+bool needsLogAxis(const std::vector<double>& values) {
+  double lo = INFINITY, hi = 0;
+  for (double v : values) {
+    if (!std::isfinite(v)) continue;
+    if (v <= 0) return false;
+    lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  return hi > 0 && hi > kAutoLogSpan * lo;
+}
+
+std::size_t chartPoints(const std::vector<ChartPanel>& panels) {
+  std::size_t n = 0;
+  for (const ChartPanel& p : panels)
+    for (const ChartSeries& s : p.series) n += std::min(s.x.size(), s.y.size());
+  return n;
+}
 
 void writeLineChartPng(const std::string& path, const std::vector<ChartPanel>& panels, int width, int height) {
   if (panels.empty()) throw std::invalid_argument("writeLineChartPng: no panels");

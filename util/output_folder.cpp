@@ -137,4 +137,36 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
   }
 }
 
+void writeFileStreaming(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  if (fs::is_directory(path))
+    throw std::runtime_error(path + " is a folder, not a file. Fix: give a file name inside it or another path");
+  const std::string tmp = path + ".tmp";
+  {
+    std::vector<char> buffer(1 << 20);  // large writes, not one per line; outlives `out`
+    std::ofstream out;
+    out.rdbuf()->pubsetbuf(buffer.data(), std::streamsize(buffer.size()));
+    out.open(tmp, std::ios::binary);
+    if (!out) throw std::runtime_error("cannot write " + tmp + ". Fix: check that its folder exists and is writable");
+    try {
+      write(out);
+      out.flush();
+    } catch (...) {
+      out.close();
+      fs::remove(tmp);
+      throw;
+    }
+    if (!out) {
+      out.close();
+      fs::remove(tmp);
+      throw std::runtime_error("error while writing " + tmp + " (disk full?)");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp);
+    throw std::runtime_error("cannot replace " + path + ": " + ec.message());
+  }
+}
+
 }  // namespace radkit

@@ -1,6 +1,8 @@
 // OutputFolder: a run's files appear all together or not at all.
 #pragma once
 
+#include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -39,5 +41,9 @@ std::string csvField(const std::string& text);
 
 /// Writes `text` to `path` through a temporary file in the same folder and a rename.
 void writeFileAtomically(const std::string& path, const std::string& text);
+
+/// \brief The same for a file too large to build in memory: `write` streams into FILE.tmp
+/// (buffered), which is renamed when complete and removed on an error or exception.
+void writeFileStreaming(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace radkit

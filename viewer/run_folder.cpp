@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -195,6 +197,62 @@ FormFactorRows readFormFactorsMtx(const std::string& path) {
   return f;
 }
 
+FormFactorRows readFormFactorsBin(const std::string& path) {
+  // The layout is radiosity/form_factor_writers.h's writeFormFactorBinary (little-endian).
+  std::ifstream in = openOrFail(path);
+  const std::uintmax_t bytes = std::filesystem::file_size(path);
+  const std::string fix = ". Fix: write the folder again with `radkit run`";
+  auto read = [&](void* to, std::size_t size, const char* what) {
+    in.read(static_cast<char*>(to), std::streamsize(size));
+    if (!in) fail(path, std::string("ends inside ") + what + fix);
+  };
+  char magic[8];
+  read(magic, 8, "its header");
+  if (std::string(magic, 8) != "RADKITF1") fail(path, "is not a radkit form-factor file (no 'RADKITF1' header)" + fix);
+  std::int64_t n = 0, nonZeros = 0;
+  read(&n, 8, "its header");
+  read(&nonZeros, 8, "its header");
+  // Checked before allocating: each row takes at least 4 bytes, each non-zero 8 (sparse) or
+  // 4/n² of a dense row.
+  if (n <= 0 || n > 10000000 || nonZeros < 0 || double(nonZeros) > double(n) * double(n) ||
+      double(n) * 4 + 24 > double(bytes))
+    fail(path, "header says " + std::to_string(n) + " patches and " + std::to_string(nonZeros) + " non-zeros, more than a " +
+                   std::to_string(bytes) + "-byte file holds" + fix);
+  FormFactorRows f;
+  f.n = int(n);
+  f.rowStart.assign(std::size_t(n) + 1, 0);
+  f.column.reserve(std::size_t(std::min<std::int64_t>(nonZeros, std::int64_t(bytes / 4))));
+  f.value.reserve(f.column.capacity());
+  std::vector<std::uint32_t> columns;
+  std::vector<float> values;
+  for (std::int64_t i = 0; i < n; ++i) {
+    std::int32_t k = 0;
+    read(&k, 4, "a row");
+    if (k == -1) {
+      values.resize(std::size_t(n));
+      read(values.data(), values.size() * 4, "a dense row");
+      for (std::int64_t j = 0; j < n; ++j)
+        if (values[j] != 0) f.column.push_back(int(j)), f.value.push_back(values[j]);
+    } else {
+      if (k < 0 || k > n) fail(path, "row " + std::to_string(i) + " says " + std::to_string(k) + " entries" + fix);
+      columns.resize(std::size_t(k));
+      values.resize(std::size_t(k));
+      read(columns.data(), columns.size() * 4, "a row's columns");
+      read(values.data(), values.size() * 4, "a row's values");
+      for (std::int32_t e = 0; e < k; ++e) {
+        if (columns[e] >= std::uint64_t(n) || (e > 0 && columns[e] <= columns[e - 1]))
+          fail(path, "row " + std::to_string(i) + " has columns out of order or beyond " + std::to_string(n) + fix);
+        f.column.push_back(int(columns[e]));
+        f.value.push_back(values[e]);
+      }
+    }
+    f.rowStart[std::size_t(i) + 1] = static_cast<long long>(f.value.size());
+  }
+  for (double v : f.value)
+    if (!std::isfinite(v)) fail(path, "holds a value that is not a finite number" + fix);
+  return f;
+}
+
 std::vector<SolverHistory> readConvergenceCsv(const std::string& path) {
   CsvTable t = readCsv(path);
   const int cSolver = t.column("solver", path), cIter = t.column("iteration", path);
@@ -259,16 +317,20 @@ RunFolder readRunFolder(const std::string& folder) {
       fail(file("radiosity.vtp"), "patch " + std::to_string(i) + " has surface index " +
                                       std::to_string(run.patches.surface[i]) + ", but report.json lists " +
                                       std::to_string(run.report.surfaces.size()) + " surfaces");
-  if (fs::exists(file("formfactors.mtx"))) {
-    run.formFactors = readFormFactorsMtx(file("formfactors.mtx"));
+  // The binary first: written by every run, smaller and faster to read than the text.
+  const std::string matrixFile = fs::exists(file("formfactors.bin")) ? file("formfactors.bin") : file("formfactors.mtx");
+  if (fs::exists(matrixFile)) {
+    run.formFactors =
+        matrixFile == file("formfactors.bin") ? readFormFactorsBin(matrixFile) : readFormFactorsMtx(matrixFile);
     if (run.formFactors->n != run.patches.size())
-      fail(file("formfactors.mtx"), "is " + std::to_string(run.formFactors->n) + "×" +
+      fail(matrixFile, "is " + std::to_string(run.formFactors->n) + "×" +
                                         std::to_string(run.formFactors->n) + " but radiosity.vtp has " +
                                         std::to_string(run.patches.size()) + " patches (files of different runs?)");
   } else {
     run.formFactorsMissing = fs::exists(file("links.png"))
                                  ? "a hierarchical run has no F matrix: links.png draws its links as blocks of F"
-                                 : "no formfactors.mtx (large runs skip it: rerun with --write-matrix)";
+                                 : "no formfactors.bin or formfactors.mtx (written by `radkit run` and "
+                                   "`radkit formfactors`; `radkit solvers` writes neither: rerun with `radkit run`)";
     if (fs::exists(file("links.png"))) run.linksImage = file("links.png");
   }
   if (fs::exists(file("convergence.csv")))

@@ -26,7 +26,7 @@ struct PatchData {
   Bounds3 bounds() const;
 };
 
-/// formfactors.mtx as compressed rows: row i holds F_ij for j = column[k],
+/// formfactors.bin or formfactors.mtx as compressed rows: row i holds F_ij for j = column[k],
 /// k in [rowStart[i], rowStart[i+1]).
 struct FormFactorRows {
   int n = 0;
@@ -90,6 +90,8 @@ RunFolder readRunFolder(const std::string& folder);
 PatchData readPatchesVtp(const std::string& path);
 RunReport readRunReport(const std::string& path);
 FormFactorRows readFormFactorsMtx(const std::string& path);
+/// formfactors.bin (writeFormFactorBinary's layout); read instead of the .mtx when present.
+FormFactorRows readFormFactorsBin(const std::string& path);
 std::vector<SolverHistory> readConvergenceCsv(const std::string& path);
 std::vector<SurfaceSummary> readSurfacesCsv(const std::string& path);
 

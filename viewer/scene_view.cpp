@@ -27,6 +27,15 @@ namespace radkit::viewer {
 
 namespace {
 
+/// render/'s automatic camera on the run's patches, so the viewer and render.png agree.
+Camera framingCamera(const PatchData& patches) {
+  std::vector<Triangle> triangles;
+  for (const std::vector<int>& p : patches.polygons)
+    for (std::size_t k = 1; k + 1 < p.size(); ++k)
+      triangles.push_back({patches.points[p[0]], patches.points[p[k]], patches.points[p[k + 1]]});
+  return automaticCamera(triangles);
+}
+
 constexpr double kBackground[3] = {0.11, 0.11, 0.13};
 constexpr double kZeroColour[3] = {0.32, 0.32, 0.36};  // F_ij = 0: not seen from the picked patch
 constexpr double kAboveColour[3] = {1.0, 1.0, 1.0};    // emitters, above the false-colour range
@@ -128,7 +137,7 @@ void SceneView::setFontSize(int pixels) {
 }
 
 void SceneView::resetCamera() {
-  const Camera c = m_run.report.camera ? *m_run.report.camera : PinholeCamera::framing(m_run.patches.bounds());
+  const Camera c = m_run.report.camera ? *m_run.report.camera : framingCamera(m_run.patches);
   vtkCamera* cam = m_renderer->GetActiveCamera();
   cam->SetPosition(c.position.x, c.position.y, c.position.z);
   cam->SetFocalPoint(c.lookAt.x, c.lookAt.y, c.lookAt.z);

@@ -21,7 +21,7 @@ namespace radkit::viewer {
 class SceneView {
  public:
   /// \brief Builds the pipeline for `run` (which must outlive the view) and sets the camera:
-  /// the scene's camera from report.json, or render/'s framing camera when it has none.
+  /// the scene's camera from report.json, or render/'s automaticCamera when it has none.
   explicit SceneView(const RunFolder& run);
   SceneView(const SceneView&) = delete;
   SceneView& operator=(const SceneView&) = delete;

@@ -97,7 +97,8 @@ int runViewer(const ViewerOptions& o) {
       throw InputError("--screenshot " + o.screenshot + ": folder " + folder.string() +
                        " does not exist; create it first");
   }
-  const RunFolder run = readRunFolder(o.runFolder);
+  RunFolder run = readRunFolder(o.runFolder);
+  if (o.camera) run.report.camera = o.camera;
   requireInputs(run, mode);
   const DisplayConnection display;
   ViewerWindow window(run, settings, display.id(), o.width, o.height, !o.screenshot.empty());

@@ -2,7 +2,10 @@
 // screenshots. This header is VTK-free: callers (apps/, tests) never see a VTK type.
 #pragma once
 
+#include <optional>
 #include <string>
+
+#include "geometry/scene.h"
 
 namespace radkit::viewer {
 
@@ -17,6 +20,7 @@ struct ViewerOptions {
   /// False colour of luminance in cd/m² (683 lm/W, Rec. 709 weights, L = B/π) instead of W/m².
   bool photometric = false;
   double exposure = 0;  ///< multiplier on L = B/π for true colour; 0: automatic
+  std::optional<Camera> camera;  ///< replaces the run's camera (radkit view --camera)
 };
 
 /// \brief Opens the viewer on a run folder, or with `screenshot` set renders the chosen mode

@@ -41,9 +41,11 @@ TEST(FormFactorsCli, HowellParallelAndPerpendicularSquares) {
   auto r = runRadkit("formfactors '" + dataPath("parallel-squares.json") + "' --max-area 0.05 --out '" + dir.path("p") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NEAR(surfaceFactor(dir.path("p/surface_formfactors.csv"), "lower", "upper"), 0.19982489569838746, 1e-4);
-  for (const char* f : {"formfactors.mtx", "formfactors.png", "patches.csv", "report.json"})
+  for (const char* f : {"formfactors.bin", "formfactors.png", "patches.csv", "report.json"})
     EXPECT_TRUE(fs::exists(dir.path(std::string("p/") + f))) << f;
-  r = runRadkit("formfactors '" + dataPath("perpendicular-squares.json") + "' --max-area 0.05 --out '" + dir.path("q") + "'");
+  EXPECT_FALSE(fs::exists(dir.path("p/formfactors.mtx"))) << "the text matrix is written only when asked";
+  r = runRadkit("formfactors '" + dataPath("perpendicular-squares.json") + "' --max-area 0.05 --write-matrix --out '" +
+                dir.path("q") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NEAR(surfaceFactor(dir.path("q/surface_formfactors.csv"), "floor", "wall"), 0.20004377607540316, 1e-4);
   std::ifstream mtx(dir.path("q/formfactors.mtx"));
@@ -120,8 +122,9 @@ TEST(RunCli, CornellBoxEveryOutput) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("energy balance"), std::string::npos);
   for (const char* f : {"patches.csv", "surfaces.csv", "surface_formfactors.csv", "radiosity.vtp", "convergence.csv",
-                        "convergence.png", "report.json", "render.png", "formfactors.png", "formfactors.mtx"})
+                        "convergence.png", "report.json", "render.png", "formfactors.png", "formfactors.bin"})
     EXPECT_TRUE(fs::exists(dir.path(std::string("run/") + f))) << f;
+  EXPECT_FALSE(fs::exists(dir.path("run/formfactors.mtx")));
   for (auto& row : readCsv(dir.path("run/patches.csv")))
     for (const char* c : {"b_r", "b_g", "b_b"}) {
       double b = std::stod(row[c]);

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "tests/common/open_box.h"
 #include "tests/common/test_util.h"
 
 namespace radkit {
@@ -200,6 +201,48 @@ TEST(SceneLoader, SelfIntersectionIsAWarning) {
   loadScene(scene, &report);
   ASSERT_EQ(report.warnings.size(), 1u);
   EXPECT_NE(report.warnings[0].find("intersects itself"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace radkit
+
+namespace radkit {
+namespace {
+
+TEST(SceneLoader, JsonIncludesObjKeepingItsMtlMaterials) {
+  test::TempDir dir;
+  test::writeOpenBoxObj(dir, true);
+  // The scene adds units, a camera, a scale and one override ("red" becomes blue).
+  const std::string json = dir.file("scene.json", R"({"units": "cm",
+    "materials": {"red": {"reflectance": [0.1, 0.1, 0.6]}},
+    "surfaces": [{"include": "box.obj", "transform": {"scale": 100}}],
+    "camera": {"position": [50, 50, 300], "look_at": [50, 50, 0]}})");
+  const Scene s = loadScene(json);
+  EXPECT_EQ(s.units, "cm");
+  ASSERT_TRUE(s.camera);
+  ASSERT_EQ(s.surfaces.size(), 6u);
+  auto material = [&](const std::string& surface) {
+    for (const Surface& x : s.surfaces)
+      if (x.name == surface) return s.materials[x.material];
+    ADD_FAILURE() << "no surface " << surface;
+    return Material{};
+  };
+  EXPECT_DOUBLE_EQ(material("left").diffuseAlbedo().z, 0.6) << "the scene's material overrides the MTL's";
+  EXPECT_DOUBLE_EQ(material("right").diffuseAlbedo().y, 0.5) << "Kd from the MTL";
+  EXPECT_DOUBLE_EQ(material("light").emission.x, 20) << "Ke from the MTL";
+  EXPECT_NEAR(s.bounds().hi.z, 100, 1e-9) << "the transform scales the included geometry";
+
+  // A missing file and a non-OBJ are refused with the surface and the fix.
+  const std::string missing = dir.file("missing.json", R"({"surfaces": [{"include": "nope.obj"}]})");
+  try {
+    loadScene(missing);
+    ADD_FAILURE() << "a missing include was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("surfaces[0]"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("nope.obj"), std::string::npos) << e.what();
+  }
+  const std::string ply = dir.file("ply.json", R"({"surfaces": [{"include": "box.ply"}]})");
+  EXPECT_THROW(loadScene(ply), InputError);
 }
 
 }  // namespace

@@ -52,7 +52,7 @@ TEST(FormFactorWriters, ExactMatrixMarket) {
     int i, j;
     double f;
     in >> i >> j >> f;
-    EXPECT_EQ(f, formFactorAt(r.matrix, i - 1, j - 1));  // 17 digits: round-trips exactly
+    EXPECT_EQ(f, formFactorAt(r.matrix, i - 1, j - 1));  // shortest round-trip text: exact
   }
 }
 

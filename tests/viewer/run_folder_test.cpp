@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "geometry/scene_loader.h"
+#include "radiosity/form_factor_writers.h"
 #include "tests/common/test_util.h"
 #include "tests/viewer/test_run.h"
 
@@ -95,7 +96,7 @@ TEST_F(RunFolderTest, OptionalFilesMayBeMissing) {
   std::filesystem::remove(file("convergence.csv"));
   const RunFolder run = readRunFolder(folder());
   EXPECT_FALSE(run.formFactors);
-  EXPECT_NE(run.formFactorsMissing.find("--write-matrix"), std::string::npos);
+  EXPECT_NE(run.formFactorsMissing.find("formfactors.bin"), std::string::npos);
   EXPECT_TRUE(run.convergence.empty());
   EXPECT_NE(run.convergenceMissing.find("convergence.csv"), std::string::npos);
 }
@@ -169,6 +170,44 @@ TEST_F(RunFolderTest, MeshOutputWithoutRadiosityIsRefused) {
   overwrite("radiosity.vtp", text);
   const std::string e = inputError([&] { readRunFolder(folder()); });
   EXPECT_NE(e.find("radiosity.vtp: no cell array 'radiosity'"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace radkit::viewer
+
+namespace radkit::viewer {
+namespace {
+
+// formfactors.bin, written by every run, holds what the .mtx holds (in float precision):
+// sparse rows, dense rows and empty rows alike; a truncated file is refused by name.
+TEST(FormFactorBinary, RoundTripsAndPrefersTheBinary) {
+  radkit::test::TempDir dir;
+  const int n = 5;
+  DenseMatrix<double> m(n);
+  m(0, 3) = 0.25;                                     // sparse row
+  for (int j = 0; j < n; ++j) m(2, j) = 0.1 * (j + 1);  // dense row
+  m(4, 0) = 1.0 / 3;                                  // row 1 and 3 empty
+  const FormFactorMatrix f = m;
+  writeFormFactorBinary(dir.path("formfactors.bin"), f);
+  writeMatrixMarket(dir.path("formfactors.mtx"), f, {"test"});
+  const FormFactorRows bin = readFormFactorsBin(dir.path("formfactors.bin"));
+  const FormFactorRows mtx = readFormFactorsMtx(dir.path("formfactors.mtx"));
+  ASSERT_EQ(bin.n, n);
+  ASSERT_EQ(bin.rowStart, mtx.rowStart);
+  ASSERT_EQ(bin.column, mtx.column);
+  for (std::size_t k = 0; k < bin.value.size(); ++k) EXPECT_FLOAT_EQ(float(bin.value[k]), float(mtx.value[k]));
+  EXPECT_EQ(bin.row(2)[4], float(0.5));
+  EXPECT_FALSE(std::filesystem::exists(dir.path("formfactors.bin.tmp")));
+
+  const auto size = std::filesystem::file_size(dir.path("formfactors.bin"));
+  std::filesystem::resize_file(dir.path("formfactors.bin"), size - 3);
+  try {
+    readFormFactorsBin(dir.path("formfactors.bin"));
+    ADD_FAILURE() << "a truncated file was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("formfactors.bin: ends inside"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Fix:"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

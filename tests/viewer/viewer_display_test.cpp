@@ -8,6 +8,11 @@
 #include <fstream>
 #include <set>
 
+#include "geometry/patch_io.h"
+#include "geometry/scene_loader.h"
+#include "geometry/subdivision.h"
+#include "render/camera.h"
+#include "tests/common/open_box.h"
 #include "tests/common/test_util.h"
 #include "tests/viewer/test_run.h"
 #include "util/canvas.h"
@@ -185,6 +190,34 @@ TEST_F(ViewerDisplay, BackOfAPatchIsNotDrawnOrPicked) {
   test::projectToPixel({-0.5, -0.25, 0}, w, h, x, y);
   EXPECT_GT(meanColour(c, x, y).x, 100) << "the left wall still faces the camera";
   EXPECT_EQ(pickPatchAt(folder(), w, h, int(x), int(y)), 0);
+}
+
+// A run with no camera (an OBJ): the viewer looks into the open box through its open side,
+// as render.png does, and not through the back of the back wall.
+TEST_F(ViewerDisplay, RunWithoutCameraIsSeenThroughItsOpenSide) {
+  for (bool plusZ : {true, false}) {
+    const Scene scene = loadScene(radkit::test::writeOpenBoxObj(m_dir, plusZ, plusZ ? "plus" : "minus"));
+    const PatchMesh mesh = subdivide(scene, {0, 100});
+    const std::vector<Vec3> b(mesh.size(), Vec3{1, 1, 1});
+    const std::string run = m_dir.path(plusZ ? "run-plus" : "run-minus");
+    std::filesystem::create_directories(run);
+    writePatchesVtp(run + "/radiosity.vtp", scene, mesh, &b);
+    std::ofstream(run + "/report.json")
+        << R"({"command": "run", "scene": {"name": "box", "file": "box.obj", "units": "m",
+              "surfaces": ["back", "floor", "ceiling", "left", "right", "light"]}})";
+    const int w = 200, h = 200;
+    const PinholeCamera cam(automaticCamera(mesh), w, h);
+    EXPECT_EQ(cam.origin().z > 1, plusZ);
+    for (const auto& [point, surface] : {std::pair<Vec3, int>{{0, 0.5, plusZ ? 0.5 : -0.5}, 3},
+                                         std::pair<Vec3, int>{{1, 0.5, plusZ ? 0.5 : -0.5}, 4},
+                                         std::pair<Vec3, int>{{0.5, 0.5, 0}, 0}}) {
+      double x, y;
+      ASSERT_TRUE(cam.project(point, x, y));
+      const int picked = pickPatchAt(run, w, h, int(x), int(y));
+      ASSERT_GE(picked, 0) << "nothing under " << x << ", " << y;
+      EXPECT_EQ(mesh.patches[picked].surface, surface) << (plusZ ? "+z" : "-z") << " box, pixel " << x << ", " << y;
+    }
+  }
 }
 
 }  // namespace

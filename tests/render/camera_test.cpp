@@ -1,0 +1,95 @@
+// The automatic camera (one for every image and the viewer), --camera, and render of an OBJ.
+#include "render/camera.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "geometry/scene_loader.h"
+#include "geometry/subdivision.h"
+#include "render/hdr_io.h"
+#include "tests/common/open_box.h"
+
+namespace radkit {
+namespace {
+
+TEST(AutomaticCamera, LooksIntoAnOpenBoxThroughItsOpenSide) {
+  test::TempDir dir;
+  const Scene plus = loadScene(test::writeOpenBoxObj(dir, true, "plus"));
+  const Camera c = automaticCamera(plus);
+  EXPECT_GT(c.position.z, 1) << "the box opens toward +z";
+  EXPECT_LT(c.lookAt.z, c.position.z);
+  EXPECT_EQ(c.up.y, 1);
+  // The patches of the same scene (the viewer's and render.png's input) agree.
+  const Camera m = automaticCamera(subdivide(plus, {0, 200}));
+  EXPECT_GT(m.position.z, 1);
+
+  const Scene minus = loadScene(test::writeOpenBoxObj(dir, false, "minus"));
+  EXPECT_LT(automaticCamera(minus).position.z, -1) << "the box opens toward -z";
+}
+
+TEST(AutomaticCamera, SeesAnOpenBoxUnmirrored) {
+  // From the open side, with +y up, the red wall (x = 0) of the +z box is on the image's left.
+  test::TempDir dir;
+  const Scene scene = loadScene(test::writeOpenBoxObj(dir, true));
+  const PinholeCamera cam(automaticCamera(scene), 64, 64);
+  double x, y;
+  ASSERT_TRUE(cam.project({0, 0.5, 0.5}, x, y));
+  EXPECT_LT(x, 32);
+  ASSERT_TRUE(cam.project({1, 0.5, 0.5}, x, y));
+  EXPECT_GT(x, 32);
+}
+
+TEST(AutomaticCamera, ClosedModelFromItsFrontFacingSide) {
+  // One outward-facing square at y = 0 (a floor seen from above) and nothing else: only the +y
+  // side sees a front face.
+  std::vector<Triangle> t{{Vec3{0, 0, 0}, Vec3{0, 0, 1}, Vec3{1, 0, 1}}, {Vec3{0, 0, 0}, Vec3{1, 0, 1}, Vec3{1, 0, 0}}};
+  const Camera c = automaticCamera(t);
+  EXPECT_GT(c.position.y, 0.5);
+  EXPECT_GT(length(cross(c.lookAt - c.position, c.up)), 0) << "up must not be the view direction";
+}
+
+TEST(ParseCamera, GivesEveryPartAndRefusesNonsense) {
+  const Camera c = parseCamera("--camera", "0,1,4,0,1,0,1,0,0,30");
+  EXPECT_EQ(c.position.z, 4);
+  EXPECT_EQ(c.lookAt.y, 1);
+  EXPECT_EQ(c.up.x, 1);
+  EXPECT_EQ(c.fovDeg, 30);
+  EXPECT_EQ(parseCamera("--camera", "0,1,4,0,1,0").up.y, 1);
+  for (const char* bad : {"0,1,4", "0,1,4,0,1,x", "0,1,4,0,1,4", "0,1,4,0,1,0,0,0,1,180", "0,5,0,0,0,0", "1,2,3,4,5,6,7"}) {
+    try {
+      parseCamera("--camera", bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("Fix:"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("--camera"), std::string::npos) << e.what();
+    }
+  }
+}
+
+double meanRadiance(const RadianceImage& img) {
+  double sum = 0;
+  for (const Vec3& v : img.radiance) sum += v.x + v.y + v.z;
+  return sum / (3.0 * img.radiance.size());
+}
+
+TEST(RenderCamera, OpenBoxObjIsNotBlack) {
+  // CornellBox-Original.obj's shape: open toward +z. The old camera sat on -z and saw the backs.
+  test::TempDir dir;
+  const std::string obj = test::writeOpenBoxObj(dir, true);
+  const std::string common = " --shading radiosity --patches 60 --size 16x16 --out ";
+  test::RunResult r = test::runRadkit("render '" + obj + "'" + common + dir.path("auto.pfm"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_GT(meanRadiance(readPfm(dir.path("auto.pfm"))), 0.01);
+  // --camera replaces the automatic one: from behind the back wall, nothing faces it.
+  r = test::runRadkit("render '" + obj + "' --camera 0.5,0.5,-3,0.5,0.5,0" + common + dir.path("behind.pfm"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(meanRadiance(readPfm(dir.path("behind.pfm"))), 0);
+  r = test::runRadkit("render '" + obj + "' --camera 0,0,1" + common + dir.path("bad.pfm"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("Fix:"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("bad.pfm")));
+}
+
+}  // namespace
+}  // namespace radkit
