@@ -1,6 +1,7 @@
 // Mesh and OBJ scene reading. PLY/OFF/STL go through OpenMesh's readers; OBJ through
 // tinyobjloader (double build) because it keeps groups and MTL materials.
 #include "geometry/mesh_reader.h"
+#include "util/format.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
@@ -192,7 +193,52 @@ RawMesh readMeshFile(const std::string& path, bool repair) {
                    "'. Fix: use .obj, .ply, .off or .stl.");
 }
 
-Scene loadObjScene(const std::string& path) {
+namespace {
+
+/// An MTL material as radkit reads it (the MTL format of Wavefront's Advanced Visualizer): Kd is
+/// the diffuse albedo, Ke the emission in W/m², Ks and Ns a glossy Phong lobe; Ka (ambient
+/// colour) has no physical meaning and is ignored. Each assumption is a warning naming the
+/// material.
+Material mtlMaterial(const tinyobj::material_t& m, const std::string& path, std::vector<std::string>* warnings) {
+  auto warn = [&](const std::string& what) {
+    if (warnings) warnings->push_back(path + ": MTL material \"" + m.name + "\": " + what);
+  };
+  const Vec3 kd{m.diffuse[0], m.diffuse[1], m.diffuse[2]}, ks{m.specular[0], m.specular[1], m.specular[2]};
+  const Vec3 ka{m.ambient[0], m.ambient[1], m.ambient[2]};
+  Material mat;
+  mat.name = m.name;
+  mat.emission = {m.emission[0], m.emission[1], m.emission[2]};
+  if (maxComponent(ks) > 0) {
+    // Phong conserves energy only with kd + ks < 1; exporters often write Ks = 1 beside Kd.
+    double sum = 0;
+    for (int c = 0; c < 3; ++c) sum = std::max(sum, kd[c] + ks[c]);
+    const double scale = sum >= 1 ? 0.999 / sum : 1.0;
+    const double n = m.shininess > 0 ? m.shininess : 32;
+    mat.bsdf = "phong";
+    mat.params.set("kd", kd * scale);
+    mat.params.set("ks", ks * scale);
+    mat.params.set("shininess", n);
+    warn("Ks read as a glossy Phong lobe (shininess " + formatNumber(n) + "); radiosity sees only Kd" +
+         (scale < 1 ? ", and Kd + Ks = " + formatNumber(sum) + " was scaled by " + formatNumber(scale) +
+                          " to conserve energy"
+                    : ""));
+  } else {
+    mat.params.set("reflectance", kd);
+    if (maxComponent(kd) <= 0 && !mat.emits()) warn("Kd is 0 and there is no Ks: it absorbs all light (black)");
+  }
+  if (maxComponent(ka) > 0 && !mat.emits())
+    warn("Ka (ambient colour) is ignored; if this is a light, give it Ke (emission in W/m²)");
+  try {
+    resolveMaterial(mat);
+  } catch (const BsdfParamError& e) {
+    throw InputError(path + ": MTL material \"" + m.name + "\": " + e.what());
+  }
+  return mat;
+}
+
+}  // namespace
+
+Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) {
   if (!fs::exists(path))
     throw InputError(path + ": scene file not found.");
   checkMeshStructure(path);
@@ -201,18 +247,11 @@ Scene loadObjScene(const std::string& path) {
   Scene scene;
   scene.file = path;
   scene.name = fs::path(path).stem().string();
-  for (const auto& m : reader.GetMaterials()) {
-    Material mat;
-    mat.name = m.name;
-    mat.params.set("reflectance", Vec3{m.diffuse[0], m.diffuse[1], m.diffuse[2]});
-    mat.emission = {m.emission[0], m.emission[1], m.emission[2]};
-    try {
-      resolveMaterial(mat);
-    } catch (const BsdfParamError& e) {
-      throw InputError(path + ": MTL material \"" + m.name + "\": Kd " + e.what());
-    }
-    scene.materials.push_back(mat);
-  }
+  const std::string mtlWarning = reader.Warning();
+  if (reader.GetMaterials().empty() && mtlWarning.find("not found") != std::string::npos)
+    throw InputError(path + ": its MTL file was not found (" + mtlWarning.substr(0, mtlWarning.find('\n')) +
+                     "). Fix: put the .mtl named by \"mtllib\" next to the OBJ.");
+  for (const auto& m : reader.GetMaterials()) scene.materials.push_back(mtlMaterial(m, path, warnings));
   std::vector<Vec3> all = objVertices(reader.GetAttrib());
   for (const auto& shape : reader.GetShapes()) {
     std::vector<Face> faces;

@@ -25,6 +25,6 @@ RawMesh readMeshFile(const std::string& path, bool repair = false);
 
 /// \brief Loads an OBJ with its MTL as a whole scene: each OBJ object or group is a named
 /// surface; MTL Kd becomes reflectance and Ke emission.
-Scene loadObjScene(const std::string& path);
+Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace radkit

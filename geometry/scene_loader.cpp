@@ -345,7 +345,13 @@ Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& 
   LoadReport& out = report ? *report : local;
   Scene scene;
   if (ext == ".json") scene = loadJsonScene(path, options, out);
-  else if (ext == ".obj") scene = loadObjScene(path);
+  else if (ext == ".obj") {
+    scene = loadObjScene(path, &out.warnings);
+    if (std::none_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.emits(); }))
+      throw InputError(path + ": no material emits light, so every result would be black. Fix: give the "
+                       "light's material an emission \"Ke r g b\" (W/m²) in the MTL file; Ka is ambient "
+                       "colour, which radkit does not read as emission.");
+  }
   else throw InputError(path + ": unknown scene format '" + ext + "'. Fix: give a .json scene or an .obj with its .mtl.");
   if (ext == ".obj" && !options.units.empty()) scene.units = options.units;
   validateScene(scene, out, options.repair);

@@ -247,3 +247,55 @@ TEST(SceneLoader, JsonIncludesObjKeepingItsMtlMaterials) {
 
 }  // namespace
 }  // namespace radkit
+
+namespace radkit {
+namespace {
+
+const char* kBox =
+    "mtllib box.mtl\n"
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 0 1 1\nv 1 1 1\nv 1 0 1\n"
+    "o floor\nusemtl shiny\nf 1 2 3 4\n"
+    "o lamp\nusemtl lamp\nf 5 6 7 8\n";
+
+TEST(SceneLoader, MtlSemanticsAreWarnedNotSilent) {
+  test::TempDir dir;
+  // Ks only (Kd 0): a glossy Phong material, not black; Ka is ambient colour, not emission.
+  dir.file("box.mtl", "newmtl shiny\nKd 0 0 0\nKa 1 1 1\nKs 0.5 0.5 0.5\nNs 20\nnewmtl lamp\nKd 0.5 0.5 0.5\nKe 5 5 5\n");
+  LoadReport report;
+  Scene scene = loadScene(dir.file("box.obj", kBox), &report);
+  const Material& shiny = scene.materials[scene.findMaterial("shiny")];
+  EXPECT_EQ(shiny.bsdf, "phong");
+  EXPECT_NE(shiny.description.find("ks=[0.5, 0.5, 0.5]"), std::string::npos) << shiny.description;
+  std::string all;
+  for (const std::string& w : report.warnings) all += w + "\n";
+  EXPECT_NE(all.find("\"shiny\": Ks read as a glossy Phong lobe"), std::string::npos) << all;
+  EXPECT_NE(all.find("\"shiny\": Ka (ambient colour) is ignored"), std::string::npos) << all;
+
+  // Kd + Ks above 1 is scaled below 1, with a warning.
+  dir.file("box.mtl", "newmtl shiny\nKd 0.8 0.8 0.8\nKs 1 1 1\nnewmtl lamp\nKe 5 5 5\n");
+  report = {};
+  scene = loadScene(dir.file("box.obj", kBox), &report);
+  EXPECT_LT(scene.materials[scene.findMaterial("shiny")].diffuseAlbedo().x, 0.8 / 1.8 + 1e-9);
+
+  // A light given only by Ka: no emitter at all is an error naming the fix.
+  dir.file("box.mtl", "newmtl shiny\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0.5 0.5 0.5\nKa 17 12 4\n");
+  try {
+    loadScene(dir.file("box.obj", kBox));
+    ADD_FAILURE() << "a scene without emitters loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no material emits"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Ke"), std::string::npos) << e.what();
+  }
+
+  // A missing MTL is named as such, not as "has no material".
+  std::remove(dir.path("box.mtl").c_str());
+  try {
+    loadScene(dir.file("box.obj", kBox));
+    ADD_FAILURE() << "loaded without its MTL";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("MTL file was not found"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace radkit
