@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
 
 #include "geometry/scene_loader.h"
 
@@ -26,13 +27,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kFormat = RADKIT_FUZZ_FORMAT;
+constexpr std::string_view kFormat = RADKIT_FUZZ_FORMAT;
 
 /// The target's folder, made once per process and removed at exit.
 const fs::path& workDir() {
   static const fs::path dir = [] {
     fs::path d = fs::temp_directory_path() /
-                 ("radkit-fuzz-" + kFormat + "-" + std::to_string(::getpid()));
+                 ("radkit-fuzz-" + std::string(kFormat) + "-" + std::to_string(::getpid()));
     fs::create_directories(d);
     std::atexit([] {
       std::error_code ec;
@@ -69,9 +70,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
   } else {
     scene = dir / "scene.json";
     const std::string json = R"({"materials": {"lamp": {"reflectance": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
-      "surfaces": [{"name": "m", "material": "lamp", "mesh": "m.)" + kFormat + R"("}]})";
+      "surfaces": [{"name": "m", "material": "lamp", "mesh": "m.)" + std::string(kFormat) + R"("}]})";
     writeFile(scene, json.data(), json.size());
-    writeFile(dir / ("m." + kFormat), data, size);
+    writeFile(dir / ("m." + std::string(kFormat)), data, size);
   }
   try {
     radkit::LoadReport report;
