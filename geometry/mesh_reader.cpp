@@ -12,6 +12,7 @@
 #include <map>
 #include <filesystem>
 #include <sstream>
+#include <unordered_map>
 
 #include "geometry/mesh_structure.h"
 #include "geometry/scene_loader.h"
@@ -156,9 +157,11 @@ std::vector<Vec3> objVertices(const tinyobj::attrib_t& attrib) {
   return vertices;
 }
 
-/// Keeps only the vertices the faces use, renumbered in first-use order.
-void compactVertices(const std::vector<Vec3>& all, Surface& surface) {
-  std::vector<int> map(all.size(), -1);
+/// Keeps only the vertices the faces use, renumbered in first-use order. `map` has one entry
+/// per vertex of `all`, all -1, and is left so: it is shared by the surfaces, because a fresh
+/// one per surface costs surfaces × vertices (an OBJ of many one-face groups).
+void compactVertices(const std::vector<Vec3>& all, Surface& surface, std::vector<int>& map) {
+  std::vector<int> used;  // the file's indices, in first-use order
   for (std::size_t face = 0; face < surface.faces.size(); ++face)
     for (int& v : surface.faces[face].vertices) {
       if (v < 0 || v >= int(all.size()))  // checkMeshStructure refuses these first
@@ -167,9 +170,11 @@ void compactVertices(const std::vector<Vec3>& all, Surface& surface) {
       if (map[v] < 0) {
         map[v] = static_cast<int>(surface.vertices.size());
         surface.vertices.push_back(all[v]);
+        used.push_back(v);
       }
       v = map[v];
     }
+  for (int v : used) map[v] = -1;
 }
 
 }  // namespace
@@ -253,34 +258,38 @@ Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) 
                      "). Fix: put the .mtl named by \"mtllib\" next to the OBJ.");
   for (const auto& m : reader.GetMaterials()) scene.materials.push_back(mtlMaterial(m, path, warnings));
   std::vector<Vec3> all = objVertices(reader.GetAttrib());
+  // Surface index by name: looked up once per face, so it must not be a scan (a scan per face
+  // over the group's faces made a 80 000-face OBJ take minutes; found by fuzzing).
+  std::unordered_map<std::string, std::size_t> surfaceByName;
   for (const auto& shape : reader.GetShapes()) {
     std::vector<Face> faces;
     std::vector<int> materialIds;
     appendShapeFaces(shape, faces, &materialIds);
     // A surface has one material: an OBJ group that switches material mid-way is split.
+    const std::string group = shape.name.empty() ? "object" : shape.name;
+    const bool split = std::any_of(materialIds.begin(), materialIds.end(),
+                                   [&](int m) { return m != materialIds[0]; });
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      int mat = materialIds[f];
-      std::string name = shape.name.empty() ? "object" : shape.name;
-      bool split = std::any_of(materialIds.begin(), materialIds.end(), [&](int m) { return m != materialIds[0]; });
+      const int mat = materialIds[f];
+      std::string name = group;
       if (split) name += "." + (mat >= 0 ? scene.materials[mat].name : std::string("default"));
-      auto it = std::find_if(scene.surfaces.begin(), scene.surfaces.end(),
-                             [&](const Surface& s) { return s.name == name; });
-      if (it == scene.surfaces.end()) {
+      auto [it, added] = surfaceByName.emplace(name, scene.surfaces.size());
+      if (added) {
         Surface s;
         s.name = name;
         s.material = mat;
         s.source = path + ": object '" + name + "'";
         scene.surfaces.push_back(s);
-        it = scene.surfaces.end() - 1;
       }
-      it->faces.push_back(faces[f]);
+      scene.surfaces[it->second].faces.push_back(std::move(faces[f]));
     }
   }
+  std::vector<int> vertexMap(all.size(), -1);
   for (Surface& s : scene.surfaces) {
     if (s.material < 0)
       throw InputError(s.source + " has no material (usemtl). Fix: assign a material with "
                        "Kd (and Ke for emitters) in the MTL file.");
-    compactVertices(all, s);
+    compactVertices(all, s, vertexMap);
   }
   return scene;
 }

@@ -8,6 +8,7 @@
 
 #include "geometry/patch_mesh.h"
 #include "geometry/vec3.h"
+#include "util/check.h"
 
 namespace radkit {
 
@@ -61,14 +62,18 @@ class Hierarchy {
   const PatchMesh& base() const { return m_base; }
   int root() const { return 0; }
   int size() const { return static_cast<int>(m_nodes.size()); }
-  const HNode& operator[](int i) const { return m_nodes[i]; }
+  const HNode& operator[](int i) const {
+    RADKIT_DCHECK(i >= 0 && i < size());
+    return m_nodes[i];
+  }
   const HPolygon& polygon(int node) const { return m_polygons[m_nodes[node].polygon]; }
   const SurfaceRadiometry& radiometry(int node) const {
     return m_surfaces[m_base.patches[m_nodes[node].face].surface];
   }
   /// Child k of a node (k < childCount).
   int child(int node, int k) const {
-    const HNode& n = m_nodes[node];
+    const HNode& n = (*this)[node];
+    RADKIT_DCHECK(k >= 0 && k < n.childCount);
     return n.element ? n.firstChild + k : (k == 0 ? n.firstChild : n.rightChild);
   }
   int surfaceOf(int node) const { return m_base.patches[m_nodes[node].face].surface; }

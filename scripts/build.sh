@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages (idempotent) and builds radkit in Release into build/.
+# RADKIT_WERROR=ON (CI sets it) turns warnings into errors.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DRADKIT_TESTS=ON \
+  -DRADKIT_WERROR="${RADKIT_WERROR:-OFF}" \
   -DRADKIT_TEST_FOLDERS="solvers;bsdf;geometry;radiosity;hierarchy;render;photon;viewer;apps;extending" >/dev/null
 cmake --build build -j"${RADKIT_JOBS:-2}"

@@ -10,6 +10,8 @@
 #include <variant>
 #include <vector>
 
+#include "util/check.h"
+
 namespace radkit {
 
 /// Square dense matrix, row-major.
@@ -22,16 +24,29 @@ class DenseMatrix {
 
   int rows() const { return m_n; }
   int cols() const { return m_n; }
-  T& operator()(int i, int j) { return m_data[static_cast<std::size_t>(i) * m_n + j]; }
-  T operator()(int i, int j) const { return m_data[static_cast<std::size_t>(i) * m_n + j]; }
-  T* row(int i) { return m_data.data() + static_cast<std::size_t>(i) * m_n; }
-  const T* row(int i) const { return m_data.data() + static_cast<std::size_t>(i) * m_n; }
+  T& operator()(int i, int j) {
+    RADKIT_DCHECK(inRange(i) && inRange(j));
+    return m_data[static_cast<std::size_t>(i) * m_n + j];
+  }
+  T operator()(int i, int j) const {
+    RADKIT_DCHECK(inRange(i) && inRange(j));
+    return m_data[static_cast<std::size_t>(i) * m_n + j];
+  }
+  T* row(int i) {
+    RADKIT_DCHECK(inRange(i));
+    return m_data.data() + static_cast<std::size_t>(i) * m_n;
+  }
+  const T* row(int i) const {
+    RADKIT_DCHECK(inRange(i));
+    return m_data.data() + static_cast<std::size_t>(i) * m_n;
+  }
   std::size_t bytes() const { return m_data.size() * sizeof(T); }
   std::size_t nonZeros() const;
 
   static std::size_t bytesFor(int n) { return static_cast<std::size_t>(n) * n * sizeof(T); }
 
  private:
+  bool inRange(int i) const { return i >= 0 && i < m_n; }
   int m_n = 0;
   std::vector<T> m_data;
 };
@@ -53,10 +68,22 @@ class CsrMatrix {
 
   int rows() const { return m_n; }
   int cols() const { return m_n; }
-  std::int64_t rowBegin(int i) const { return m_rowStart[i]; }
-  std::int64_t rowEnd(int i) const { return m_rowStart[i + 1]; }
-  int column(std::int64_t k) const { return m_column[k]; }
-  T value(std::int64_t k) const { return m_value[k]; }
+  std::int64_t rowBegin(int i) const {
+    RADKIT_DCHECK(i >= 0 && i < m_n);
+    return m_rowStart[i];
+  }
+  std::int64_t rowEnd(int i) const {
+    RADKIT_DCHECK(i >= 0 && i < m_n);
+    return m_rowStart[i + 1];
+  }
+  int column(std::int64_t k) const {
+    RADKIT_DCHECK(k >= 0 && k < static_cast<std::int64_t>(m_column.size()));
+    return m_column[k];
+  }
+  T value(std::int64_t k) const {
+    RADKIT_DCHECK(k >= 0 && k < static_cast<std::int64_t>(m_value.size()));
+    return m_value[k];
+  }
   std::size_t nonZeros() const { return m_value.size(); }
   std::size_t bytes() const {
     return m_rowStart.size() * sizeof(std::int64_t) + m_column.size() * sizeof(int) +
@@ -97,6 +124,7 @@ std::size_t DenseMatrix<T>::nonZeros() const {
 
 template <typename T>
 T CsrMatrix<T>::operator()(int i, int j) const {
+  RADKIT_DCHECK(i >= 0 && i < m_n && j >= 0 && j < m_n);
   std::int64_t lo = m_rowStart[i], hi = m_rowStart[i + 1];
   while (lo < hi) {
     std::int64_t mid = (lo + hi) / 2;

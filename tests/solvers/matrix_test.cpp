@@ -21,4 +21,18 @@ TEST(CsrMatrix, Construct) {
   EXPECT_THROW(CsrMatrix<float>(3, {0, 1}, {0}, {1.0f}), std::invalid_argument);
 }
 
+// RADKIT_DCHECK (util/check.h) guards matrix indices in Debug builds and costs nothing in
+// Release: there the condition is not even evaluated.
+TEST(DenseMatrix, IndexCheckedInDebugOnly) {
+  DenseMatrix<double> m(2);
+#ifndef NDEBUG
+  EXPECT_DEATH(m(2, 0), "internal check failed: inRange\\(i\\) && inRange\\(j\\)");
+#else
+  int evaluated = 0;
+  RADKIT_DCHECK(++evaluated > 0);
+  EXPECT_EQ(evaluated, 0);
+  EXPECT_EQ(m(1, 1), 0.0);
+#endif
+}
+
 }  // namespace radkit
