@@ -68,9 +68,11 @@ void runSolverBench(const SweepBenchmarkSettings& s) {
       {"threads", r.threads},
       {"repetitions", r.repetitions},
       {"matrix_bytes", r.matrixBytes},
-      {"figure", {{"jacobi_bytes_per_second", r.jacobiBytesPerSecond},
-                  {"gauss_seidel_bytes_per_second", r.gaussSeidelBytesPerSecond}}},
-      {"reference", {{"triad_bytes_per_second", r.triadBytesPerSecond}, {"triad_bytes", r.triadBytes}}},
+      {"figure",
+       {{"jacobi_bytes_per_second", r.jacobiBytesPerSecond},
+        {"gauss_seidel_bytes_per_second", r.gaussSeidelBytesPerSecond}}},
+      {"reference",
+       {{"triad_bytes_per_second", r.triadBytesPerSecond}, {"triad_bytes", r.triadBytes}}},
       {"ratio", {{"jacobi", r.jacobiRatio}, {"gauss_seidel", r.gaussSeidelRatio}}},
       {"target_ratio", 0.7},
       {"peak_memory_bytes", peakMemoryBytes()}};
@@ -97,7 +99,8 @@ void runHierarchicalBench(HierarchicalBench& b) {
   const double hSeconds = std::chrono::duration<double>(Clock::now() - t).count();
   const std::size_t hPeak = peakMemory();
   std::vector<SurfaceResult> hSurfaces = h.surfaces;
-  long long links = static_cast<long long>(h.system->links().size()), leaves = h.leaves.size(), rays = h.raysCast;
+  long long links = static_cast<long long>(h.system->links().size()), leaves = h.leaves.size(),
+            rays = h.raysCast;
   h = HierarchicalResult{};
   resetPeakMemory();
   PipelineSettings dense;
@@ -110,24 +113,34 @@ void runHierarchicalBench(HierarchicalBench& b) {
   for (std::size_t s = 0; s < hSurfaces.size(); ++s)
     for (int c = 0; c < 3; ++c)
       if (d.surfaces[s].radiosity[c] > 0)
-        worst = std::max(worst, std::fabs(hSurfaces[s].radiosity[c] / d.surfaces[s].radiosity[c] - 1));
-  nlohmann::json j{{"scene", scene.name},
-                   {"hierarchical", {{"epsilon", b.settings.epsilon}, {"leaves", leaves}, {"links", links},
-                                     {"rays", rays}, {"seconds", hSeconds}, {"peak_bytes", hPeak}}},
-                   {"dense", {{"patches", d.mesh.size()}, {"seconds", dSeconds}, {"peak_bytes", dPeak}}},
-                   {"baseline_peak_bytes", baseline},
-                   {"time_ratio", hSeconds / dSeconds},
-                   {"memory_ratio_above_baseline", double(hPeak - baseline) / double(std::max(dPeak, baseline + 1) - baseline)},
-                   {"largest_surface_difference", worst}};
+        worst =
+            std::max(worst, std::fabs(hSurfaces[s].radiosity[c] / d.surfaces[s].radiosity[c] - 1));
+  nlohmann::json j{
+      {"scene", scene.name},
+      {"hierarchical",
+       {{"epsilon", b.settings.epsilon},
+        {"leaves", leaves},
+        {"links", links},
+        {"rays", rays},
+        {"seconds", hSeconds},
+        {"peak_bytes", hPeak}}},
+      {"dense", {{"patches", d.mesh.size()}, {"seconds", dSeconds}, {"peak_bytes", dPeak}}},
+      {"baseline_peak_bytes", baseline},
+      {"time_ratio", hSeconds / dSeconds},
+      {"memory_ratio_above_baseline",
+       double(hPeak - baseline) / double(std::max(dPeak, baseline + 1) - baseline)},
+      {"largest_surface_difference", worst}};
   std::cout << j.dump(2) << std::endl;
 }
 
 void addBenchCommands(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: one JSON object with the figure, its reference and the ratio");
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Benchmarks: one JSON object with the figure, its reference and the ratio");
   bench->require_subcommand(1);
 
   auto ff = std::make_shared<FormFactorBench>();
-  CLI::App* f = bench->add_subcommand("formfactors", "Our visibility-ray rate against raw Embree rtcOccluded1 on the same scene");
+  CLI::App* f = bench->add_subcommand(
+      "formfactors", "Our visibility-ray rate against raw Embree rtcOccluded1 on the same scene");
   addMeshOptions(*f, ff->mesh);
   addFormFactorOptions(*f, ff->ff);
   // The segments are stored (about 30 B each) before they are timed.
@@ -139,24 +152,37 @@ void addBenchCommands(CLI::App& app) {
   auto path = std::make_shared<PathTraceBench>();
   path->settings.render.width = path->settings.render.height = 128;
   path->settings.render.samplesPerPixel = 64;
-  CLI::App* p = bench->add_subcommand("path-trace", "Path-traced rays per second against raw Embree closest hits on the same scene");
+  CLI::App* p = bench->add_subcommand(
+      "path-trace",
+      "Path-traced rays per second against raw Embree closest hits on the same scene");
   addMeshOptions(*p, path->mesh, false);
   addCameraOption(*p, path->camera);
-  p->add_option("--spp", path->settings.render.samplesPerPixel, "Samples per pixel of the 128x128 image")
+  p->add_option("--spp", path->settings.render.samplesPerPixel,
+                "Samples per pixel of the 128x128 image")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   p->callback([path] { runPathTraceBench(*path); });
 
   auto sweep = std::make_shared<SweepBenchmarkSettings>();
-  CLI::App* s = bench->add_subcommand("solver", "Jacobi and Gauss-Seidel sweep bandwidth against a STREAM-like triad");
-  s->add_option("--n", sweep->n, "Dense matrix size")->check(CLI::Range(64, 65536))->capture_default_str();
-  s->add_option("--repetitions", sweep->repetitions, "Timed rounds of triad, Jacobi step and Gauss-Seidel step (best of each is kept)")->check(CLI::PositiveNumber)->capture_default_str();
+  CLI::App* s = bench->add_subcommand(
+      "solver", "Jacobi and Gauss-Seidel sweep bandwidth against a STREAM-like triad");
+  s->add_option("--n", sweep->n, "Dense matrix size")
+      ->check(CLI::Range(64, 65536))
+      ->capture_default_str();
+  s->add_option("--repetitions", sweep->repetitions,
+                "Timed rounds of triad, Jacobi step and Gauss-Seidel step (best of each is kept)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   // --threads 1000000 took 936 MB (TBB's arena for the request) before TBB capped the workers.
-  s->add_option("--threads", sweep->threads, "Threads (0: all cores)")->check(CLI::Range(0, 1024))->capture_default_str();
+  s->add_option("--threads", sweep->threads, "Threads (0: all cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   s->callback([sweep] { runSolverBench(*sweep); });
 
   auto hier = std::make_shared<HierarchicalBench>();
-  CLI::App* h = bench->add_subcommand("hierarchical", "Hierarchical radiosity against a dense run of the same scene: time and memory ratios");
+  CLI::App* h = bench->add_subcommand(
+      "hierarchical",
+      "Hierarchical radiosity against a dense run of the same scene: time and memory ratios");
   h->add_option("scene", hier->scene, "Scene file")->required()->check(CLI::ExistingFile);
   h->add_option("--epsilon", hier->settings.epsilon, "Link error threshold")->capture_default_str();
   h->add_option("--dense-patches", hier->densePatches, "Patches of the dense run")

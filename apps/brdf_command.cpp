@@ -31,7 +31,8 @@ void checkUnitInterval(const char* name, double v) {
 }
 
 /// E with F = 1: single scattering, plus ∫ f_ms μi dωi = 1 − E_table(μ) when compensated.
-double albedo(const GgxDistribution& d, MaskingShadowing g, double mu, bool compensated, const MicrofacetAlbedoTable* t) {
+double albedo(const GgxDistribution& d, MaskingShadowing g, double mu, bool compensated,
+              const MicrofacetAlbedoTable* t) {
   const double e = directionalAlbedo(d, g, mu, kStrata);
   return compensated ? e + (1 - t->albedo(mu)) : e;
 }
@@ -49,7 +50,8 @@ double averageAlbedo(const GgxDistribution& d, MaskingShadowing g, const Microfa
 
 void runBrdf(const BrdfCommand& cmd) {
   if (cmd.model != "cook-torrance")
-    throw CLI::ValidationError("--model", "unknown model \"" + cmd.model + "\": only cook-torrance has an energy loss to show");
+    throw CLI::ValidationError("--model", "unknown model \"" + cmd.model +
+                                              "\": only cook-torrance has an energy loss to show");
   const MaskingShadowing g = parseMaskingShadowing(cmd.masking);
   if (cmd.table) {
     std::printf("alpha,mu,E%s\n", cmd.compensated ? ",E_compensated" : "");
@@ -58,8 +60,10 @@ void runBrdf(const BrdfCommand& cmd) {
       const MicrofacetAlbedoTable t(d, g, kTableNodes);
       for (int m = 1; m <= 20; ++m) {
         const double mu = 0.05 * m, e = directionalAlbedo(d, g, mu, kStrata);
-        if (cmd.compensated) std::printf("%.2f,%.2f,%.6f,%.6f\n", 0.1 * a, mu, e, e + 1 - t.albedo(mu));
-        else std::printf("%.2f,%.2f,%.6f\n", 0.1 * a, mu, e);
+        if (cmd.compensated)
+          std::printf("%.2f,%.2f,%.6f,%.6f\n", 0.1 * a, mu, e, e + 1 - t.albedo(mu));
+        else
+          std::printf("%.2f,%.2f,%.6f\n", 0.1 * a, mu, e);
       }
     }
     return;
@@ -68,16 +72,17 @@ void runBrdf(const BrdfCommand& cmd) {
   checkUnitInterval("--mu", cmd.mu);
   const GgxDistribution d(cmd.alpha);
   const MicrofacetAlbedoTable t(d, g, kTableNodes);
-  nlohmann::json j{{"model", cmd.model},
-                   {"G", maskingShadowingName(g)},
-                   {"alpha", cmd.alpha},
-                   {"mu", cmd.mu},
-                   {"compensated", cmd.compensated},
-                   {"E", albedo(d, g, cmd.mu, cmd.compensated, &t)},
-                   {"E_single_scattering", directionalAlbedo(d, g, cmd.mu, kStrata)},
-                   {"E_avg", cmd.compensated ? averageAlbedo(d, g, t) : t.average()},
-                   {"E_avg_single_scattering", t.average()},
-                   {"energy_lost", cmd.compensated ? 0.0 : 1 - directionalAlbedo(d, g, cmd.mu, kStrata)}};
+  nlohmann::json j{
+      {"model", cmd.model},
+      {"G", maskingShadowingName(g)},
+      {"alpha", cmd.alpha},
+      {"mu", cmd.mu},
+      {"compensated", cmd.compensated},
+      {"E", albedo(d, g, cmd.mu, cmd.compensated, &t)},
+      {"E_single_scattering", directionalAlbedo(d, g, cmd.mu, kStrata)},
+      {"E_avg", cmd.compensated ? averageAlbedo(d, g, t) : t.average()},
+      {"E_avg_single_scattering", t.average()},
+      {"energy_lost", cmd.compensated ? 0.0 : 1 - directionalAlbedo(d, g, cmd.mu, kStrata)}};
   std::cout << j.dump(2) << std::endl;
 }
 
@@ -85,11 +90,16 @@ void runBrdf(const BrdfCommand& cmd) {
 
 void addBrdfCommand(CLI::App& app) {
   auto cmd = std::make_shared<BrdfCommand>();
-  CLI::App* sub = app.add_subcommand("brdf", "Directional albedo E(mu) and E_avg of a microfacet BRDF (F = 1): the energy single scattering loses");
+  CLI::App* sub = app.add_subcommand("brdf",
+                                     "Directional albedo E(mu) and E_avg of a microfacet BRDF (F = "
+                                     "1): the energy single scattering loses");
   sub->add_option("--model", cmd->model, "BRDF model (cook-torrance)")->capture_default_str();
-  sub->add_option("--alpha", cmd->alpha, "GGX alpha = roughness², in (0, 1]")->capture_default_str();
-  sub->add_option("--mu", cmd->mu, "cos theta of the outgoing direction, in (0, 1]")->capture_default_str();
-  sub->add_option("--g", cmd->masking, "Shadowing-masking: height-correlated, separable, schlick, cook-torrance")
+  sub->add_option("--alpha", cmd->alpha, "GGX alpha = roughness², in (0, 1]")
+      ->capture_default_str();
+  sub->add_option("--mu", cmd->mu, "cos theta of the outgoing direction, in (0, 1]")
+      ->capture_default_str();
+  sub->add_option("--g", cmd->masking,
+                  "Shadowing-masking: height-correlated, separable, schlick, cook-torrance")
       ->capture_default_str();
   sub->add_flag("--compensated", cmd->compensated, "Add the Kulla-Conty multiple-scattering lobe");
   sub->add_flag("--table", cmd->table, "Print E over alpha = 0.1..1 and mu = 0.05..1 as CSV");

@@ -22,9 +22,12 @@ CLI::Validator finiteNumber(bool allowZero) {
       [allowZero](std::string& text) -> std::string {
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size()) return "'" + text + "' is not a number";
-        if (!std::isfinite(v)) return "'" + text + "' is not a finite number. Fix: give a decimal number";
-        if (allowZero ? v < 0 : v <= 0) return "'" + text + "' must be " + (allowZero ? ">= 0" : "> 0");
+        if (text.empty() || end != text.c_str() + text.size())
+          return "'" + text + "' is not a number";
+        if (!std::isfinite(v))
+          return "'" + text + "' is not a finite number. Fix: give a decimal number";
+        if (allowZero ? v < 0 : v <= 0)
+          return "'" + text + "' must be " + (allowZero ? ">= 0" : "> 0");
         return "";
       },
       allowZero ? "FINITE >= 0" : "FINITE > 0");
@@ -40,7 +43,8 @@ CLI::Validator FiniteRange(double lo, double hi) {
       [lo, hi](std::string& text) -> std::string {
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size()) return "'" + text + "' is not a number";
+        if (text.empty() || end != text.c_str() + text.size())
+          return "'" + text + "' is not a number";
         if (!(v >= lo && v <= hi))  // false for NaN
           return "'" + text + "' is not a number in [" + fmt("%g", lo) + ", " + fmt("%g", hi) + "]";
         return "";
@@ -79,36 +83,46 @@ std::string defaultScenePath() {
 }
 
 void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired) {
-  auto* scene = command.add_option("scene", options.scene,
-                                   "Scene file (.json, or .obj with its .mtl)");
-  if (sceneRequired) scene->required()->check(CLI::ExistingFile);
-  else scene->check(CLI::ExistingFile);
-  auto* area = command.add_option("--max-area", options.maxArea,
-                                  "Split surfaces so every patch has at most this area (scene units²)")
+  auto* scene =
+      command.add_option("scene", options.scene, "Scene file (.json, or .obj with its .mtl)");
+  if (sceneRequired)
+    scene->required()->check(CLI::ExistingFile);
+  else
+    scene->check(CLI::ExistingFile);
+  auto* area = command
+                   .add_option("--max-area", options.maxArea,
+                               "Split surfaces so every patch has at most this area (scene units²)")
                    ->check(FinitePositive);
-  command.add_option("--patches", options.patches, "Split surfaces into about this many patches in total")
+  command
+      .add_option("--patches", options.patches,
+                  "Split surfaces into about this many patches in total")
       ->check(CLI::Range(1, int(kMaxPatches)))
       ->excludes(area);
   std::vector<std::string> units;
   for (const auto& unit : knownUnits()) units.push_back(unit.first);
-  command.add_option("--units", options.load.units,
-                     "Length unit of the scene's coordinates (default: the scene file's \"units\", else m); "
-                     "areas and powers in reports are converted to m² and W")
+  command
+      .add_option(
+          "--units", options.load.units,
+          "Length unit of the scene's coordinates (default: the scene file's \"units\", else m); "
+          "areas and powers in reports are converted to m² and W")
       ->check(CLI::IsMember(units));
-  command.add_flag("--repair", options.load.repair,
-                   "Repair meshes instead of refusing them: weld duplicate vertices, drop duplicate and "
-                   "degenerate faces, cut non-manifold edges and vertices, stitch borders, orient; each "
-                   "change is reported (docs/bring-your-own-model.md)");
+  command.add_flag(
+      "--repair", options.load.repair,
+      "Repair meshes instead of refusing them: weld duplicate vertices, drop duplicate and "
+      "degenerate faces, cut non-manifold edges and vertices, stitch borders, orient; each "
+      "change is reported (docs/bring-your-own-model.md)");
 }
 
 void addCameraOption(CLI::App& command, std::string& camera) {
-  command.add_option("--camera", camera,
-                     "Camera px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]]: position, look-at, up (default 0,1,0), vertical "
-                     "field of view in degrees (default 40); replaces the scene's. Without either, the camera "
-                     "looks into the scene from its most front-facing side");
+  command.add_option(
+      "--camera", camera,
+      "Camera px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]]: position, look-at, up (default 0,1,0), vertical "
+      "field of view in degrees (default 40); replaces the scene's. Without either, the camera "
+      "looks into the scene from its most front-facing side");
 }
 
-Scene loadSceneReporting(const std::string& path, const LoadOptions& load, LoadReport* out, const std::string& camera) {
+Scene loadSceneReporting(const std::string& path, const LoadOptions& load, LoadReport* out,
+                         const std::string& camera) {
   // Parsed before the scene loads: a typo is refused before minutes of work.
   std::optional<Camera> given;
   if (!camera.empty()) given = parseCamera("--camera", camera);
@@ -138,7 +152,8 @@ nlohmann::json loadJson(const LoadReport& report) {
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options) {
   try {
     std::vector<std::string> warnings;
-    PatchMesh mesh = subdivide(scene, SubdivisionSettings{options.maxArea, options.patches}, &warnings);
+    PatchMesh mesh =
+        subdivide(scene, SubdivisionSettings{options.maxArea, options.patches}, &warnings);
     for (const std::string& w : warnings) std::cerr << "radkit: warning: " << w << '\n';
     return mesh;
   } catch (const TooManyPatches&) {
@@ -148,10 +163,13 @@ PatchMesh meshScene(const Scene& scene, const MeshOptions& options) {
 
 void tooManyPatches(const Scene& scene, const MeshOptions& options) {
   std::ostringstream option;
-  if (options.maxArea > 0) option << "--max-area " << options.maxArea;
-  else option << "--patches " << options.patches;
+  if (options.maxArea > 0)
+    option << "--max-area " << options.maxArea;
+  else
+    option << "--patches " << options.patches;
   throw InputError(scene.file + ": " + option.str() + " would split the scene into more than " +
-                   std::to_string(kMaxPatches) + " patches, the most radkit meshes. Fix: give a larger "
+                   std::to_string(kMaxPatches) +
+                   " patches, the most radkit meshes. Fix: give a larger "
                    "--max-area, or fewer --patches.");
 }
 

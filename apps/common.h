@@ -52,8 +52,8 @@ void addCameraOption(CLI::App& command, std::string& camera);
 /// and subdivides it; a mesh beyond kMaxPatches is an InputError naming the option that asked
 /// for it. A non-empty `camera` (a --camera value) replaces the scene's camera, so images and
 /// report.json agree.
-Scene loadSceneReporting(const std::string& path, const LoadOptions& load = {}, LoadReport* report = nullptr,
-                         const std::string& camera = "");
+Scene loadSceneReporting(const std::string& path, const LoadOptions& load = {},
+                         LoadReport* report = nullptr, const std::string& camera = "");
 /// report.json's "load": the loading warnings and what the mesh repair changed.
 nlohmann::json loadJson(const LoadReport& report);
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options);

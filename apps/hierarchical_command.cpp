@@ -35,8 +35,12 @@ nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSett
   }
   nlohmann::json rounds = nlohmann::json::array();
   for (const HierarchicalRound& round : r.rounds)
-    rounds.push_back({{"epsilon", round.epsilon}, {"links", round.links}, {"nodes", round.nodes},
-                      {"rays", round.rays}, {"sweeps", round.sweeps}, {"refine_seconds", round.refineSeconds},
+    rounds.push_back({{"epsilon", round.epsilon},
+                      {"links", round.links},
+                      {"nodes", round.nodes},
+                      {"rays", round.rays},
+                      {"sweeps", round.sweeps},
+                      {"refine_seconds", round.refineSeconds},
                       {"solve_seconds", round.solveSeconds}});
   double rowMin = INFINITY, rowMax = 0;
   for (double v : r.rowSums) rowMin = std::min(rowMin, v), rowMax = std::max(rowMax, v);
@@ -64,32 +68,38 @@ nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSett
           {"rounds", rounds}};
 }
 
-void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalResult& r, const HierarchicalJob& job) {
+void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalResult& r,
+                  const HierarchicalJob& job) {
   ImageSettings s;
   s.width = s.height = job.imageSize;
-  s.smooth = true;  // leaves differ in size by orders of magnitude: flat shading shows the hierarchy, not the light
+  s.smooth = true;          // leaves differ in size by orders of magnitude: flat shading shows the
+                            // hierarchy, not the light
   RayScene rays(r.leaves);  // the image needs the leaf under each pixel
   writeRadiosityPng(folder.path("render.png"), scene, r.leaves, rays, r.radiosity, s);
 }
 
-void printSummary(const Scene& scene, const HierarchicalResult& r, const HierarchicalJob& job, double total) {
+void printSummary(const Scene& scene, const HierarchicalResult& r, const HierarchicalJob& job,
+                  double total) {
   std::printf("\n");
   printField("scene", scene.name + " (" + scene.file + ")");
-  printField("method", "hierarchical, epsilon " + fmt("%.3g", job.settings.epsilon) + ", min area " +
-                           fmt("%.3g", r.minArea) + " " + scene.units + "^2");
+  printField("method", "hierarchical, epsilon " + fmt("%.3g", job.settings.epsilon) +
+                           ", min area " + fmt("%.3g", r.minArea) + " " + scene.units + "^2");
   printField("hierarchy", std::to_string(r.hierarchy->base().size()) + " input faces, " +
-                              std::to_string(r.hierarchy->size()) + " nodes, " + std::to_string(r.leaves.size()) +
-                              " leaves");
+                              std::to_string(r.hierarchy->size()) + " nodes, " +
+                              std::to_string(r.leaves.size()) + " leaves");
   long long links = 0;
   for (long long k : r.linksByKind) links += k;
-  printField("links", std::to_string(links) + " (" + std::to_string(r.linksByKind[0]) + " element-element), " +
-                          std::to_string(r.raysCast) + " rays");
-  printField("seconds", "hierarchy " + fmt("%.2f", r.seconds.hierarchy) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
-                            ", links " + fmt("%.2f", r.seconds.refine) + ", solve " + fmt("%.2f", r.seconds.solve) +
-                            ", total " + fmt("%.2f", total));
+  printField("links", std::to_string(links) + " (" + std::to_string(r.linksByKind[0]) +
+                          " element-element), " + std::to_string(r.raysCast) + " rays");
+  printField("seconds", "hierarchy " + fmt("%.2f", r.seconds.hierarchy) + ", rays " +
+                            fmt("%.2f", r.seconds.rayScene) + ", links " +
+                            fmt("%.2f", r.seconds.refine) + ", solve " +
+                            fmt("%.2f", r.seconds.solve) + ", total " + fmt("%.2f", total));
   printField(r.solve.solver, std::to_string(r.solve.iterations) + " sweeps, change " +
-                                 fmt("%.2e", r.solve.residual) + (r.solve.converged ? "" : "  NOT CONVERGED: " + r.solve.reason));
-  printEnergyAndSurfaces(r.energy, r.surfaces, job.photometric, " ± " + fmt("%.2g", luminance(r.escapedStandardError)));
+                                 fmt("%.2e", r.solve.residual) +
+                                 (r.solve.converged ? "" : "  NOT CONVERGED: " + r.solve.reason));
+  printEnergyAndSurfaces(r.energy, r.surfaces, job.photometric,
+                         " ± " + fmt("%.2g", luminance(r.escapedStandardError)));
   printField("peak memory", fmt("%.0f MiB", peakMemoryBytes() / 1048576.0));
   printField("wrote", job.out);
 }
@@ -97,22 +107,27 @@ void printSummary(const Scene& scene, const HierarchicalResult& r, const Hierarc
 }  // namespace
 
 void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& o) {
-  run.add_option("--method", o.method, "dense: F for every patch pair; hierarchical: links between clusters and "
-                                       "elements refined to --epsilon (docs/hierarchical.md)")
+  run.add_option("--method", o.method,
+                 "dense: F for every patch pair; hierarchical: links between clusters and "
+                 "elements refined to --epsilon (docs/hierarchical.md)")
       ->check(CLI::IsMember({"dense", "hierarchical"}))
       ->capture_default_str();
-  run.add_option("--epsilon", o.settings.epsilon,
-                 "Hierarchical: largest error a link may carry, as a fraction of the emitted power (of a tenth of the light leaving the surfaces where that exceeds ten times the emission)")
+  run.add_option(
+         "--epsilon", o.settings.epsilon,
+         "Hierarchical: largest error a link may carry, as a fraction of the emitted power (of a "
+         "tenth of the light leaving the surfaces where that exceeds ten times the emission)")
       ->capture_default_str();
   run.add_option("--min-area", o.settings.minArea,
-                 "Hierarchical: smallest element (scene units²); 0: " + fmt("%g", kDefaultMinAreaFraction) +
-                     " of the scene's area")
+                 "Hierarchical: smallest element (scene units²); 0: " +
+                     fmt("%g", kDefaultMinAreaFraction) + " of the scene's area")
       ->capture_default_str();
-  run.add_option("--hr-rays", o.settings.raysPerLink, "Hierarchical: visibility rays per link")->capture_default_str();
+  run.add_option("--hr-rays", o.settings.raysPerLink, "Hierarchical: visibility rays per link")
+      ->capture_default_str();
   run.add_option("--hr-rounds", o.settings.rounds,
                  "Hierarchical: refine-and-solve rounds, from epsilon·4^(rounds−1) down to epsilon")
       ->capture_default_str();
-  run.add_option("--gather", o.gather, "Hierarchical: gather ordering, jacobi or gauss-seidel")->capture_default_str();
+  run.add_option("--gather", o.gather, "Hierarchical: gather ordering, jacobi or gauss-seidel")
+      ->capture_default_str();
   run.add_option("--link-colour", o.linkColour, "Hierarchical: colour links.png by F or by power")
       ->check(CLI::IsMember({"F", "power"}))
       ->capture_default_str();
@@ -152,24 +167,27 @@ void runHierarchicalJob(HierarchicalJob job) {
   writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), {r.solve});
   LinkMatrixSettings matrix;
   matrix.colour = job.linkColour;
-  matrix.title = scene.name + ": links as blocks of F, " + std::to_string(r.leaves.size()) + " leaves in tree order";
+  matrix.title = scene.name + ": links as blocks of F, " + std::to_string(r.leaves.size()) +
+                 " leaves in tree order";
   writeLinkMatrix(folder.path("links.png"), *r.hierarchy, r.system->links(), r.state, matrix);
   if (!job.noRender) renderLeaves(folder, scene, r, job);
 
   double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  nlohmann::json report{{"radkit", RADKIT_VERSION},
-                        {"command", "run"},
-                        {"method", "hierarchical"},
-                        {"scene", sceneJson(scene)},
-                        {"mesh", meshJson(scene, r.leaves)},
-                        {"hierarchy", hierarchyJson(r, job.settings)},
-                        {"solvers", nlohmann::json::array({solveJson(r.solve)})},
-                        {"energy_balance", energyJson(r.energy)},
-                        {"escape_estimate", {{"rays_per_leaf", 32}, {"rays_per_emitting_leaf", 1024},
-                                             {"escaped_standard_error_W",
-                                              {r.escapedStandardError.x, r.escapedStandardError.y,
-                                               r.escapedStandardError.z}}}},
-                        {"surfaces", surfacesJson(r.surfaces)}};
+  nlohmann::json report{
+      {"radkit", RADKIT_VERSION},
+      {"command", "run"},
+      {"method", "hierarchical"},
+      {"scene", sceneJson(scene)},
+      {"mesh", meshJson(scene, r.leaves)},
+      {"hierarchy", hierarchyJson(r, job.settings)},
+      {"solvers", nlohmann::json::array({solveJson(r.solve)})},
+      {"energy_balance", energyJson(r.energy)},
+      {"escape_estimate",
+       {{"rays_per_leaf", 32},
+        {"rays_per_emitting_leaf", 1024},
+        {"escaped_standard_error_W",
+         {r.escapedStandardError.x, r.escapedStandardError.y, r.escapedStandardError.z}}}},
+      {"surfaces", surfacesJson(r.surfaces)}};
   report["load"] = loadJson(loaded);
   report["seconds"] = {{"hierarchy", r.seconds.hierarchy}, {"ray_scene", r.seconds.rayScene},
                        {"links", r.seconds.refine},        {"solve", r.seconds.solve},

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
     // kind of usage error, but every error exits 1 (docs/run.md), help and --version 0.
     return app.exit(e) == 0 ? 0 : 1;
   } catch (const std::bad_alloc&) {
-    std::cerr << "radkit: error: out of memory. Fix: use fewer patches (--patches, --max-area) or a smaller "
+    std::cerr << "radkit: error: out of memory. Fix: use fewer patches (--patches, --max-area) or "
+                 "a smaller "
                  "--memory-budget.\n";
     return 1;
   } catch (const radkit::InputError& e) {

@@ -4,9 +4,9 @@
 #include <memory>
 
 #include "apps/common.h"
-#include "util/output_folder.h"
 #include "geometry/patch_io.h"
 #include "util/format.h"
+#include "util/output_folder.h"
 
 namespace radkit::app {
 
@@ -43,7 +43,8 @@ void runMesh(const MeshCommand& cmd) {
   printField("patches", std::to_string(patches.size()) + " (" + std::to_string(quads) + " quads, " +
                             std::to_string(patches.size() - quads) + " triangles)");
   printField("total area", number(patches.totalArea()) + " " + scene.units + "²");
-  printField("patch area min/max", number(minArea) + " / " + number(maxArea) + " " + scene.units + "²");
+  printField("patch area min/max",
+             number(minArea) + " / " + number(maxArea) + " " + scene.units + "²");
   printField("worst aspect ratio", number(worstAspect) + " (1 = square or equilateral)");
   printField("wrote", cmd.out + "/patches.csv, patches.vtp");
 }

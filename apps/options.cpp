@@ -13,7 +13,8 @@ std::size_t parseBytes(const std::string& text) {
   try {
     value = std::stod(text, &used);
   } catch (const std::exception&) {
-    throw CLI::ValidationError("--memory-budget", "'" + text + "' is not a size (e.g. 8GiB, 512MiB)");
+    throw CLI::ValidationError("--memory-budget",
+                               "'" + text + "' is not a size (e.g. 8GiB, 512MiB)");
   }
   std::string unit = text.substr(used);
   double scale = unit.empty() || unit == "B" ? 1
@@ -23,11 +24,14 @@ std::size_t parseBytes(const std::string& text) {
                  : unit == "TiB"             ? 1024.0 * 1024 * 1024 * 1024
                                              : -1;
   if (scale < 0 || !(value > 0) || !std::isfinite(value))
-    throw CLI::ValidationError("--memory-budget", "'" + text + "' is not a positive size in B, KiB, MiB, GiB or TiB");
+    throw CLI::ValidationError("--memory-budget",
+                               "'" + text + "' is not a positive size in B, KiB, MiB, GiB or TiB");
   // Converting a double beyond size_t's range is undefined; no machine has 2^60 bytes.
   if (value * scale >= std::ldexp(1.0, 60))
-    throw CLI::ValidationError("--memory-budget", "'" + text + "' is larger than 1048576 TiB. Fix: give the memory "
-                               "F may use, e.g. 8GiB");
+    throw CLI::ValidationError("--memory-budget",
+                               "'" + text +
+                                   "' is larger than 1048576 TiB. Fix: give the memory "
+                                   "F may use, e.g. 8GiB");
   return std::size_t(value * scale);
 }
 
@@ -35,7 +39,8 @@ void FormFactorOptions::finish() {
   if (!enforce.empty() && enforce != "reciprocity")
     throw CLI::ValidationError("--ff-enforce", "the only value is 'reciprocity'");
   settings.enforceReciprocity = enforce == "reciprocity";
-  settings.precision = storage == "float" ? FormFactorPrecision::Float : FormFactorPrecision::Double;
+  settings.precision =
+      storage == "float" ? FormFactorPrecision::Float : FormFactorPrecision::Double;
   settings.memoryBudget = parseBytes(memoryBudget);
   try {
     validateFormFactorSettings(settings);
@@ -65,11 +70,13 @@ void addFormFactorOptions(CLI::App& c, FormFactorOptions& o) {
   c.add_option("--seed", o.settings.seed, "Seed of every random stream (same seed, same output)")
       ->check(Unsigned)
       ->capture_default_str();
-  c.add_option("--ff-enforce", o.enforce, "'reciprocity': replace A_iF_ij and A_jF_ji by their mean (off by default)");
+  c.add_option("--ff-enforce", o.enforce,
+               "'reciprocity': replace A_iF_ij and A_jF_ji by their mean (off by default)");
   c.add_option("--ff-storage", o.storage, "Form-factor storage precision")
       ->check(CLI::IsMember({"double", "float"}))
       ->capture_default_str();
-  c.add_option("--memory-budget", o.memoryBudget, "Memory F may use; dense when it fits, else sparse")
+  c.add_option("--memory-budget", o.memoryBudget,
+               "Memory F may use; dense when it fits, else sparse")
       ->capture_default_str();
 }
 
@@ -78,16 +85,21 @@ void addSolverOptions(CLI::App& c, SolverOptions& o, const std::string& defaultS
   std::string help;
   for (const std::string& line : solverHelp()) help += "\n  " + line;
   c.add_option("--solvers,--solver", o.solvers,
-               "Comma-separated solvers, parameters after ':' separated by ';' (sor:omega=1.2;power_iterations=40):" + help)
+               "Comma-separated solvers, parameters after ':' separated by ';' "
+               "(sor:omega=1.2;power_iterations=40):" +
+                   help)
       ->capture_default_str();
-  c.add_option("--tol", o.stopping.tolerance, "Stop at relative residual ||E + rho F B - B|| / ||E|| <= tol")
+  c.add_option("--tol", o.stopping.tolerance,
+               "Stop at relative residual ||E + rho F B - B|| / ||E|| <= tol")
       ->check(FinitePositive)
       ->capture_default_str();
-  c.add_option("--max-iterations", o.stopping.maxIterations, "Stop after this many iterations (shots for southwell)")
+  c.add_option("--max-iterations", o.stopping.maxIterations,
+               "Stop after this many iterations (shots for southwell)")
       ->check(CLI::PositiveNumber);
   c.add_option("--max-seconds", o.stopping.maxSeconds, "Stop a solver after this many seconds")
       ->check(FinitePositive);
-  c.add_option("--residual-norm", o.norm, "relative: infinity norm over ||E||; per-patch: worst patch relative to its own B")
+  c.add_option("--residual-norm", o.norm,
+               "relative: infinity norm over ||E||; per-patch: worst patch relative to its own B")
       ->check(CLI::IsMember({"relative", "per-patch"}))
       ->capture_default_str();
 }

@@ -12,7 +12,7 @@ namespace radkit::app {
 
 struct FormFactorOptions {
   FormFactorSettings settings;
-  std::string enforce;          ///< "" or "reciprocity"
+  std::string enforce;  ///< "" or "reciprocity"
   std::string storage = "double";
   std::string memoryBudget = "8GiB";
   /// Validates and converts the text options into `settings`; throws CLI::ValidationError.

@@ -2,8 +2,8 @@
 // Writes patches.csv, surfaces.csv, photonmap.png, caustics.png, comparison.csv,
 // difference.png and report.json (docs/photon-mapping.md).
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -15,13 +15,13 @@
 #include "geometry/patch_io.h"
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
-#include "radiosity/radiosity_pipeline.h"
-#include "render/camera.h"
 #include "photon/benchmark.h"
 #include "photon/comparison.h"
 #include "photon/estimate.h"
 #include "photon/image.h"
 #include "photon/tracer.h"
+#include "radiosity/radiosity_pipeline.h"
+#include "render/camera.h"
 #include "util/output_folder.h"
 
 namespace radkit::app {
@@ -44,7 +44,9 @@ struct PhotonsCommand {
   long long benchRays = 1000000;
 };
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 /// The radiosity solution to compare with: a run folder's surfaces.csv, or computed here on
 /// the same mesh (then per patch too).
@@ -55,7 +57,8 @@ struct RadiosityReference {
   double seconds = 0;
 };
 
-RadiosityReference radiosityReference(const PhotonsCommand& cmd, const Scene& scene, const PatchMesh& mesh) {
+RadiosityReference radiosityReference(const PhotonsCommand& cmd, const Scene& scene,
+                                      const PatchMesh& mesh) {
   RadiosityReference ref;
   const auto start = Clock::now();
   if (!cmd.compare.empty()) {
@@ -67,7 +70,8 @@ RadiosityReference radiosityReference(const PhotonsCommand& cmd, const Scene& sc
     PipelineResult r = runPipeline(scene, settings);
     ref.source = "computed (radkit run, same mesh)";
     for (const SurfaceResult& s : r.surfaces)
-      ref.surfaces.push_back({s.name, s.area / (scene.metresPerUnit() * scene.metresPerUnit()), s.radiosity});
+      ref.surfaces.push_back(
+          {s.name, s.area / (scene.metresPerUnit() * scene.metresPerUnit()), s.radiosity});
     if (r.mesh.size() == mesh.size()) ref.patches = r.radiosity;
   }
   ref.seconds = since(start);
@@ -76,9 +80,10 @@ RadiosityReference radiosityReference(const PhotonsCommand& cmd, const Scene& sc
 
 /// Per-patch values for difference.png: the patches' own, or their surfaces' when the
 /// reference is per surface only.
-void writeDifference(OutputFolder& folder, const Scene& scene, const PatchMesh& mesh, const RayScene& rays,
-                     const PhotonRadiosity& photon, const RadiosityReference& ref,
-                     const std::vector<SurfaceComparison>& rows, const PhotonsCommand& cmd) {
+void writeDifference(OutputFolder& folder, const Scene& scene, const PatchMesh& mesh,
+                     const RayScene& rays, const PhotonRadiosity& photon,
+                     const RadiosityReference& ref, const std::vector<SurfaceComparison>& rows,
+                     const PhotonsCommand& cmd) {
   std::vector<Vec3> b = photon.radiosity, se = photon.radiosityError, rad = ref.patches;
   if (rad.empty()) {
     rad.resize(mesh.size());
@@ -93,24 +98,34 @@ void writeDifference(OutputFolder& folder, const Scene& scene, const PatchMesh& 
   const std::vector<bool> twoSided = scene.twoSidedSurfaces();
   const Camera camera = sceneCamera(scene, mesh);
   RadianceImage seen = renderRadiosity(mesh, rays, camera, b, twoSided, s);
-  writePng(folder.path("difference.png"),
-           differenceImage(seen, b, se, rad, ref.patches.empty() ? "z per surface" : "z per patch"));
+  writePng(
+      folder.path("difference.png"),
+      differenceImage(seen, b, se, rad, ref.patches.empty() ? "z per surface" : "z per patch"));
 }
 
 json surfacesJson(const std::vector<SurfaceEstimate>& surfaces) {
   json a = json::array();
   for (const SurfaceEstimate& s : surfaces)
-    a.push_back({{"name", s.name}, {"area", s.area}, {"radiosity", triple(s.radiosity)},
-                 {"standard_error", triple(s.radiosityError)}, {"irradiance", triple(s.irradiance)},
-                 {"caustic_irradiance", triple(s.causticIrradiance)}, {"photons", s.photons}});
+    a.push_back({{"name", s.name},
+                 {"area", s.area},
+                 {"radiosity", triple(s.radiosity)},
+                 {"standard_error", triple(s.radiosityError)},
+                 {"irradiance", triple(s.irradiance)},
+                 {"caustic_irradiance", triple(s.causticIrradiance)},
+                 {"photons", s.photons}});
   return a;
 }
 
 json statsJson(const PhotonTrace& t, const EmitterSampler& emitters) {
   const PhotonTraceStats& s = t.stats;
-  return {{"emitted", s.emitted},   {"stored", s.stored},         {"caustic", s.caustic},
-          {"escaped", s.escaped},   {"absorbed", s.absorbed},     {"truncated", s.truncated},
-          {"rays", s.rays},         {"emitted_power", triple(t.emittedPower)},
+  return {{"emitted", s.emitted},
+          {"stored", s.stored},
+          {"caustic", s.caustic},
+          {"escaped", s.escaped},
+          {"absorbed", s.absorbed},
+          {"truncated", s.truncated},
+          {"rays", s.rays},
+          {"emitted_power", triple(t.emittedPower)},
           {"total_power", triple(emitters.totalPower())}};
 }
 
@@ -142,34 +157,42 @@ void checkCompareFolder(const std::string& folder, const Scene& scene, const Pat
   if (in) try {
       report = json::parse(in);
     } catch (const json::exception& e) {
-      throw InputError("--compare " + folder + ": report.json is not JSON (" + e.what() + ")" + fix);
+      throw InputError("--compare " + folder + ": report.json is not JSON (" + e.what() + ")" +
+                       fix);
     }
-  const json sceneJson = report.is_object() ? report.value("scene", json::object()) : json::object();
+  const json sceneJson =
+      report.is_object() ? report.value("scene", json::object()) : json::object();
   const std::string name = sceneJson.is_object() ? sceneJson.value("name", scene.name) : scene.name;
   if (name != scene.name)
     throw InputError("--compare " + folder + " is a run of scene \"" + name + "\" (" +
-                     (sceneJson.is_object() ? sceneJson.value("file", "?") : "?") + "), not of \"" + scene.name +
-                     "\"" + fix);
+                     (sceneJson.is_object() ? sceneJson.value("file", "?") : "?") + "), not of \"" +
+                     scene.name + "\"" + fix);
   const std::vector<SurfaceRadiosity> theirs = readSurfacesCsv((dir / "surfaces.csv").string());
   if (theirs.size() != scene.surfaces.size())
-    throw InputError("--compare " + folder + ": its surfaces.csv has " + std::to_string(theirs.size()) +
-                     " surfaces, this scene " + std::to_string(scene.surfaces.size()) + fix);
+    throw InputError("--compare " + folder + ": its surfaces.csv has " +
+                     std::to_string(theirs.size()) + " surfaces, this scene " +
+                     std::to_string(scene.surfaces.size()) + fix);
   for (std::size_t s = 0; s < theirs.size(); ++s) {
     double area = 0;
-    for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i) area += mesh.patches[i].area;
+    for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i)
+      area += mesh.patches[i].area;
     // surfaces.csv keeps 17 digits; a hand-written reference may round to 3.
-    if (theirs[s].name != scene.surfaces[s].name || !(std::fabs(theirs[s].area - area) <= 1e-3 * area))
-      throw InputError("--compare " + folder + ": its surface " + std::to_string(s) + " is \"" + theirs[s].name +
-                       "\" of area " + fmt("%.6g", theirs[s].area) + ", this scene's \"" + scene.surfaces[s].name +
-                       "\" of area " + fmt("%.6g", area) + " (the scene changed since that run)" + fix);
+    if (theirs[s].name != scene.surfaces[s].name ||
+        !(std::fabs(theirs[s].area - area) <= 1e-3 * area))
+      throw InputError("--compare " + folder + ": its surface " + std::to_string(s) + " is \"" +
+                       theirs[s].name + "\" of area " + fmt("%.6g", theirs[s].area) +
+                       ", this scene's \"" + scene.surfaces[s].name + "\" of area " +
+                       fmt("%.6g", area) + " (the scene changed since that run)" + fix);
   }
 }
 
 /// Loads, meshes, checks emitters and the --compare folder (before any long work), traces
 /// and estimates.
 void traceAndEstimate(PhotonsCommand& cmd, PhotonRun& r) {
-  if (!cmd.compare.empty() && !std::filesystem::exists(std::filesystem::path(cmd.compare) / "surfaces.csv"))
-    throw InputError("--compare " + cmd.compare + ": no surfaces.csv there. Fix: give the --out folder of a "
+  if (!cmd.compare.empty() &&
+      !std::filesystem::exists(std::filesystem::path(cmd.compare) / "surfaces.csv"))
+    throw InputError("--compare " + cmd.compare +
+                     ": no surfaces.csv there. Fix: give the --out folder of a "
                      "`radkit run` of the same scene");
   r.scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, nullptr, cmd.camera);
   auto t = Clock::now();
@@ -195,14 +218,16 @@ void buildMaps(const PhotonsCommand& cmd, PhotonRun& r) {
   const bool needed = !cmd.noImage || cmd.benchRays > 0;
   auto t = Clock::now();
   r.stored = r.trace.photons.size();
-  PhotonMaps maps = buildPhotonMaps(r.mesh, needed ? std::move(r.trace.photons) : std::vector<Photon>{});
+  PhotonMaps maps =
+      buildPhotonMaps(r.mesh, needed ? std::move(r.trace.photons) : std::vector<Photon>{});
   r.global = std::move(maps.global);
   r.caustic = std::move(maps.caustic);
   r.buildSeconds = needed ? since(t) : 0.0;
   r.seconds["kd_build"] = since(t);
   t = Clock::now();
   const PhotonSettings& ps = cmd.settings;
-  r.view = cmd.view == "map" || ps.gatherRays == 0 ? PhotonView::GlobalMap : PhotonView::FinalGather;
+  r.view =
+      cmd.view == "map" || ps.gatherRays == 0 ? PhotonView::GlobalMap : PhotonView::FinalGather;
   if (!cmd.noImage && r.view == PhotonView::FinalGather)
     r.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
   r.seconds["precompute"] = since(t);
@@ -219,26 +244,30 @@ void writeImages(OutputFolder& folder, const PhotonsCommand& cmd, PhotonRun& r) 
   writePng(folder.path("photonmap.png"), toneMap(image, exposure));
   if (!r.caustic->empty())
     writePng(folder.path("caustics.png"),
-             toneMap(renderPhotonImage(in, camera, n, n, PhotonView::CausticMap, cmd.settings), exposure));
+             toneMap(renderPhotonImage(in, camera, n, n, PhotonView::CausticMap, cmd.settings),
+                     exposure));
   r.seconds["image"] = since(t);
 }
 
 json ratesJson(const PhotonsCommand& cmd, PhotonRun& r) {
   const auto t = Clock::now();
-  const RateMeasurement embree = measureClosestHitRate(r.mesh, *r.rays, std::size_t(cmd.benchRays), cmd.settings.seed);
+  const RateMeasurement embree =
+      measureClosestHitRate(r.mesh, *r.rays, std::size_t(cmd.benchRays), cmd.settings.seed);
   // A k-nearest query costs about a hundred rays: time a hundredth as many.
-  const RateMeasurement queries = measureKdTreeQueries(*r.global, r.mesh, std::size_t(cmd.benchRays / 100),
-                                                       cmd.settings.neighbours, cmd.settings.filter);
+  const RateMeasurement queries =
+      measureKdTreeQueries(*r.global, r.mesh, std::size_t(cmd.benchRays / 100),
+                           cmd.settings.neighbours, cmd.settings.filter);
   r.seconds["benchmark"] = since(t);
   const double photonRays = r.trace.stats.rays / r.trace.stats.seconds;
-  return {{"photons_per_second", r.trace.stats.emitted / r.trace.stats.seconds},
-          {"photon_rays_per_second", photonRays},
-          {"embree_closest_hit_rays_per_second", embree.perSecond()},
-          {"embree_rays_timed", embree.count},
-          {"photon_rays_over_embree", embree.perSecond() > 0 ? photonRays / embree.perSecond() : 0.0},
-          {"kd_build_photons_per_second", r.buildSeconds > 0 ? r.stored / r.buildSeconds : 0.0},
-          {"kd_queries_timed", queries.count},
-          {"kd_queries_per_second", queries.perSecond()}};
+  return {
+      {"photons_per_second", r.trace.stats.emitted / r.trace.stats.seconds},
+      {"photon_rays_per_second", photonRays},
+      {"embree_closest_hit_rays_per_second", embree.perSecond()},
+      {"embree_rays_timed", embree.count},
+      {"photon_rays_over_embree", embree.perSecond() > 0 ? photonRays / embree.perSecond() : 0.0},
+      {"kd_build_photons_per_second", r.buildSeconds > 0 ? r.stored / r.buildSeconds : 0.0},
+      {"kd_queries_timed", queries.count},
+      {"kd_queries_per_second", queries.perSecond()}};
 }
 
 json reportJson(const PhotonsCommand& cmd, const PhotonRun& r, const json& rates) {
@@ -247,45 +276,58 @@ json reportJson(const PhotonsCommand& cmd, const PhotonRun& r, const json& rates
               {"command", "photons"},
               {"scene", sceneJson(r.scene)},
               {"mesh", meshJson(r.scene, r.mesh)},
-              {"settings", {{"photons", ps.photons}, {"k", ps.neighbours}, {"filter", filterName(ps.filter)},
-                            {"seed", ps.seed}, {"view", viewName(r.view)}, {"gather_rays", ps.gatherRays},
-                            {"direct_rays", ps.directRays}, {"image_size", cmd.noImage ? 0 : cmd.imageSize}}},
+              {"settings",
+               {{"photons", ps.photons},
+                {"k", ps.neighbours},
+                {"filter", filterName(ps.filter)},
+                {"seed", ps.seed},
+                {"view", viewName(r.view)},
+                {"gather_rays", ps.gatherRays},
+                {"direct_rays", ps.directRays},
+                {"image_size", cmd.noImage ? 0 : cmd.imageSize}}},
               {"photons", statsJson(r.trace, *r.emitters)},
               {"rates", rates},
               {"seconds", r.seconds},
-              {"memory", {{"photon_map_bytes", r.global->memoryBytes()},
-                          {"caustic_map_bytes", r.caustic->memoryBytes()},
-                          {"peak_memory_bytes", peakMemoryBytes()}}},
+              {"memory",
+               {{"photon_map_bytes", r.global->memoryBytes()},
+                {"caustic_map_bytes", r.caustic->memoryBytes()},
+                {"peak_memory_bytes", peakMemoryBytes()}}},
               {"surfaces", surfacesJson(r.estimate.surfaces)}};
   if (!r.reference.surfaces.empty())
-    report["comparison"] = {{"radiosity", r.reference.source}, {"per_patch", !r.reference.patches.empty()}};
+    report["comparison"] = {{"radiosity", r.reference.source},
+                            {"per_patch", !r.reference.patches.empty()}};
   return report;
 }
 
 void printSummary(const PhotonsCommand& cmd, const PhotonRun& r, const json& rates) {
   std::printf("\n");
   printField("scene", r.scene.name + " (" + r.scene.file + ")");
-  printField("photons", std::to_string(r.trace.stats.emitted) + " emitted, " + std::to_string(r.stored) + " stored, " +
+  printField("photons", std::to_string(r.trace.stats.emitted) + " emitted, " +
+                            std::to_string(r.stored) + " stored, " +
                             std::to_string(r.trace.stats.caustic) + " caustic, " +
                             fmt("%.3g photons/s", rates["photons_per_second"].get<double>()));
   printField("rays", fmt("%.3g/s tracing photons", rates["photon_rays_per_second"].get<double>()) +
-                         fmt(", %.3g/s raw Embree", rates["embree_closest_hit_rays_per_second"].get<double>()));
+                         fmt(", %.3g/s raw Embree",
+                             rates["embree_closest_hit_rays_per_second"].get<double>()));
   for (const SurfaceEstimate& s : r.estimate.surfaces) {
     std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) +
-                       fmt(" %10.4f W/m²", s.radiosity.z) + fmt("  ± %.2g", luminance(s.radiosityError));
+                       fmt(" %10.4f W/m²", s.radiosity.z) +
+                       fmt("  ± %.2g", luminance(s.radiosityError));
     for (const SurfaceComparison& c : r.rows)
       if (c.name == s.name && luminance(c.radiosity) > 0)
         line += fmt("   radiosity %10.4f", luminance(c.radiosity)) +
                 fmt(" (%+.2f %%)", 100 * (luminance(c.photon) / luminance(c.radiosity) - 1));
     printField(s.name, line);
   }
-  printField("seconds", fmt("trace %.2f", r.trace.stats.seconds) + fmt(", total %.2f", r.seconds["total"].get<double>()));
+  printField("seconds", fmt("trace %.2f", r.trace.stats.seconds) +
+                            fmt(", total %.2f", r.seconds["total"].get<double>()));
   printField("wrote", cmd.out);
 }
 
 void run(PhotonsCommand& cmd) {
   const auto start = Clock::now();
-  cmd.settings.filter = cmd.filter == "cone" ? IrradianceFilter::Cone : IrradianceFilter::Epanechnikov;
+  cmd.settings.filter =
+      cmd.filter == "cone" ? IrradianceFilter::Cone : IrradianceFilter::Epanechnikov;
   if (cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0) cmd.mesh.patches = kDefaultPhotonPatches;
   OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the work, not after
   PhotonRun r;
@@ -303,7 +345,8 @@ void run(PhotonsCommand& cmd) {
   }
   writePatchesCsv(folder.path("patches.csv"), r.scene, r.mesh, &r.estimate.radiosity);
   writeSurfacesCsv(folder.path("surfaces.csv"), r.scene,
-                   surfaceResults(r.scene, r.mesh, r.estimate.radiosity, r.estimate.irradiance), false);
+                   surfaceResults(r.scene, r.mesh, r.estimate.radiosity, r.estimate.irradiance),
+                   false);
   const json rates = ratesJson(cmd, r);
   r.seconds["total"] = since(start);
   writeJson(folder.path("report.json"), reportJson(cmd, r, rates));
@@ -316,32 +359,48 @@ void run(PhotonsCommand& cmd) {
 void addPhotonsCommand(CLI::App& app) {
   auto cmd = std::make_shared<PhotonsCommand>();
   CLI::App* sub = app.add_subcommand(
-      "photons", "Photon mapping (Jensen): per-patch radiosity with standard errors, photonmap.png, caustics.png, and "
-                 "a comparison with the radiosity solution (comparison.csv, difference.png)");
+      "photons",
+      "Photon mapping (Jensen): per-patch radiosity with standard errors, photonmap.png, "
+      "caustics.png, and "
+      "a comparison with the radiosity solution (comparison.csv, difference.png)");
   addMeshOptions(*sub, cmd->mesh, true);
   addCameraOption(*sub, cmd->camera);
   sub->add_option("--photons", cmd->settings.photons, "Photons emitted")
-      ->check(CLI::Range(std::size_t(1), kMaxPhotons))->capture_default_str();
-  sub->add_option("--k", cmd->settings.neighbours, "Photons in each irradiance estimate (k nearest)")
-      ->check(CLI::Range(2, 100000))->capture_default_str();
+      ->check(CLI::Range(std::size_t(1), kMaxPhotons))
+      ->capture_default_str();
+  sub->add_option("--k", cmd->settings.neighbours,
+                  "Photons in each irradiance estimate (k nearest)")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
   sub->add_option("--filter", cmd->filter, "Density-estimation kernel")
-      ->check(CLI::IsMember({"epanechnikov", "cone"}))->capture_default_str();
+      ->check(CLI::IsMember({"epanechnikov", "cone"}))
+      ->capture_default_str();
   sub->add_option("--seed", cmd->settings.seed, "Random seed (photon i uses stream (seed, i))")
-      ->check(Unsigned)->capture_default_str();
-  sub->add_option("--gather", cmd->settings.gatherRays, "Final-gathering rays per pixel (0: show the map directly)")
-      ->check(CLI::Range(0, 4096))->capture_default_str();
+      ->check(Unsigned)
+      ->capture_default_str();
+  sub->add_option("--gather", cmd->settings.gatherRays,
+                  "Final-gathering rays per pixel (0: show the map directly)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
   sub->add_option("--view", cmd->view, "photonmap.png: final gathering or the global map itself")
-      ->check(CLI::IsMember({"gather", "map"}))->capture_default_str();
+      ->check(CLI::IsMember({"gather", "map"}))
+      ->capture_default_str();
   sub->add_option("--image-size", cmd->imageSize, "Side of the images in pixels")
-      ->check(CLI::Range(16, 8192))->capture_default_str();
-  auto* compare = sub->add_option("--compare", cmd->compare,
-                                  "A `radkit run` output folder to compare with (its surfaces.csv); default: solve "
-                                  "radiosity on the same mesh here");
-  sub->add_flag("--no-radiosity", cmd->noRadiosity, "Skip the comparison with radiosity")->excludes(compare);
-  sub->add_flag("--no-image", cmd->noImage, "Skip photonmap.png and caustics.png (and their gathering)");
+      ->check(CLI::Range(16, 8192))
+      ->capture_default_str();
+  auto* compare = sub->add_option(
+      "--compare", cmd->compare,
+      "A `radkit run` output folder to compare with (its surfaces.csv); default: solve "
+      "radiosity on the same mesh here");
+  sub->add_flag("--no-radiosity", cmd->noRadiosity, "Skip the comparison with radiosity")
+      ->excludes(compare);
+  sub->add_flag("--no-image", cmd->noImage,
+                "Skip photonmap.png and caustics.png (and their gathering)");
   sub->add_option("--bench-rays", cmd->benchRays,
-                  "Random rays timed for the raw Embree reference, and a hundredth as many k-nearest queries (0: skip)")
-      ->check(CLI::Range(0LL, 1000000000LL))->capture_default_str();
+                  "Random rays timed for the raw Embree reference, and a hundredth as many "
+                  "k-nearest queries (0: skip)")
+      ->check(CLI::Range(0LL, 1000000000LL))
+      ->capture_default_str();
   sub->add_option("--out", cmd->out, "Output folder")->required();
   sub->callback([cmd] { run(*cmd); });
 }

@@ -11,8 +11,8 @@
 #include "geometry/patch_io.h"
 #include "radiosity/adaptive.h"
 #include "radiosity/form_factor_heat_map.h"
-#include "radiosity/presets.h"
 #include "radiosity/form_factor_writers.h"
+#include "radiosity/presets.h"
 #include "render/radiosity_image.h"
 #include "util/output_folder.h"
 
@@ -49,7 +49,8 @@ PipelineSettings pipelineSettings(const PipelineCommand& cmd) {
   PipelineSettings explicitSettings;
   explicitSettings.mesh = {cmd.mesh.maxArea, cmd.mesh.patches};
   explicitSettings.formFactors = cmd.ff.settings;
-  explicitSettings.solvers = cmd.job == Job::FormFactors ? std::vector<SolverChoice>{} : cmd.solver.choices;
+  explicitSettings.solvers =
+      cmd.job == Job::FormFactors ? std::vector<SolverChoice>{} : cmd.solver.choices;
   explicitSettings.stopping = cmd.solver.stopping;
   if (cmd.preset.empty()) return explicitSettings;
   PipelineSettings s = explicitSettings;
@@ -66,48 +67,55 @@ PipelineSettings pipelineSettings(const PipelineCommand& cmd) {
 constexpr int kDefaultRunPatches = 4000;
 
 /// Writes the form-factor files; returns the seconds spent on formfactors.bin and .mtx.
-double writeFormFactorFiles(OutputFolder& folder, const Scene& scene, const PipelineResult& r, bool matrixFile) {
+double writeFormFactorFiles(OutputFolder& folder, const Scene& scene, const PipelineResult& r,
+                            bool matrixFile) {
   std::vector<std::string> names = surfaceNames(scene);
   const FormFactorMatrix& f = r.formFactors->matrix;
   writeSurfaceFormFactors(folder.path("surface_formfactors.csv"), r.mesh, names, f);
   HeatMapSettings heat;
-  heat.title = scene.name + ": F_ij, " + std::to_string(r.mesh.size()) + " patches, " + r.formFactors->diagnostics.method;
+  heat.title = scene.name + ": F_ij, " + std::to_string(r.mesh.size()) + " patches, " +
+               r.formFactors->diagnostics.method;
   writeFormFactorHeatMap(folder.path("formfactors.png"), r.mesh, names, f, heat);
   // The viewer's matrix and row views read the compact binary, written on every run (4 bytes
   // per entry at most); the Matrix Market text (about 25 bytes per entry) only when asked.
   const auto start = std::chrono::steady_clock::now();
   writeFormFactorBinary(folder.path("formfactors.bin"), f);
   if (matrixFile)
-    writeMatrixMarket(folder.path("formfactors.mtx"), f,
-                      {"radkit form factors of " + scene.file, r.formFactors->diagnostics.description,
-                       "row i, column j: F_ij (patch ids from 0 in patches.csv are i-1, j-1)"});
+    writeMatrixMarket(
+        folder.path("formfactors.mtx"), f,
+        {"radkit form factors of " + scene.file, r.formFactors->diagnostics.description,
+         "row i, column j: F_ij (patch ids from 0 in patches.csv are i-1, j-1)"});
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd) {
+void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult& r,
+                 const PipelineCommand& cmd) {
   ImageSettings s;
   s.width = s.height = cmd.imageSize;
   s.smooth = cmd.smooth;
   writeRadiosityPng(folder.path("render.png"), scene, r.mesh, *r.rays, r.radiosity, s);
 }
 
-void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd, double total,
-                  double matrixSeconds) {
+void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd,
+                  double total, double matrixSeconds) {
   const FormFactorDiagnostics& d = r.formFactors->diagnostics;
   std::printf("\n");
   printField("scene", scene.name + " (" + scene.file + ")");
   printField("patches", std::to_string(r.mesh.size()));
-  printField("form factors", d.method + ", " + d.storage + ", " + std::to_string(d.raysCast) + " rays (" +
-                                 std::to_string(d.raysSaved) + " saved), " + fmt("%.3g rays/s", d.raysPerSecond));
-  printField("row sums", fmt("%.6f", d.rowSumMin) + " .. " + fmt("%.6f", d.rowSumMax) + ", reciprocity error " +
-                             fmt("%.2e", d.maxRelativeReciprocityError));
-  printField("seconds", "mesh " + fmt("%.2f", r.seconds.mesh) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
-                            ", form factors " + fmt("%.2f", r.seconds.formFactors) + ", solve " +
-                            fmt("%.2f", r.seconds.solve) + ", F files " + fmt("%.2f", matrixSeconds) +
-                            (cmd.writeMatrix ? " (with .mtx)" : "") + ", total " + fmt("%.2f", total));
+  printField("form factors", d.method + ", " + d.storage + ", " + std::to_string(d.raysCast) +
+                                 " rays (" + std::to_string(d.raysSaved) + " saved), " +
+                                 fmt("%.3g rays/s", d.raysPerSecond));
+  printField("row sums", fmt("%.6f", d.rowSumMin) + " .. " + fmt("%.6f", d.rowSumMax) +
+                             ", reciprocity error " + fmt("%.2e", d.maxRelativeReciprocityError));
+  printField("seconds",
+             "mesh " + fmt("%.2f", r.seconds.mesh) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
+                 ", form factors " + fmt("%.2f", r.seconds.formFactors) + ", solve " +
+                 fmt("%.2f", r.seconds.solve) + ", F files " + fmt("%.2f", matrixSeconds) +
+                 (cmd.writeMatrix ? " (with .mtx)" : "") + ", total " + fmt("%.2f", total));
   for (const SolveResult& s : r.solves)
-    printField(s.solver, std::to_string(s.iterations) + " iterations, residual " + fmt("%.2e", s.checkedResidual) +
-                             ", " + fmt("%.3f s", s.seconds) + (s.converged ? "" : "  NOT CONVERGED: " + s.reason));
+    printField(s.solver, std::to_string(s.iterations) + " iterations, residual " +
+                             fmt("%.2e", s.checkedResidual) + ", " + fmt("%.3f s", s.seconds) +
+                             (s.converged ? "" : "  NOT CONVERGED: " + s.reason));
   if (!r.solves.empty()) printEnergyAndSurfaces(r.energy, r.surfaces, cmd.photometric);
   printField("peak memory", fmt("%.0f MiB", peakMemoryBytes() / 1048576.0));
   printField("wrote", cmd.out);
@@ -125,9 +133,11 @@ void runHierarchical(PipelineCommand& cmd) {
   if (!refused.empty()) {
     std::string list;
     for (const std::string& name : refused) list += (list.empty() ? "" : ", ") + name;
-    throw CLI::ValidationError("--method hierarchical",
-                               list + " belong to the dense method; the hierarchy sets its own elements and links. "
-                                      "Use --epsilon, --min-area and --hr-rays instead");
+    throw CLI::ValidationError(
+        "--method hierarchical",
+        list +
+            " belong to the dense method; the hierarchy sets its own elements and links. "
+            "Use --epsilon, --min-area and --hr-rays instead");
   }
   HierarchicalJob job;
   job.scene = cmd.mesh.scene;
@@ -137,7 +147,8 @@ void runHierarchical(PipelineCommand& cmd) {
   job.settings.seed = cmd.ff.settings.seed;
   job.settings.memoryBudget = cmd.ff.settings.memoryBudget;
   job.settings.stopping = cmd.solver.stopping;
-  job.linkColour = cmd.hierarchical.linkColour == "power" ? LinkColour::Power : LinkColour::FormFactor;
+  job.linkColour =
+      cmd.hierarchical.linkColour == "power" ? LinkColour::Power : LinkColour::FormFactor;
   job.noRender = cmd.noRender, job.photometric = cmd.photometric, job.smooth = cmd.smooth;
   job.imageSize = cmd.imageSize;
   job.camera = cmd.camera;
@@ -152,11 +163,13 @@ void runJob(PipelineCommand& cmd) {
   if (cmd.job == Job::Run && cmd.hierarchical.method == "hierarchical") return runHierarchical(cmd);
   // Adaptive refinement starts coarse, at a quarter of its budget, so it has room to refine.
   if (cmd.job == Job::Run && cmd.preset.empty() && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0)
-    cmd.mesh.patches = cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
+    cmd.mesh.patches =
+        cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
   LoadReport loaded;
   Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded, cmd.camera);
-  if (cmd.out.empty() && cmd.job == Job::Run) cmd.out = "out/" + scene.name;  // required for the others
-  OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the work, not after
+  if (cmd.out.empty() && cmd.job == Job::Run)
+    cmd.out = "out/" + scene.name;  // required for the others
+  OutputFolder folder(cmd.out);     // refuses an --out it cannot replace before the work, not after
 
   PipelineSettings settings = pipelineSettings(cmd);
   Progress progress;
@@ -174,8 +187,10 @@ void runJob(PipelineCommand& cmd) {
       r = std::move(a.final);
       nlohmann::json rounds = nlohmann::json::array();
       for (const AdaptiveRound& round : a.rounds)
-        rounds.push_back({{"patches", round.patches}, {"max_indicator", round.maxIndicator},
-                          {"shadow_patches", round.shadowPatches}, {"split", round.split}});
+        rounds.push_back({{"patches", round.patches},
+                          {"max_indicator", round.maxIndicator},
+                          {"shadow_patches", round.shadowPatches},
+                          {"split", round.split}});
       adaptiveJson = {{"rounds", rounds}, {"stop_reason", a.stopReason}, {"seconds", a.seconds}};
     } else {
       r = runPipeline(scene, settings, log);
@@ -190,17 +205,22 @@ void runJob(PipelineCommand& cmd) {
                              "; nothing written");
 
   nlohmann::json report{{"radkit", RADKIT_VERSION},
-                        {"command", cmd.job == Job::Run ? "run" : cmd.job == Job::Solvers ? "solvers" : "formfactors"},
+                        {"command", cmd.job == Job::Run       ? "run"
+                                    : cmd.job == Job::Solvers ? "solvers"
+                                                              : "formfactors"},
                         {"scene", sceneJson(scene)},
                         {"mesh", meshJson(scene, r.mesh)},
                         {"form_factors", toJson(r.formFactors->diagnostics)},
                         {"warnings", r.warnings},
                         {"load", loadJson(loaded)}};
-  if (!cmd.preset.empty()) report["preset"] = {{"name", cmd.preset}, {"description", describePreset(cmd.preset)}};
+  if (!cmd.preset.empty())
+    report["preset"] = {{"name", cmd.preset}, {"description", describePreset(cmd.preset)}};
   if (cmd.adaptive) report["adaptive"] = adaptiveJson;
-  writePatchesCsv(folder.path("patches.csv"), scene, r.mesh, r.solves.empty() ? nullptr : &r.radiosity);
+  writePatchesCsv(folder.path("patches.csv"), scene, r.mesh,
+                  r.solves.empty() ? nullptr : &r.radiosity);
   double matrixSeconds = 0;
-  if (cmd.job != Job::Solvers) matrixSeconds = writeFormFactorFiles(folder, scene, r, cmd.writeMatrix);
+  if (cmd.job != Job::Solvers)
+    matrixSeconds = writeFormFactorFiles(folder, scene, r, cmd.writeMatrix);
   if (!r.solves.empty()) {
     writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), r.solves);
     nlohmann::json solves = nlohmann::json::array();
@@ -210,16 +230,21 @@ void runJob(PipelineCommand& cmd) {
     report["surfaces"] = surfacesJson(r.surfaces);
   }
   if (cmd.job == Job::Solvers)
-    for (const SolveResult& s : r.solves) writeSolutionCsv(folder.path("solution-" + s.solver + ".csv"), scene, r.mesh, s);
+    for (const SolveResult& s : r.solves)
+      writeSolutionCsv(folder.path("solution-" + s.solver + ".csv"), scene, r.mesh, s);
   if (cmd.job == Job::Run) {
     writeSurfacesCsv(folder.path("surfaces.csv"), scene, r.surfaces, cmd.photometric);
     writePatchesVtp(folder.path("radiosity.vtp"), scene, r.mesh, &r.radiosity);
     if (!cmd.noRender) renderImage(folder, scene, r, cmd);
   }
   double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  report["seconds"] = {{"mesh", r.seconds.mesh},       {"ray_scene", r.seconds.rayScene},
-                       {"form_factors", r.seconds.formFactors}, {"solve", r.seconds.solve},
-                       {"results", r.seconds.results}, {"matrix_files", matrixSeconds}, {"total", total}};
+  report["seconds"] = {{"mesh", r.seconds.mesh},
+                       {"ray_scene", r.seconds.rayScene},
+                       {"form_factors", r.seconds.formFactors},
+                       {"solve", r.seconds.solve},
+                       {"results", r.seconds.results},
+                       {"matrix_files", matrixSeconds},
+                       {"total", total}};
   report["peak_memory_bytes"] = peakMemoryBytes();
   writeJson(folder.path("report.json"), report);
   folder.commit();
@@ -234,7 +259,8 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
   addFormFactorOptions(*sub, cmd->ff);
   std::string presets;
   for (const std::string& preset : presetNames()) presets += "\n  " + describePreset(preset);
-  sub->add_option("--preset", cmd->preset, "Speed-accuracy preset; options given explicitly win:" + presets)
+  sub->add_option("--preset", cmd->preset,
+                  "Speed-accuracy preset; options given explicitly win:" + presets)
       ->check(CLI::IsMember(presetNames()));
   cmd->meshFlags = {sub->get_option("--patches"), sub->get_option("--max-area")};
   cmd->methodFlag = {sub->get_option("--ff")};
@@ -242,36 +268,52 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
   // `solvers` runs past 1e-9 so report.json's table of iterations to 1e-3, 1e-6 and 1e-9 is whole.
   if (job == Job::Solvers) cmd->solver.stopping.tolerance = 1e-10;
   if (job != Job::FormFactors) {
-    addSolverOptions(*sub, cmd->solver, job == Job::Solvers ? "jacobi,gauss-seidel,sor,southwell,cg" : "gauss-seidel");
+    addSolverOptions(*sub, cmd->solver,
+                     job == Job::Solvers ? "jacobi,gauss-seidel,sor,southwell,cg" : "gauss-seidel");
     cmd->tolFlag = {sub->get_option("--tol")};
   }
   if (job != Job::Solvers)
     sub->add_flag("--write-matrix", cmd->writeMatrix,
-                  "Also write F as Matrix Market text, formfactors.mtx (about 25 bytes per non-zero; the viewer "
+                  "Also write F as Matrix Market text, formfactors.mtx (about 25 bytes per "
+                  "non-zero; the viewer "
                   "needs only formfactors.bin, written always)");
-  auto* out = sub->add_option("--out", cmd->out, job == Job::Run ? "Output folder (default out/<scene name>)" : "Output folder");
+  auto* out = sub->add_option(
+      "--out", cmd->out,
+      job == Job::Run ? "Output folder (default out/<scene name>)" : "Output folder");
   if (job != Job::Run) out->required();
   if (job == Job::Run) {
     sub->add_flag("--no-render", cmd->noRender, "Skip render.png");
-    sub->add_flag("--photometric", cmd->photometric, "Add luminance (cd/m²) and illuminance (lux) to surfaces.csv");
+    sub->add_flag("--photometric", cmd->photometric,
+                  "Add luminance (cd/m²) and illuminance (lux) to surfaces.csv");
     sub->add_flag("--smooth", cmd->smooth, "Interpolate radiosity between patches in render.png");
-    sub->add_flag("--adaptive", cmd->adaptive,
-                  "Refine patches where radiosity changes most between neighbours and across shadow boundaries, "
-                  "re-solve, repeat (starts from --patches/--max-area, else a quarter of the budget; "
-                  "docs/speed-vs-accuracy.md)");
-    sub->add_option("--adaptive-max-patches", cmd->adaptiveSettings.maxPatches, "Adaptive: patch budget")
-        ->check(CLI::Range(1, int(kMaxPatches)))->capture_default_str();
-    sub->add_option("--adaptive-tol", cmd->adaptiveSettings.tolerance, "Adaptive: stop when no patch's indicator exceeds this")
-        ->check(FinitePositive)->capture_default_str();
-    sub->add_option("--adaptive-rounds", cmd->adaptiveSettings.maxRounds, "Adaptive: refine-and-solve rounds at most")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    sub->add_flag(
+        "--adaptive", cmd->adaptive,
+        "Refine patches where radiosity changes most between neighbours and across shadow "
+        "boundaries, "
+        "re-solve, repeat (starts from --patches/--max-area, else a quarter of the budget; "
+        "docs/speed-vs-accuracy.md)");
+    sub->add_option("--adaptive-max-patches", cmd->adaptiveSettings.maxPatches,
+                    "Adaptive: patch budget")
+        ->check(CLI::Range(1, int(kMaxPatches)))
+        ->capture_default_str();
+    sub->add_option("--adaptive-tol", cmd->adaptiveSettings.tolerance,
+                    "Adaptive: stop when no patch's indicator exceeds this")
+        ->check(FinitePositive)
+        ->capture_default_str();
+    sub->add_option("--adaptive-rounds", cmd->adaptiveSettings.maxRounds,
+                    "Adaptive: refine-and-solve rounds at most")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     addCameraOption(*sub, cmd->camera);
-    sub->add_option("--image-size", cmd->imageSize, "Side of render.png in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
+    sub->add_option("--image-size", cmd->imageSize, "Side of render.png in pixels")
+        ->check(CLI::Range(16, 8192))
+        ->capture_default_str();
     addHierarchicalOptions(*sub, cmd->hierarchical);
-    cmd->hierarchical.denseOnly = {sub->get_option("--patches"), sub->get_option("--max-area"),
-                                   sub->get_option("--ff"), sub->get_option("--ff-samples"),
-                                   sub->get_option("--ff-enforce"), sub->get_option("--ff-storage"),
-                                   sub->get_option("--solvers"), sub->get_option("--write-matrix")};
+    cmd->hierarchical.denseOnly = {
+        sub->get_option("--patches"),    sub->get_option("--max-area"),
+        sub->get_option("--ff"),         sub->get_option("--ff-samples"),
+        sub->get_option("--ff-enforce"), sub->get_option("--ff-storage"),
+        sub->get_option("--solvers"),    sub->get_option("--write-matrix")};
   }
   sub->callback([cmd] { runJob(*cmd); });
   return sub;
@@ -289,14 +331,18 @@ std::string runDefaultJob(const std::string& scenePath, const std::string& outDi
 }
 
 void addPipelineCommands(CLI::App& app) {
-  addPipelineCommand(app, Job::FormFactors, "formfactors",
-                     "Compute the form-factor matrix: formfactors.bin (and with --write-matrix formfactors.mtx), "
-                     "surface_formfactors.csv, formfactors.png, report.json");
+  addPipelineCommand(
+      app, Job::FormFactors, "formfactors",
+      "Compute the form-factor matrix: formfactors.bin (and with --write-matrix formfactors.mtx), "
+      "surface_formfactors.csv, formfactors.png, report.json");
   addPipelineCommand(app, Job::Solvers, "solvers",
-                     "Build F once and run several solvers from the same start: convergence.csv/.png, solution-<solver>.csv");
-  addPipelineCommand(app, Job::Run, "run",
-                     "The main job: mesh, form factors, solve, and every output (default scene: the Cornell box, "
-                     "default mesh: about " + std::to_string(kDefaultRunPatches) + " patches)");
+                     "Build F once and run several solvers from the same start: "
+                     "convergence.csv/.png, solution-<solver>.csv");
+  addPipelineCommand(
+      app, Job::Run, "run",
+      "The main job: mesh, form factors, solve, and every output (default scene: the Cornell box, "
+      "default mesh: about " +
+          std::to_string(kDefaultRunPatches) + " patches)");
 }
 
 }  // namespace radkit::app

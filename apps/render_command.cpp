@@ -15,15 +15,15 @@
 #include "apps/options.h"
 #include "apps/report.h"
 #include "geometry/scene_loader.h"
+#include "photon/image.h"
+#include "photon/map.h"
+#include "photon/tracer.h"
 #include "render/camera.h"
 #include "render/exr_io.h"
 #include "render/final_gather.h"
 #include "render/hdr_io.h"
 #include "render/image_comparison.h"
 #include "render/path_tracer.h"
-#include "photon/image.h"
-#include "photon/map.h"
-#include "photon/tracer.h"
 #include "render/shading.h"
 #include "util/output_folder.h"
 #include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
@@ -40,7 +40,8 @@ struct RenderCommand {
   MeshOptions mesh;
   FormFactorOptions ff;
   SolverOptions solver;
-  std::string shading = "path-trace", size = "512x512", tonemap = "srgb", masking = "height-correlated", out;
+  std::string shading = "path-trace", size = "512x512", tonemap = "srgb",
+              masking = "height-correlated", out;
   std::string sampler = "sobol", report, camera;
   /// Solid angle lowers the Cornell box's error by 3 % at equal samples but costs 30 % more
   /// time (docs/images.md), so area stays the default.
@@ -63,7 +64,6 @@ std::vector<int> pixelSurfaces(const RadianceImage& img, const PatchMesh& mesh) 
     if (img.patch[k] >= 0) out[k] = mesh.patches[img.patch[k]].surface;
   return out;
 }
-
 
 /// What every render mode reads.
 struct ModeInput {
@@ -97,7 +97,8 @@ ModeImage finish(RadianceImage img, const Scene& scene, const PatchMesh& mesh, s
 /// The mesh of the modes that do not solve radiosity (their own --patches or --max-area).
 PatchMesh ownMesh(const ModeInput& in, bool defaultPatches) {
   MeshOptions options = in.cmd.mesh;
-  if (defaultPatches && options.maxArea <= 0 && options.patches <= 0) options.patches = kDefaultRenderPatches;
+  if (defaultPatches && options.maxArea <= 0 && options.patches <= 0)
+    options.patches = kDefaultRenderPatches;
   return meshScene(in.scene, options);
 }
 
@@ -105,7 +106,8 @@ PatchMesh ownMesh(const ModeInput& in, bool defaultPatches) {
 PipelineResult solveRadiosity(const ModeInput& in) {
   PipelineSettings settings;
   settings.mesh = {in.cmd.mesh.maxArea, in.cmd.mesh.patches};
-  if (settings.mesh.maxArea <= 0 && settings.mesh.targetPatches <= 0) settings.mesh.targetPatches = kDefaultRenderPatches;
+  if (settings.mesh.maxArea <= 0 && settings.mesh.targetPatches <= 0)
+    settings.mesh.targetPatches = kDefaultRenderPatches;
   settings.formFactors = in.cmd.ff.settings;
   settings.solvers = in.cmd.solver.choices;
   settings.stopping = in.cmd.solver.stopping;
@@ -130,20 +132,25 @@ ModeImage renderPhotonMapMode(const ModeInput& in) {
   PhotonMaps maps = buildPhotonMaps(mesh, tracePhotons(in.scene, mesh, rays, emitters, ps).photons);
   maps.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
   const PhotonScene photons{in.scene, mesh, rays, emitters, *maps.global, *maps.caustic};
-  RadianceImage img = renderPhotonImage(photons, in.camera, in.width, in.height, PhotonView::FinalGather, ps);
+  RadianceImage img =
+      renderPhotonImage(photons, in.camera, in.width, in.height, PhotonView::FinalGather, ps);
   // One jittered ray per pixel per pass; --spp given asks for more passes, averaged (each
   // pass its own camera stream). Without it one pass: a pass costs its gathers.
   const int passes = in.cmd.sppOption && in.cmd.sppOption->count() > 0 ? in.cmd.spp : 1;
   for (int pass = 1; pass < passes; ++pass) {
     PhotonSettings more = ps;
     more.seed = in.seed + std::uint64_t(pass);
-    const RadianceImage next = renderPhotonImage(photons, in.camera, in.width, in.height, PhotonView::FinalGather, more);
-    for (std::size_t k = 0; k < img.radiance.size(); ++k) img.radiance[k] = img.radiance[k] + next.radiance[k];
+    const RadianceImage next =
+        renderPhotonImage(photons, in.camera, in.width, in.height, PhotonView::FinalGather, more);
+    for (std::size_t k = 0; k < img.radiance.size(); ++k)
+      img.radiance[k] = img.radiance[k] + next.radiance[k];
   }
   for (Vec3& v : img.radiance) v = v / double(passes);
   return finish(std::move(img), in.scene, mesh,
-                std::to_string(in.cmd.photons) + " photons, " + std::to_string(maps.global->size()) + " stored, " +
-                    std::to_string(ps.gatherRays) + " gather rays per pixel, " + std::to_string(passes) + " pass(es)");
+                std::to_string(in.cmd.photons) + " photons, " +
+                    std::to_string(maps.global->size()) + " stored, " +
+                    std::to_string(ps.gatherRays) + " gather rays per pixel, " +
+                    std::to_string(passes) + " pass(es)");
 }
 
 ModeImage renderPathTraceMode(const ModeInput& in) {
@@ -151,7 +158,8 @@ ModeImage renderPathTraceMode(const ModeInput& in) {
   const RayScene rays(mesh);
   const ShadingScene shading(in.scene, mesh, rays, in.bsdf, GlossyModel::AsDeclared, in.light);
   PathTraceSettings s;
-  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed, s.sampler = in.sampler;
+  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed,
+  s.sampler = in.sampler;
   s.rouletteDepth = in.cmd.rouletteDepth, s.maxDepth = in.cmd.maxDepth;
   MonteCarloImage img = renderPathTraced(shading, in.camera, s);
   return finish(std::move(img.image), in.scene, mesh,
@@ -162,7 +170,8 @@ ModeImage renderPathTraceMode(const ModeInput& in) {
 ModeImage renderRadiosityMode(const ModeInput& in) {
   const PipelineResult r = solveRadiosity(in);
   ImageSettings s;
-  s.width = in.width, s.height = in.height, s.smooth = in.cmd.smooth, s.smoothing = in.cmd.smoothing;
+  s.width = in.width, s.height = in.height, s.smooth = in.cmd.smooth,
+  s.smoothing = in.cmd.smoothing;
   const std::vector<bool> twoSided = in.scene.twoSidedSurfaces();
   RadianceImage img = renderRadiosity(r.mesh, *r.rays, in.camera, r.radiosity, twoSided, s);
   return finish(std::move(img), in.scene, r.mesh, std::to_string(r.mesh.size()) + " patches");
@@ -172,30 +181,35 @@ ModeImage renderFinalGatherMode(const ModeInput& in) {
   const PipelineResult r = solveRadiosity(in);
   const ShadingScene shading(in.scene, r.mesh, *r.rays, in.bsdf, GlossyModel::AsDeclared, in.light);
   FinalGatherSettings s;
-  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed, s.sampler = in.sampler;
+  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed,
+  s.sampler = in.sampler;
   s.smoothing = in.cmd.smoothing;
   const RadiosityLighting lighting = radiosityLighting(r);
   std::optional<GatherGuide> guide;
   if (!in.cmd.unguided) guide.emplace(r.formFactors->matrix, lighting);
-  MonteCarloImage img = renderFinalGather(shading, in.camera, lighting, s, guide ? &*guide : nullptr);
+  MonteCarloImage img =
+      renderFinalGather(shading, in.camera, lighting, s, guide ? &*guide : nullptr);
   return finish(std::move(img.image), in.scene, r.mesh,
-                std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) + " gathers in " +
-                    std::to_string(img.seconds) + " s");
+                std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) +
+                    " gathers in " + std::to_string(img.seconds) + " s");
 }
 
 ModeImage renderTwoPassMode(const ModeInput& in, GlossyModel glossy) {
   const PipelineResult r = solveRadiosity(in);
   const ShadingScene shading(in.scene, r.mesh, *r.rays, in.bsdf, glossy, in.light);
   TwoPassSettings s;
-  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed, s.sampler = in.sampler;
+  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed,
+  s.sampler = in.sampler;
   MonteCarloImage img = renderTwoPass(shading, in.camera, radiosityLighting(r), s);
   return finish(std::move(img.image), in.scene, r.mesh,
-                std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) + " camera samples in " +
-                    std::to_string(img.seconds) + " s");
+                std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) +
+                    " camera samples in " + std::to_string(img.seconds) + " s");
 }
 
 ModeImage renderPhongMode(const ModeInput& in) { return renderTwoPassMode(in, GlossyModel::Phong); }
-ModeImage renderCookTorranceMode(const ModeInput& in) { return renderTwoPassMode(in, GlossyModel::CookTorrance); }
+ModeImage renderCookTorranceMode(const ModeInput& in) {
+  return renderTwoPassMode(in, GlossyModel::CookTorrance);
+}
 
 /// The one table of image modes (as solvers/registry.cpp): --shading's choices and help.
 struct RenderMode {
@@ -205,11 +219,14 @@ struct RenderMode {
 };
 
 constexpr RenderMode kRenderModes[] = {
-    {"radiosity", renderRadiosityMode, "the radiosity solution seen by the camera (flat, or --smooth)"},
-    {"phong", renderPhongMode, "two-pass: radiosity for diffuse light, glossy materials shaded as Phong"},
+    {"radiosity", renderRadiosityMode,
+     "the radiosity solution seen by the camera (flat, or --smooth)"},
+    {"phong", renderPhongMode,
+     "two-pass: radiosity for diffuse light, glossy materials shaded as Phong"},
     {"cook-torrance", renderCookTorranceMode, "two-pass: glossy materials shaded as Cook-Torrance"},
     {"path-trace", renderPathTraceMode, "unidirectional path tracing with MIS (the reference)"},
-    {"photon-map", renderPhotonMapMode, "photon mapping with final gathering (--photons, --gather-rays)"},
+    {"photon-map", renderPhotonMapMode,
+     "photon mapping with final gathering (--photons, --gather-rays)"},
     {"final-gather", renderFinalGatherMode, "one gather bounce over the radiosity solution"},
 };
 
@@ -234,11 +251,13 @@ ModeImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, in
 
 /// Region errors against the reference renders: printed, and written as JSON with --report.
 void compareWithReference(const RenderCommand& cmd, const Scene& scene, const RadianceImage& img,
-                          const std::vector<int>& surfaces, double seconds, const std::vector<RadianceImage>& refs) {
+                          const std::vector<int>& surfaces, double seconds,
+                          const std::vector<RadianceImage>& refs) {
   std::vector<std::string> names;
   for (const Surface& s : scene.surfaces) names.push_back(s.name);
   names.push_back("edges");
-  const std::vector<int> region = surfaceRegions(surfaces, img.width, img.height, int(names.size()) - 1);
+  const std::vector<int> region =
+      surfaceRegions(surfaces, img.width, img.height, int(names.size()) - 1);
   // Also the lit surfaces alone, away from edges: emitters and aliased edges swamp "all".
   std::vector<int> lit(region.size(), -1);
   for (std::size_t k = 0; k < region.size(); ++k)
@@ -256,18 +275,31 @@ void compareWithReference(const RenderCommand& cmd, const Scene& scene, const Ra
   for (const RegionError& e : errors) {
     if (e.pixels == 0) continue;
     char line[160];
-    std::snprintf(line, sizeof line, "%6.2f %% (raw %.4g, reference noise %.4g, mean %.4g W/m²/sr, %d px)",
+    std::snprintf(line, sizeof line,
+                  "%6.2f %% (raw %.4g, reference noise %.4g, mean %.4g W/m²/sr, %d px)",
                   100 * e.relative(), e.rawRmse, e.referenceNoise, e.referenceMean, e.pixels);
     printField("rmse " + e.name, line);
-    rows.push_back({{"region", e.name}, {"pixels", e.pixels}, {"reference_mean", e.referenceMean},
-                    {"raw_rmse", e.rawRmse}, {"reference_noise", e.referenceNoise}, {"rmse", e.rmse},
+    rows.push_back({{"region", e.name},
+                    {"pixels", e.pixels},
+                    {"reference_mean", e.referenceMean},
+                    {"raw_rmse", e.rawRmse},
+                    {"reference_noise", e.referenceNoise},
+                    {"rmse", e.rmse},
                     {"relative_rmse", e.relative()}});
   }
-  if (refs.size() < 2) printField("note", "one reference: its own noise is not subtracted (give --reference twice)");
+  if (refs.size() < 2)
+    printField("note", "one reference: its own noise is not subtracted (give --reference twice)");
   if (cmd.report.empty()) return;
-  const nlohmann::json j{{"shading", cmd.shading}, {"smooth", cmd.smooth}, {"sampler", cmd.sampler},
-                         {"light_sampling", cmd.lightSampling}, {"spp", cmd.spp}, {"width", img.width},
-                         {"height", img.height}, {"seconds", seconds}, {"references", cmd.references}, {"regions", rows}};
+  const nlohmann::json j{{"shading", cmd.shading},
+                         {"smooth", cmd.smooth},
+                         {"sampler", cmd.sampler},
+                         {"light_sampling", cmd.lightSampling},
+                         {"spp", cmd.spp},
+                         {"width", img.width},
+                         {"height", img.height},
+                         {"seconds", seconds},
+                         {"references", cmd.references},
+                         {"regions", rows}};
   writeFileAtomically(cmd.report, j.dump(2) + "\n");
   printField("report", cmd.report);
 }
@@ -281,14 +313,18 @@ void runRender(RenderCommand& cmd) {
   checkOutputFile("--out", cmd.out);
   if (!cmd.report.empty()) {
     if (cmd.references.empty())
-      throw InputError("--report " + cmd.report + " needs --reference: the report holds the errors against it");
+      throw InputError("--report " + cmd.report +
+                       " needs --reference: the report holds the errors against it");
     checkOutputFile("--report", cmd.report);
   }
   std::string ext = std::filesystem::path(cmd.out).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext != ".png" && ext != ".pfm" && ext != ".exr")
-    throw InputError("--out " + cmd.out + ": '" + ext + "' is not an image format render writes (PNG bytes under "
-                     "another name would mislead). Fix: end the name in .png (tone mapped), .exr or .pfm (linear "
+    throw InputError("--out " + cmd.out + ": '" + ext +
+                     "' is not an image format render writes (PNG bytes under "
+                     "another name would mislead). Fix: end the name in .png (tone mapped), .exr "
+                     "or .pfm (linear "
                      "radiance, W/m²/sr)");
   // References are read and their size checked first: a mismatch found after the render left
   // the image behind.
@@ -297,8 +333,9 @@ void runRender(RenderCommand& cmd) {
     refs.push_back(readPfm(f));
     if (refs.back().width != width || refs.back().height != height)
       throw InputError("--reference " + f + " is " + std::to_string(refs.back().width) + "x" +
-                       std::to_string(refs.back().height) + ", the image --size " + std::to_string(width) + "x" +
-                       std::to_string(height) + ". Fix: render at the reference's --size");
+                       std::to_string(refs.back().height) + ", the image --size " +
+                       std::to_string(width) + "x" + std::to_string(height) +
+                       ". Fix: render at the reference's --size");
   }
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
   const Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, nullptr, cmd.camera);
@@ -308,11 +345,16 @@ void runRender(RenderCommand& cmd) {
   const std::string& what = mode.what;
   const std::vector<bool>& emits = mode.emits;
   const std::vector<int>& surfaces = mode.surfaces;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double exposure = cmd.exposure > 0 ? cmd.exposure : autoExposure(img, emits);
-  if (ext == ".pfm") writePfm(cmd.out, img);
-  else if (ext == ".exr") writeExr(cmd.out, img);
-  else writePng(cmd.out, toneMapCurve(img, exposure, cmd.tonemap == "filmic" ? ToneCurve::Filmic : ToneCurve::Srgb));
+  if (ext == ".pfm")
+    writePfm(cmd.out, img);
+  else if (ext == ".exr")
+    writeExr(cmd.out, img);
+  else
+    writePng(cmd.out, toneMapCurve(img, exposure,
+                                   cmd.tonemap == "filmic" ? ToneCurve::Filmic : ToneCurve::Srgb));
   printField("scene", scene.name + " (" + scene.file + ")");
   printField("shading", cmd.shading + ": " + what);
   if (ext == ".png") printField("exposure", std::to_string(exposure));
@@ -325,7 +367,9 @@ void runRender(RenderCommand& cmd) {
 
 void addRenderCommand(CLI::App& app) {
   auto cmd = std::make_shared<RenderCommand>();
-  CLI::App* sub = app.add_subcommand("render", "One camera image: radiosity, two-pass Phong / Cook-Torrance, or a path-traced reference");
+  CLI::App* sub = app.add_subcommand(
+      "render",
+      "One camera image: radiosity, two-pass Phong / Cook-Torrance, or a path-traced reference");
   addMeshOptions(*sub, cmd->mesh, false);
   addCameraOption(*sub, cmd->camera);
   addFormFactorOptions(*sub, cmd->ff);
@@ -343,7 +387,8 @@ void addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"independent", "stratified", "sobol"}))
       ->capture_default_str();
   sub->add_option("--light-sampling", cmd->lightSampling,
-                  "Monte Carlo modes: a point on the chosen emitter uniformly by area, or (rectangles) uniformly "
+                  "Monte Carlo modes: a point on the chosen emitter uniformly by area, or "
+                  "(rectangles) uniformly "
                   "by solid angle (Urena et al. 2013)")
       ->check(CLI::IsMember({"area", "solid-angle"}))
       ->capture_default_str();
@@ -351,50 +396,66 @@ void addRenderCommand(CLI::App& app) {
                   "path-trace: vertices before Russian roulette may end a path")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  sub->add_option("--max-depth", cmd->maxDepth,
-                  "path-trace: the most vertices a path has (fewer drop light: for variance studies only)")
+  sub->add_option(
+         "--max-depth", cmd->maxDepth,
+         "path-trace: the most vertices a path has (fewer drop light: for variance studies only)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  cmd->sppOption = sub->add_option("--spp", cmd->spp,
-                                   "Samples (camera paths) per pixel; photon-map: passes of one ray per pixel, 1 "
-                                   "unless given")
-                       ->check(CLI::Range(1, 1 << 20))
-                       ->capture_default_str();
+  cmd->sppOption =
+      sub->add_option(
+             "--spp", cmd->spp,
+             "Samples (camera paths) per pixel; photon-map: passes of one ray per pixel, 1 "
+             "unless given")
+          ->check(CLI::Range(1, 1 << 20))
+          ->capture_default_str();
   sub->add_option("--size", cmd->size, "Image size WIDTHxHEIGHT")->capture_default_str();
-  sub->add_option("--gather-rays", cmd->gatherRays, "photon-map: final-gathering rays per pixel (0: the map seen directly)")
+  sub->add_option("--gather-rays", cmd->gatherRays,
+                  "photon-map: final-gathering rays per pixel (0: the map seen directly)")
       ->check(CLI::Range(0, 65536))
       ->capture_default_str();
   sub->add_option("--photons", cmd->photons, "photon-map: photons emitted")
       ->check(CLI::Range(std::size_t(1), kMaxPhotons))
       ->capture_default_str();
-  sub->add_option("--exposure", cmd->exposure, "Radiance multiplier before tone mapping; 0: automatic")
+  sub->add_option("--exposure", cmd->exposure,
+                  "Radiance multiplier before tone mapping; 0: automatic")
       ->check(FiniteNonNegative)
       ->capture_default_str();
-  sub->add_option("--tonemap", cmd->tonemap, "srgb: clamp and sRGB; filmic: ACES fit (Narkowicz 2016), then sRGB")
+  sub->add_option("--tonemap", cmd->tonemap,
+                  "srgb: clamp and sRGB; filmic: ACES fit (Narkowicz 2016), then sRGB")
       ->check(CLI::IsMember({"srgb", "filmic"}))
       ->capture_default_str();
-  sub->add_flag("--smooth", cmd->smooth, "radiosity: interpolate between patches (never across creases or jumps)");
-  sub->add_option("--crease-angle", cmd->smoothing.creaseAngleDeg,
-                  "--smooth, final-gather: patches whose normals differ by more degrees are not averaged")
+  sub->add_flag("--smooth", cmd->smooth,
+                "radiosity: interpolate between patches (never across creases or jumps)");
+  sub->add_option(
+         "--crease-angle", cmd->smoothing.creaseAngleDeg,
+         "--smooth, final-gather: patches whose normals differ by more degrees are not averaged")
       ->check(FiniteRange(0.0, 180.0))
       ->capture_default_str();
   sub->add_option("--smooth-error", cmd->smoothing.relativeError,
-                  "--smooth, final-gather: a patch's assumed error as a fraction of its B; neighbours that differ "
+                  "--smooth, final-gather: a patch's assumed error as a fraction of its B; "
+                  "neighbours that differ "
                   "by more than 3 combined errors are not averaged (a shadow edge stays sharp)")
       ->check(FiniteNonNegative)
       ->capture_default_str();
-  sub->add_flag("--unguided", cmd->unguided,
-                "final-gather: BSDF-sampled gather rays only, without the form-factor-guided samples");
+  sub->add_flag(
+      "--unguided", cmd->unguided,
+      "final-gather: BSDF-sampled gather rays only, without the form-factor-guided samples");
   sub->add_option("--reference", cmd->references,
-                  "PFM render(s) of the same view to report RMSE against, per surface; two or more independent "
+                  "PFM render(s) of the same view to report RMSE against, per surface; two or more "
+                  "independent "
                   "ones let their own noise be subtracted")
       ->check(CLI::ExistingFile);
-  sub->add_option("--report", cmd->report, "With --reference: write the errors and the time as JSON");
+  sub->add_option("--report", cmd->report,
+                  "With --reference: write the errors and the time as JSON");
   sub->add_option("--g", cmd->masking, "Cook-Torrance shadowing-masking term")
       ->check(CLI::IsMember({"height-correlated", "separable", "schlick", "cook-torrance"}))
       ->capture_default_str();
-  sub->add_flag("--compensated", cmd->compensated, "Cook-Torrance: Kulla-Conty multiple-scattering compensation");
-  sub->add_option("--out", cmd->out, "Image file: .png (tone mapped), or .exr or .pfm (linear radiance, W/m²/sr, 32-bit float)")->required();
+  sub->add_flag("--compensated", cmd->compensated,
+                "Cook-Torrance: Kulla-Conty multiple-scattering compensation");
+  sub->add_option(
+         "--out", cmd->out,
+         "Image file: .png (tone mapped), or .exr or .pfm (linear radiance, W/m²/sr, 32-bit float)")
+      ->required();
   sub->callback([cmd] { runRender(*cmd); });
 }
 

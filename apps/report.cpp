@@ -46,22 +46,36 @@ json meshJson(const Scene& scene, const PatchMesh& mesh) {
     hi = std::max(hi, p.area);
     aspect = std::max(aspect, mesh.aspectRatio(p));
   }
-  return {{"patches", mesh.size()},   {"quads", quads},          {"triangles", mesh.size() - quads},
-          {"vertices", mesh.vertices.size()}, {"total_area", mesh.totalArea()}, {"area_units", scene.units + "^2"},
-          {"min_patch_area", lo},     {"max_patch_area", hi},    {"worst_aspect_ratio", aspect}};
+  return {{"patches", mesh.size()},
+          {"quads", quads},
+          {"triangles", mesh.size() - quads},
+          {"vertices", mesh.vertices.size()},
+          {"total_area", mesh.totalArea()},
+          {"area_units", scene.units + "^2"},
+          {"min_patch_area", lo},
+          {"max_patch_area", hi},
+          {"worst_aspect_ratio", aspect}};
 }
 
 json solveJson(const SolveResult& r) {
   json milestonesJson = json::array();
   for (const Milestone& m : milestones(r)) {
     json row{{"residual", m.level}, {"reached", m.reached}};
-    if (m.reached) row.update({{"iterations", m.iterations}, {"seconds", m.seconds}, {"sweeps", m.sweeps}});
+    if (m.reached)
+      row.update({{"iterations", m.iterations}, {"seconds", m.seconds}, {"sweeps", m.sweeps}});
     milestonesJson.push_back(row);
   }
-  return {{"solver", r.solver},     {"description", r.description},         {"converged", r.converged},
-          {"reason", r.reason},     {"exit_reason", r.exit},                {"iterations", r.iterations},
-          {"seconds", r.seconds},   {"spectral_radius_estimate", r.spectralRadius},
-          {"residual", r.residual}, {"checked_residual", r.checkedResidual}, {"milestones", milestonesJson},
+  return {{"solver", r.solver},
+          {"description", r.description},
+          {"converged", r.converged},
+          {"reason", r.reason},
+          {"exit_reason", r.exit},
+          {"iterations", r.iterations},
+          {"seconds", r.seconds},
+          {"spectral_radius_estimate", r.spectralRadius},
+          {"residual", r.residual},
+          {"checked_residual", r.checkedResidual},
+          {"milestones", milestonesJson},
           {"ambient", json::array({r.ambient[0], r.ambient[1], r.ambient[2]})}};
 }
 
@@ -84,14 +98,15 @@ json surfacesJson(const std::vector<SurfaceResult>& surfaces) {
   return a;
 }
 
-void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceResult>& surfaces, bool photometric,
-                            const std::string& escapedNote) {
+void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceResult>& surfaces,
+                            bool photometric, const std::string& escapedNote) {
   printField("energy balance", "emitted " + fmt("%.4g W", luminance(e.emitted)) + " = absorbed " +
                                    fmt("%.4g", luminance(e.absorbed)) + " + escaped " +
-                                   fmt("%.4g", luminance(e.escaped)) + escapedNote + " (Y), imbalance " +
-                                   fmt("%.2e", e.relativeImbalance));
+                                   fmt("%.4g", luminance(e.escaped)) + escapedNote +
+                                   " (Y), imbalance " + fmt("%.2e", e.relativeImbalance));
   for (const SurfaceResult& s : surfaces) {
-    std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) + fmt(" %10.4f W/m²", s.radiosity.z);
+    std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) +
+                       fmt(" %10.4f W/m²", s.radiosity.z);
     if (photometric) line += fmt("  %9.2f cd/m²", s.luminance) + fmt("  %9.1f lux", s.illuminance);
     printField(s.name, line);
   }
@@ -99,15 +114,22 @@ void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceRes
 
 std::size_t peakMemoryBytes() { return lifetimePeakMemory(); }
 
-void writeJson(const std::string& path, const json& j) { writeFileAtomically(path, j.dump(2) + "\n"); }
+void writeJson(const std::string& path, const json& j) {
+  writeFileAtomically(path, j.dump(2) + "\n");
+}
 
-void writeConvergence(const std::string& csvPath, const std::string& pngPath, const std::vector<SolveResult>& solves) {
+void writeConvergence(const std::string& csvPath, const std::string& pngPath,
+                      const std::vector<SolveResult>& solves) {
   std::ostringstream csv;
   writeConvergenceHeader(csv);
   // Work, not iterations, on x: a Southwell shot updates one row (1/n of a sweep), so its
   // thousands of shots would squash the sweeping solvers against x = 0.
-  ChartPanel byIteration{"Residual against work", "sweep-equivalents (a Southwell shot = 1/n sweep)",
-                         "relative residual", false, true, {}};
+  ChartPanel byIteration{"Residual against work",
+                         "sweep-equivalents (a Southwell shot = 1/n sweep)",
+                         "relative residual",
+                         false,
+                         true,
+                         {}};
   ChartPanel bySeconds{"Residual against time", "seconds", "relative residual", true, true, {}};
   for (const SolveResult& s : solves) {
     writeConvergenceRows(csv, s);
@@ -125,7 +147,8 @@ void writeConvergence(const std::string& csvPath, const std::string& pngPath, co
   writeLineChartPng(pngPath, {byIteration, bySeconds});
 }
 
-void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh, const SolveResult& solve) {
+void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+                      const SolveResult& solve) {
   std::vector<Vec3> b = toVec3(solve.radiosity);
   writePatchesCsv(path, scene, mesh, &b);
 }

@@ -16,8 +16,8 @@ nlohmann::json energyJson(const EnergyBalance& e);
 nlohmann::json surfacesJson(const std::vector<SurfaceResult>& surfaces);
 /// Prints the energy balance ("escaped" followed by `escapedNote`) and one line of radiosity
 /// per surface (with cd/m² and lux when photometric).
-void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceResult>& surfaces, bool photometric,
-                            const std::string& escapedNote = "");
+void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceResult>& surfaces,
+                            bool photometric, const std::string& escapedNote = "");
 /// Peak resident memory of this process in bytes (getrusage).
 std::size_t peakMemoryBytes();
 
@@ -25,10 +25,12 @@ std::size_t peakMemoryBytes();
 void writeJson(const std::string& path, const nlohmann::json& j);
 
 /// Writes convergence.csv and convergence.png (residual against iteration and against seconds).
-void writeConvergence(const std::string& csvPath, const std::string& pngPath, const std::vector<SolveResult>& solves);
+void writeConvergence(const std::string& csvPath, const std::string& pngPath,
+                      const std::vector<SolveResult>& solves);
 
 /// Writes `solution-<solver>.csv` style patch files for one solve.
-void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh, const SolveResult& solve);
+void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+                      const SolveResult& solve);
 
 /// Shows a stage's progress: a redrawn bar when stderr is a terminal, else a line per 10 %.
 class Progress {

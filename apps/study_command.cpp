@@ -10,13 +10,13 @@
 #include <sstream>
 
 #include "apps/common.h"
-#include "geometry/scene_loader.h"
 #include "apps/report.h"
+#include "geometry/scene_loader.h"
 #include "hierarchy/hierarchical.h"
 #include "radiosity/study.h"
-#include "util/process_memory.h"
 #include "util/line_chart.h"
 #include "util/output_folder.h"
+#include "util/process_memory.h"
 
 namespace radkit::app {
 
@@ -31,9 +31,11 @@ struct StudyCommand {
 
 /// The hierarchical method's ε ladder, coarse to fine, against the study's reference: each
 /// rung runs while the last one's time, tripled, fits the budget left.
-void addHierarchicalRows(const Scene& scene, const StudyCommand& cmd, StudyResult& r, const PipelineLog& log) {
+void addHierarchicalRows(const Scene& scene, const StudyCommand& cmd, StudyResult& r,
+                         const PipelineLog& log) {
   // Its fifth of the budget is kept even when the sweeps overran theirs.
-  double left = std::max(0.2 * cmd.settings.maxSeconds, cmd.settings.maxSeconds - r.seconds), last = 0;
+  double left = std::max(0.2 * cmd.settings.maxSeconds, cmd.settings.maxSeconds - r.seconds),
+         last = 0;
   const double start = r.seconds;
   double spent = 0;
   for (double eps : cmd.epsilons) {
@@ -43,7 +45,8 @@ void addHierarchicalRows(const Scene& scene, const StudyCommand& cmd, StudyResul
     row.config.epsilon = eps;
     row.estimatedSeconds = 3 * last;
     if (row.estimatedSeconds > left) {
-      row.note = "skipped: estimated " + fmt("%.0f s", row.estimatedSeconds) + ", " + fmt("%.0f s", left) + " left";
+      row.note = "skipped: estimated " + fmt("%.0f s", row.estimatedSeconds) + ", " +
+                 fmt("%.0f s", left) + " left";
       r.rows.push_back(row);
       continue;
     }
@@ -59,7 +62,8 @@ void addHierarchicalRows(const Scene& scene, const StudyCommand& cmd, StudyResul
     spent += last;
     row.ran = true;
     row.patches = h.leaves.size();
-    row.seconds = {h.seconds.hierarchy, h.seconds.rayScene, h.seconds.refine, h.seconds.solve, h.seconds.results};
+    row.seconds = {h.seconds.hierarchy, h.seconds.rayScene, h.seconds.refine, h.seconds.solve,
+                   h.seconds.results};
     row.totalSeconds = last;
     row.peakBytes = peakMemory();
     row.iterations = h.solve.iterations;
@@ -73,28 +77,33 @@ void addHierarchicalRows(const Scene& scene, const StudyCommand& cmd, StudyResul
   std::vector<StudyRow*> ran;
   std::vector<double> cost, surface, patch;
   for (StudyRow& w : r.rows)
-    if (w.ran) ran.push_back(&w), cost.push_back(w.totalSeconds), surface.push_back(w.surfaceError), patch.push_back(w.patchError);
+    if (w.ran)
+      ran.push_back(&w), cost.push_back(w.totalSeconds), surface.push_back(w.surfaceError),
+          patch.push_back(w.patchError);
   std::vector<bool> fs = paretoFront(cost, surface), fp = paretoFront(cost, patch);
-  for (std::size_t k = 0; k < ran.size(); ++k) ran[k]->paretoSurface = fs[k], ran[k]->paretoPatch = fp[k];
+  for (std::size_t k = 0; k < ran.size(); ++k)
+    ran[k]->paretoSurface = fs[k], ran[k]->paretoPatch = fp[k];
 }
-
 
 std::string mib(std::size_t bytes) { return fmt("%.1f", bytes / 1048576.0); }
 
 void writeCsv(const std::string& path, const StudyResult& r) {
   std::ostringstream o;
-  o << "knob,config,status,patches,ff_method,ff_samples,solver,tolerance,mesh_s,ray_scene_s,formfactors_s,solve_s,"
-       "results_s,total_s,estimated_s,ff_bytes,peak_bytes,iterations,converged,surface_error,patch_error,field_error,"
+  o << "knob,config,status,patches,ff_method,ff_samples,solver,tolerance,mesh_s,ray_scene_s,"
+       "formfactors_s,solve_s,"
+       "results_s,total_s,estimated_s,ff_bytes,peak_bytes,iterations,converged,surface_error,patch_"
+       "error,field_error,"
        "pareto_surface,pareto_patch\n";
   auto line = [&](const StudyRow& w, const std::string& knob) {
     const PipelineSettings& s = w.config.settings;
-    o << knob << ",\"" << w.config.label() << "\"," << (w.ran ? "ran" : "skipped") << ',' << w.patches << ','
-      << s.formFactors.method << ',' << s.formFactors.samples << ',' << s.solvers.front().name << ','
-      << s.stopping.tolerance << ',' << w.seconds.mesh << ',' << w.seconds.rayScene << ',' << w.seconds.formFactors
-      << ',' << w.seconds.solve << ',' << w.seconds.results << ',' << w.totalSeconds << ',' << w.estimatedSeconds
-      << ',' << w.formFactorBytes << ',' << w.peakBytes << ',' << w.iterations << ',' << w.converged << ','
-      << w.surfaceError << ',' << w.patchError << ',' << w.fieldError << ',' << w.paretoSurface << ','
-      << w.paretoPatch << '\n';
+    o << knob << ",\"" << w.config.label() << "\"," << (w.ran ? "ran" : "skipped") << ','
+      << w.patches << ',' << s.formFactors.method << ',' << s.formFactors.samples << ','
+      << s.solvers.front().name << ',' << s.stopping.tolerance << ',' << w.seconds.mesh << ','
+      << w.seconds.rayScene << ',' << w.seconds.formFactors << ',' << w.seconds.solve << ','
+      << w.seconds.results << ',' << w.totalSeconds << ',' << w.estimatedSeconds << ','
+      << w.formFactorBytes << ',' << w.peakBytes << ',' << w.iterations << ',' << w.converged << ','
+      << w.surfaceError << ',' << w.patchError << ',' << w.fieldError << ',' << w.paretoSurface
+      << ',' << w.paretoPatch << '\n';
   };
   o.precision(6);
   for (const StudyRow& w : r.rows) line(w, studyKnobName(w.config.knob));
@@ -110,8 +119,9 @@ double surfaceE(const StudyRow& w) { return w.surfaceError; }
 double patchE(const StudyRow& w) { return w.patchError; }
 
 /// One series per group (method, solver), points sorted by x, plus the panel's Pareto front.
-ChartPanel panel(const std::vector<const StudyRow*>& rows, Pick x, Pick y, std::string (*group)(const StudyRow&),
-                 const std::string& title, const std::string& xLabel, const std::string& yLabel) {
+ChartPanel panel(const std::vector<const StudyRow*>& rows, Pick x, Pick y,
+                 std::string (*group)(const StudyRow&), const std::string& title,
+                 const std::string& xLabel, const std::string& yLabel) {
   ChartPanel p{title, xLabel, yLabel, true, true, {}};
   std::map<std::string, std::vector<std::pair<double, double>>> groups;
   std::vector<double> xs, ys;
@@ -143,73 +153,89 @@ std::string byKnob(const StudyRow& w) {
 std::vector<const StudyRow*> rowsOf(const StudyResult& r, std::initializer_list<StudyKnob> knobs) {
   std::vector<const StudyRow*> out;
   for (const StudyRow& w : r.rows)
-    if (w.ran && std::find(knobs.begin(), knobs.end(), w.config.knob) != knobs.end()) out.push_back(&w);
+    if (w.ran && std::find(knobs.begin(), knobs.end(), w.config.knob) != knobs.end())
+      out.push_back(&w);
   return out;
 }
 
 /// A chart with no point in it (a knob the budget left out) is not written.
-void writeChart(OutputFolder& folder, const std::string& name, const std::vector<ChartPanel>& panels) {
+void writeChart(OutputFolder& folder, const std::string& name,
+                const std::vector<ChartPanel>& panels) {
   if (chartPoints(panels) > 0) writeLineChartPng(folder.path(name), panels);
 }
 
 void writeCharts(OutputFolder& folder, const StudyResult& r, const std::string& scene) {
-  const std::string s = "seconds (all stages)", es = "surface error (max rel.)", ep = "patch error (rel. L1)";
+  const std::string s = "seconds (all stages)", es = "surface error (max rel.)",
+                    ep = "patch error (rel. L1)";
   auto mesh = rowsOf(r, {StudyKnob::Mesh, StudyKnob::Hierarchical});
   writeChart(folder, "study-mesh.png",
              {panel(mesh, totalS, surfaceE, byKnob, scene + ": mesh density", s, es),
               panel(mesh, totalS, patchE, byKnob, scene + ": mesh density", s, ep)});
   auto ff = rowsOf(r, {StudyKnob::FormFactors});
-  writeChart(folder, "study-formfactors.png",
-             {panel(ff, totalS, surfaceE, byMethod, scene + ": form factors (K along each line)", s, es),
-              panel(ff, totalS, patchE, byMethod, scene + ": form factors (K along each line)", s, ep)});
+  writeChart(
+      folder, "study-formfactors.png",
+      {panel(ff, totalS, surfaceE, byMethod, scene + ": form factors (K along each line)", s, es),
+       panel(ff, totalS, patchE, byMethod, scene + ": form factors (K along each line)", s, ep)});
   auto sv = rowsOf(r, {StudyKnob::Solver});
-  writeChart(folder, "study-solver.png",
-             {panel(sv, solveS, surfaceE, bySolver, scene + ": solver and tolerance", "solve seconds", es),
-              panel(sv, solveS, patchE, bySolver, scene + ": solver and tolerance", "solve seconds", ep)});
+  writeChart(
+      folder, "study-solver.png",
+      {panel(sv, solveS, surfaceE, bySolver, scene + ": solver and tolerance", "solve seconds", es),
+       panel(sv, solveS, patchE, bySolver, scene + ": solver and tolerance", "solve seconds", ep)});
   auto ad = rowsOf(r, {StudyKnob::Mesh, StudyKnob::Adaptive});
-  writeChart(folder, "study-adaptive.png",
-             {panel(ad, patchesOf, patchE, byKnob, scene + ": adaptive against uniform", "patches", ep),
-              panel(ad, totalS, patchE, byKnob, scene + ": adaptive against uniform", s, ep)});
-  auto all = rowsOf(r, {StudyKnob::Mesh, StudyKnob::FormFactors, StudyKnob::Solver, StudyKnob::Adaptive,
-                        StudyKnob::Hierarchical});
+  writeChart(
+      folder, "study-adaptive.png",
+      {panel(ad, patchesOf, patchE, byKnob, scene + ": adaptive against uniform", "patches", ep),
+       panel(ad, totalS, patchE, byKnob, scene + ": adaptive against uniform", s, ep)});
+  auto all = rowsOf(r, {StudyKnob::Mesh, StudyKnob::FormFactors, StudyKnob::Solver,
+                        StudyKnob::Adaptive, StudyKnob::Hierarchical});
   writeChart(folder, "study-pareto.png",
              {panel(all, totalS, surfaceE, byKnob, scene + ": every configuration", s, es),
               panel(all, totalS, patchE, byKnob, scene + ": every configuration", s, ep)});
 }
 
-void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& scene, double maxSeconds) {
+void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& scene,
+                   double maxSeconds) {
   std::ostringstream o;
   const StudyRow& ref = r.reference.row;
   o << "# Speed-accuracy study: " << scene.name << "\n\n"
     << "Budget " << maxSeconds << " s, study took " << fmt("%.0f", r.seconds) << " s.\n\n"
-    << "**Reference:** " << ref.patches << " patches, " << ref.config.settings.formFactors.method << " K = "
-    << ref.config.settings.formFactors.samples << ", " << ref.config.settings.solvers.front().name << " to "
-    << fmt("%.0e", ref.config.settings.stopping.tolerance) << " (" << fmt("%.1f", ref.totalSeconds) << " s, F "
-    << mib(ref.formFactorBytes) << " MiB, peak " << mib(ref.peakBytes) << " MiB). Its own error, estimated: surface "
-    << fmt("%.2e", r.reference.surfaceErrorEstimate) << ", patch " << fmt("%.2e", r.reference.patchErrorEstimate)
-    << ". " << r.reference.errorMethod << "\n\n"
-    << "Errors are relative to the reference (radiosity/study.h): surface = max over surfaces and channels; patch = "
-       "area-weighted L1 of patch means; field = area-weighted L1 of the piecewise-constant picture. P = on the Pareto "
+    << "**Reference:** " << ref.patches << " patches, " << ref.config.settings.formFactors.method
+    << " K = " << ref.config.settings.formFactors.samples << ", "
+    << ref.config.settings.solvers.front().name << " to "
+    << fmt("%.0e", ref.config.settings.stopping.tolerance) << " (" << fmt("%.1f", ref.totalSeconds)
+    << " s, F " << mib(ref.formFactorBytes) << " MiB, peak " << mib(ref.peakBytes)
+    << " MiB). Its own error, estimated: surface " << fmt("%.2e", r.reference.surfaceErrorEstimate)
+    << ", patch " << fmt("%.2e", r.reference.patchErrorEstimate) << ". " << r.reference.errorMethod
+    << "\n\n"
+    << "Errors are relative to the reference (radiosity/study.h): surface = max over surfaces and "
+       "channels; patch = "
+       "area-weighted L1 of patch means; field = area-weighted L1 of the piecewise-constant "
+       "picture. P = on the Pareto "
        "front of error against total seconds (s: surface, p: patch).\n\n"
-    << "| knob | configuration | patches | mesh s | F s | solve s | total s | F MiB | peak MiB | iterations | surface "
-       "error | patch error | field error | P |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    << "| knob | configuration | patches | mesh s | F s | solve s | total s | F MiB | peak MiB | "
+       "iterations | surface "
+       "error | patch error | field error | P "
+       "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const StudyRow& w : r.rows) {
     if (!w.ran) continue;
-    o << "| " << studyKnobName(w.config.knob) << " | " << w.config.label() << " | " << w.patches << " | "
-      << fmt("%.2f", w.seconds.mesh) << " | " << fmt("%.2f", w.seconds.formFactors) << " | "
-      << fmt("%.3f", w.seconds.solve) << " | " << fmt("%.2f", w.totalSeconds) << " | " << mib(w.formFactorBytes)
-      << " | " << mib(w.peakBytes) << " | " << w.iterations << " | " << fmt("%.2e", w.surfaceError) << " | "
-      << fmt("%.2e", w.patchError) << " | " << fmt("%.2e", w.fieldError) << " | "
-      << (w.paretoSurface ? "s" : "") << (w.paretoPatch ? "p" : "") << " |\n";
+    o << "| " << studyKnobName(w.config.knob) << " | " << w.config.label() << " | " << w.patches
+      << " | " << fmt("%.2f", w.seconds.mesh) << " | " << fmt("%.2f", w.seconds.formFactors)
+      << " | " << fmt("%.3f", w.seconds.solve) << " | " << fmt("%.2f", w.totalSeconds) << " | "
+      << mib(w.formFactorBytes) << " | " << mib(w.peakBytes) << " | " << w.iterations << " | "
+      << fmt("%.2e", w.surfaceError) << " | " << fmt("%.2e", w.patchError) << " | "
+      << fmt("%.2e", w.fieldError) << " | " << (w.paretoSurface ? "s" : "")
+      << (w.paretoPatch ? "p" : "") << " |\n";
   }
   o << "\nSkipped (the planner's estimate did not fit the remaining budget):\n\n";
   for (const StudyRow& w : r.rows)
-    if (!w.ran) o << "- " << studyKnobName(w.config.knob) << " " << w.config.label() << ": " << w.note << "\n";
+    if (!w.ran)
+      o << "- " << studyKnobName(w.config.knob) << " " << w.config.label() << ": " << w.note
+        << "\n";
   std::vector<double> n, ff, pe;
   for (const StudyRow* w : rowsOf(r, {StudyKnob::Mesh}))
     n.push_back(w->patches), ff.push_back(w->seconds.formFactors), pe.push_back(w->patchError);
-  o << "\nMesh ladder fits: form-factor seconds ∝ N^" << fmt("%.2f", fitExponent(n, ff)) << ", patch error ∝ N^"
-    << fmt("%.2f", fitExponent(n, pe)) << ".\n";
+  o << "\nMesh ladder fits: form-factor seconds ∝ N^" << fmt("%.2f", fitExponent(n, ff))
+    << ", patch error ∝ N^" << fmt("%.2f", fitExponent(n, pe)) << ".\n";
   writeFileAtomically(path, o.str());
 }
 
@@ -218,10 +244,12 @@ void runStudyCommand(StudyCommand& cmd) {
   // 8000-patch reference for minutes.
   const double reference = estimateReferenceSeconds(cmd.settings);
   if (reference > cmd.settings.maxSeconds)
-    throw InputError("--max-seconds " + fmt("%g", cmd.settings.maxSeconds) + " is shorter than the reference of " +
-                     "--knob-patches " + std::to_string(cmd.settings.knobPatches) + " alone (" +
+    throw InputError("--max-seconds " + fmt("%g", cmd.settings.maxSeconds) +
+                     " is shorter than the reference of " + "--knob-patches " +
+                     std::to_string(cmd.settings.knobPatches) + " alone (" +
                      std::to_string(2 * cmd.settings.knobPatches) + " patches, estimated " +
-                     fmt("%.0f s", reference) + "). Fix: raise --max-seconds or lower --knob-patches");
+                     fmt("%.0f s", reference) +
+                     "). Fix: raise --max-seconds or lower --knob-patches");
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
   Scene scene = loadSceneReporting(cmd.mesh.scene);
   OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the study, not after
@@ -242,10 +270,13 @@ void runStudyCommand(StudyCommand& cmd) {
   writeMarkdown(folder.path("study.md"), r, scene, cmd.settings.maxSeconds);
   writeCharts(folder, r, scene.name);
   folder.commit();
-  int ran = int(std::count_if(r.rows.begin(), r.rows.end(), [](const StudyRow& w) { return w.ran; }));
+  int ran =
+      int(std::count_if(r.rows.begin(), r.rows.end(), [](const StudyRow& w) { return w.ran; }));
   printField("scene", scene.name + " (" + scene.file + ")");
-  printField("configurations", std::to_string(ran) + " run, " + std::to_string(r.rows.size() - ran) + " skipped");
-  printField("reference", std::to_string(r.reference.row.patches) + " patches, error estimate surface " +
+  printField("configurations",
+             std::to_string(ran) + " run, " + std::to_string(r.rows.size() - ran) + " skipped");
+  printField("reference", std::to_string(r.reference.row.patches) +
+                              " patches, error estimate surface " +
                               fmt("%.2e", r.reference.surfaceErrorEstimate) + ", patch " +
                               fmt("%.2e", r.reference.patchErrorEstimate));
   printField("seconds", fmt("%.1f", r.seconds));
@@ -257,8 +288,10 @@ void runStudyCommand(StudyCommand& cmd) {
 void addStudyCommand(CLI::App& app) {
   auto cmd = std::make_shared<StudyCommand>();
   CLI::App* sub = app.add_subcommand(
-      "study", "Speed against accuracy: sweep mesh density, form factors, solvers, adaptive meshes and the hierarchical "
-               "method's epsilon within a time budget; study.csv, study.md and error-versus-seconds charts");
+      "study",
+      "Speed against accuracy: sweep mesh density, form factors, solvers, adaptive meshes and the "
+      "hierarchical "
+      "method's epsilon within a time budget; study.csv, study.md and error-versus-seconds charts");
   sub->add_option("scene", cmd->mesh.scene, "Scene file (default: the Cornell box)");
   sub->add_option("--max-seconds", cmd->settings.maxSeconds, "Wall-clock budget of the whole study")
       ->check(FinitePositive)
@@ -270,10 +303,15 @@ void addStudyCommand(CLI::App& app) {
   sub->add_option("--seed", cmd->settings.baseline.formFactors.seed, "Seed of every random stream")
       ->check(Unsigned)
       ->capture_default_str();
-  sub->add_option("--epsilons", cmd->epsilons, "Hierarchical method's ladder of --epsilon, measured after the other knobs")
-      ->check(FiniteRange(kMinEpsilon, 1.0) & CLI::Validator([](std::string& t) {  // 1 itself is no threshold
-                return std::strtod(t.c_str(), nullptr) < 1 ? std::string() : "'" + t + "' must be below 1";
-              }, ""))
+  sub->add_option("--epsilons", cmd->epsilons,
+                  "Hierarchical method's ladder of --epsilon, measured after the other knobs")
+      ->check(FiniteRange(kMinEpsilon, 1.0) & CLI::Validator(
+                                                  [](std::string& t) {  // 1 itself is no threshold
+                                                    return std::strtod(t.c_str(), nullptr) < 1
+                                                               ? std::string()
+                                                               : "'" + t + "' must be below 1";
+                                                  },
+                                                  ""))
       ->capture_default_str();
   sub->add_option("--out", cmd->out, "Output folder")->required();
   sub->callback([cmd] { runStudyCommand(*cmd); });

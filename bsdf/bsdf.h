@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "bsdf/microfacet.h"
 #include "geometry/scene.h"
 #include "geometry/vec3.h"
-#include "bsdf/microfacet.h"
 
 namespace radkit {
 
@@ -46,7 +46,8 @@ class Bsdf {
   virtual Vec3 eval(const Vec3& wo, const Vec3& wi) const = 0;
   /// \brief Samples wi for wo from u in [0,1)³ (u0 chooses a lobe, u1 and u2 the
   /// direction). Nothing when the sample is lost (below the horizon, wo on the back).
-  virtual std::optional<BsdfSample> sample(const Vec3& wo, double u0, double u1, double u2) const = 0;
+  virtual std::optional<BsdfSample> sample(const Vec3& wo, double u0, double u1,
+                                           double u2) const = 0;
   /// \brief Density per steradian with which sample() produces wi (non-delta lobes).
   virtual double pdf(const Vec3& wo, const Vec3& wi) const = 0;
 
@@ -88,7 +89,8 @@ class Bsdf {
 ///        keys and the registry rejects the rest.
 /// \throws BsdfParamError for an unknown name (listing the known ones), a key the BSDF does
 ///         not read, or a value out of range.
-std::unique_ptr<Bsdf> makeBsdf(const std::string& name, BsdfParams params, const BsdfSettings& settings = {});
+std::unique_ptr<Bsdf> makeBsdf(const std::string& name, BsdfParams params,
+                               const BsdfSettings& settings = {});
 
 /// One registered BSDF: its name, one line of help and parameters its tests use.
 struct BsdfInfo {
@@ -103,8 +105,8 @@ std::unique_ptr<Bsdf> makeLambertBsdf(const Vec3& albedo);
 std::unique_ptr<Bsdf> makePhongBsdf(const Vec3& kd, const Vec3& ks, double shininess);
 /// Metallic-roughness Cook-Torrance: (1 − metallic) base/π + D G F / (4 μo μi) with
 /// F0 = lerp(f0, base, metallic), alpha = roughness².
-std::unique_ptr<Bsdf> makeCookTorranceBsdf(const Vec3& base, double metallic, double roughness, const Vec3& f0,
-                                           const BsdfSettings& settings);
+std::unique_ptr<Bsdf> makeCookTorranceBsdf(const Vec3& base, double metallic, double roughness,
+                                           const Vec3& f0, const BsdfSettings& settings);
 std::unique_ptr<Bsdf> makeMirrorBsdf(const Vec3& colour);
 /// Smooth dielectric, eta = n_inside / n_outside (inside is behind the front normal).
 std::unique_ptr<Bsdf> makeGlassBsdf(double eta);

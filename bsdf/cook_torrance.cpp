@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "geometry/frame.h"
 #include "bsdf/bsdf.h"
 #include "bsdf/specular.h"
+#include "geometry/frame.h"
 
 namespace radkit {
 
@@ -20,7 +20,8 @@ double mean(const Vec3& v) { return (v.x + v.y + v.z) / 3; }
 
 class CookTorranceBsdf final : public Bsdf {
  public:
-  CookTorranceBsdf(const Vec3& base, double metallic, double roughness, const Vec3& f0, const BsdfSettings& s)
+  CookTorranceBsdf(const Vec3& base, double metallic, double roughness, const Vec3& f0,
+                   const BsdfSettings& s)
       : m_diffuse(base * (1 - metallic)),
         m_f0(f0 * (1 - metallic) + base * metallic),
         m_roughness(roughness),
@@ -66,10 +67,11 @@ class CookTorranceBsdf final : public Bsdf {
 
   std::string describe() const override {
     char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "cook-torrance(diffuse=[%g, %g, %g], F0=[%g, %g, %g], roughness=%g, alpha=%g, G=%s%s)",
-                  m_diffuse.x, m_diffuse.y, m_diffuse.z, m_f0.x, m_f0.y, m_f0.z, m_roughness, m_ggx.alpha(),
-                  maskingShadowingName(m_masking), m_table ? ", Kulla-Conty" : "");
+    std::snprintf(
+        buf, sizeof buf,
+        "cook-torrance(diffuse=[%g, %g, %g], F0=[%g, %g, %g], roughness=%g, alpha=%g, G=%s%s)",
+        m_diffuse.x, m_diffuse.y, m_diffuse.z, m_f0.x, m_f0.y, m_f0.z, m_roughness, m_ggx.alpha(),
+        maskingShadowingName(m_masking), m_table ? ", Kulla-Conty" : "");
     return buf;
   }
 
@@ -93,8 +95,8 @@ class CookTorranceBsdf final : public Bsdf {
 
 }  // namespace
 
-std::unique_ptr<Bsdf> makeCookTorranceBsdf(const Vec3& base, double metallic, double roughness, const Vec3& f0,
-                                           const BsdfSettings& settings) {
+std::unique_ptr<Bsdf> makeCookTorranceBsdf(const Vec3& base, double metallic, double roughness,
+                                           const Vec3& f0, const BsdfSettings& settings) {
   return std::make_unique<CookTorranceBsdf>(base, metallic, roughness, f0, settings);
 }
 
@@ -102,9 +104,11 @@ std::unique_ptr<Bsdf> createCookTorrance(BsdfParams& p, const BsdfSettings& sett
   const Vec3 base = p.rgb({"base_color", "reflectance"}, {0.5, 0.5, 0.5});
   BsdfParams::checkAlbedo("base_color", base);
   const double metallic = p.number("metallic", 0, 0, 1);
-  const double roughness = p.number("roughness", 0.5, 0, 1, true, false,
-                                    "use a small value such as 0.01 for a near-mirror, or brdf \"mirror\"");
-  if (p.has("f0") && p.has("ior")) throw BsdfParamError("gives both \"f0\" and \"ior\". Fix: give one");
+  const double roughness =
+      p.number("roughness", 0.5, 0, 1, true, false,
+               "use a small value such as 0.01 for a near-mirror, or brdf \"mirror\"");
+  if (p.has("f0") && p.has("ior"))
+    throw BsdfParamError("gives both \"f0\" and \"ior\". Fix: give one");
   Vec3 f0{0.04, 0.04, 0.04};
   if (p.has("ior")) {
     const double ior = p.number("ior", 1.5, 1, 10, true, true);

@@ -1,8 +1,8 @@
 // Lambertian reflection: f = ρ/π, sampled in proportion to cos θ (Nori's diffuse.cpp).
 #include <cstdio>
 
-#include "geometry/frame.h"
 #include "bsdf/bsdf.h"
+#include "geometry/frame.h"
 
 namespace radkit {
 
@@ -37,7 +37,8 @@ class LambertBsdf final : public Bsdf {
 
   std::string describe() const override {
     char buf[128];
-    std::snprintf(buf, sizeof buf, "lambert(albedo=[%g, %g, %g])", m_albedo.x, m_albedo.y, m_albedo.z);
+    std::snprintf(buf, sizeof buf, "lambert(albedo=[%g, %g, %g])", m_albedo.x, m_albedo.y,
+                  m_albedo.z);
     return buf;
   }
 
@@ -47,7 +48,9 @@ class LambertBsdf final : public Bsdf {
 
 }  // namespace
 
-std::unique_ptr<Bsdf> makeLambertBsdf(const Vec3& albedo) { return std::make_unique<LambertBsdf>(albedo); }
+std::unique_ptr<Bsdf> makeLambertBsdf(const Vec3& albedo) {
+  return std::make_unique<LambertBsdf>(albedo);
+}
 
 std::unique_ptr<Bsdf> createLambert(BsdfParams& p, const BsdfSettings&) {
   const Vec3 albedo = p.rgb("reflectance", {0.5, 0.5, 0.5});

@@ -8,10 +8,14 @@ namespace radkit {
 
 const char* maskingShadowingName(MaskingShadowing g) {
   switch (g) {
-    case MaskingShadowing::HeightCorrelated: return "height-correlated";
-    case MaskingShadowing::Separable: return "separable";
-    case MaskingShadowing::SchlickGgx: return "schlick";
-    default: return "cook-torrance";
+    case MaskingShadowing::HeightCorrelated:
+      return "height-correlated";
+    case MaskingShadowing::Separable:
+      return "separable";
+    case MaskingShadowing::SchlickGgx:
+      return "schlick";
+    default:
+      return "cook-torrance";
   }
 }
 
@@ -44,8 +48,10 @@ double GgxDistribution::G1(const Vec3& w) const { return w.z > 0 ? 1 / (1 + lamb
 double GgxDistribution::G(const Vec3& wo, const Vec3& wi, MaskingShadowing g) const {
   if (wo.z <= 0 || wi.z <= 0) return 0;
   switch (g) {
-    case MaskingShadowing::HeightCorrelated: return 1 / (1 + lambda(wo) + lambda(wi));
-    case MaskingShadowing::Separable: return G1(wo) * G1(wi);
+    case MaskingShadowing::HeightCorrelated:
+      return 1 / (1 + lambda(wo) + lambda(wi));
+    case MaskingShadowing::Separable:
+      return G1(wo) * G1(wi);
     case MaskingShadowing::SchlickGgx: {
       // k = (r + 1)²/8 with perceptual roughness r = √α; G1 = μ / (μ(1 − k) + k).
       const double r = std::sqrt(m_alpha), k = (r + 1) * (r + 1) / 8;
@@ -96,9 +102,10 @@ double directionalAlbedo(const GgxDistribution& d, MaskingShadowing g, double mu
   return sum / (double(strata) * strata);
 }
 
-MicrofacetAlbedoTable::MicrofacetAlbedoTable(const GgxDistribution& d, MaskingShadowing g, int muCount,
-                                             int strata) {
-  for (int k = 0; k < muCount; ++k) m_albedo.push_back(directionalAlbedo(d, g, (k + 0.5) / muCount, strata));
+MicrofacetAlbedoTable::MicrofacetAlbedoTable(const GgxDistribution& d, MaskingShadowing g,
+                                             int muCount, int strata) {
+  for (int k = 0; k < muCount; ++k)
+    m_albedo.push_back(directionalAlbedo(d, g, (k + 0.5) / muCount, strata));
   // E_avg = 2 ∫ E μ dμ (Kulla & Conty 2017) of the interpolant, midpoint rule on 4096 cells.
   const int n = 4096;
   double sum = 0;

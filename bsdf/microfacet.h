@@ -61,7 +61,8 @@ double directionalAlbedo(const GgxDistribution& d, MaskingShadowing g, double mu
 class MicrofacetAlbedoTable {
  public:
   /// \param muCount nodes at μ_k = (k + ½)/muCount (constant beyond the end nodes).
-  MicrofacetAlbedoTable(const GgxDistribution& d, MaskingShadowing g, int muCount = 32, int strata = 64);
+  MicrofacetAlbedoTable(const GgxDistribution& d, MaskingShadowing g, int muCount = 32,
+                        int strata = 64);
 
   /// \brief Interpolated E(μ), μ in [0, 1].
   double albedo(double mu) const;

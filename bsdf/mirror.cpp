@@ -23,7 +23,8 @@ class MirrorBsdf final : public Bsdf {
 
   std::string describe() const override {
     char buf[128];
-    std::snprintf(buf, sizeof buf, "mirror(colour=[%g, %g, %g])", m_colour.x, m_colour.y, m_colour.z);
+    std::snprintf(buf, sizeof buf, "mirror(colour=[%g, %g, %g])", m_colour.x, m_colour.y,
+                  m_colour.z);
     return buf;
   }
 
@@ -33,7 +34,9 @@ class MirrorBsdf final : public Bsdf {
 
 }  // namespace
 
-std::unique_ptr<Bsdf> makeMirrorBsdf(const Vec3& colour) { return std::make_unique<MirrorBsdf>(colour); }
+std::unique_ptr<Bsdf> makeMirrorBsdf(const Vec3& colour) {
+  return std::make_unique<MirrorBsdf>(colour);
+}
 
 std::unique_ptr<Bsdf> createMirror(BsdfParams& p, const BsdfSettings&) {
   const Vec3 colour = p.rgb("specular", {1, 1, 1});

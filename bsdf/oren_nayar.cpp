@@ -34,13 +34,16 @@ class OrenNayarBsdf final : public Bsdf {
     return mixtureSample(wo, sampleCosineHemisphere(u1, u2));
   }
 
-  double pdf(const Vec3& wo, const Vec3& wi) const override { return wo.z > 0 ? cosineHemispherePdf(wi) : 0.0; }
+  double pdf(const Vec3& wo, const Vec3& wi) const override {
+    return wo.z > 0 ? cosineHemispherePdf(wi) : 0.0;
+  }
 
   Vec3 diffuseAlbedo() const override { return m_albedo; }
 
   std::string describe() const override {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "oren-nayar(reflectance=[%g, %g, %g], sigma=%g deg, albedo=[%g, %g, %g])", m_r.x,
+    std::snprintf(buf, sizeof buf,
+                  "oren-nayar(reflectance=[%g, %g, %g], sigma=%g deg, albedo=[%g, %g, %g])", m_r.x,
                   m_r.y, m_r.z, m_sigmaDeg, m_albedo.x, m_albedo.y, m_albedo.z);
     return buf;
   }
@@ -48,7 +51,8 @@ class OrenNayarBsdf final : public Bsdf {
  private:
   /// A + B max(0, cos Δφ) sin α tan β for unit local directions above the surface.
   double factor(const Vec3& wo, const Vec3& wi) const {
-    const double sinO = std::sqrt(std::max(0.0, 1 - wo.z * wo.z)), sinI = std::sqrt(std::max(0.0, 1 - wi.z * wi.z));
+    const double sinO = std::sqrt(std::max(0.0, 1 - wo.z * wo.z)),
+                 sinI = std::sqrt(std::max(0.0, 1 - wi.z * wi.z));
     double cosDphi = 0;
     if (sinO > 1e-9 && sinI > 1e-9) cosDphi = (wo.x * wi.x + wo.y * wi.y) / (sinO * sinI);
     // α is the larger polar angle (smaller cosine), β the smaller.

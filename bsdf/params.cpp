@@ -26,7 +26,8 @@ BsdfParams BsdfParams::parse(const std::string& text) {
     item = trim(item);
     if (item.empty()) continue;
     const auto eq = item.find('=');
-    if (eq == std::string::npos) throw BsdfParamError("parameter \"" + item + "\" is not key=value");
+    if (eq == std::string::npos)
+      throw BsdfParamError("parameter \"" + item + "\" is not key=value");
     const std::string key = trim(item.substr(0, eq));
     std::istringstream in(item.substr(eq + 1));
     Value v;
@@ -34,10 +35,13 @@ BsdfParams BsdfParams::parse(const std::string& text) {
     while (in >> word) {
       char* end = nullptr;
       const double d = std::strtod(word.c_str(), &end);
-      if (end && *end == '\0') v.numbers.push_back(d);
-      else v.text = word, v.isText = true;
+      if (end && *end == '\0')
+        v.numbers.push_back(d);
+      else
+        v.text = word, v.isText = true;
     }
-    if (v.isText && !v.numbers.empty()) throw BsdfParamError("parameter \"" + key + "\" mixes numbers and names");
+    if (v.isText && !v.numbers.empty())
+      throw BsdfParamError("parameter \"" + key + "\" mixes numbers and names");
     p.m_values[key] = v;
   }
   return p;
@@ -57,13 +61,14 @@ double BsdfParams::number(const std::string& key, double defaultValue) {
   return v->numbers[0];
 }
 
-double BsdfParams::number(const std::string& key, double defaultValue, double lo, double hi, bool openLo,
-                          bool openHi, const std::string& fix) {
+double BsdfParams::number(const std::string& key, double defaultValue, double lo, double hi,
+                          bool openLo, bool openHi, const std::string& fix) {
   const double x = number(key, defaultValue);
   const bool ok = (openLo ? x > lo : x >= lo) && (openHi ? x < hi : x <= hi);
   if (!ok)
-    throw BsdfParamError("\"" + key + "\" " + formatNumber(x) + " is outside " + (openLo ? "(" : "[") + formatNumber(lo) + ", " +
-                         formatNumber(hi) + (openHi ? ")" : "]") + "." + (fix.empty() ? "" : " Fix: " + fix));
+    throw BsdfParamError("\"" + key + "\" " + formatNumber(x) + " is outside " +
+                         (openLo ? "(" : "[") + formatNumber(lo) + ", " + formatNumber(hi) +
+                         (openHi ? ")" : "]") + "." + (fix.empty() ? "" : " Fix: " + fix));
   return x;
 }
 
@@ -73,7 +78,8 @@ Vec3 BsdfParams::rgb(const std::string& key, const Vec3& defaultValue) {
   const bool shape = !v->isText && (v->numbers.size() == 1 || v->numbers.size() == 3);
   bool finite = shape;
   for (double d : v->numbers) finite = finite && std::isfinite(d);
-  if (!finite) throw BsdfParamError("\"" + key + "\" must be an RGB triple [r, g, b] of finite numbers");
+  if (!finite)
+    throw BsdfParamError("\"" + key + "\" must be an RGB triple [r, g, b] of finite numbers");
   if (v->numbers.size() == 1) return Vec3{1, 1, 1} * v->numbers[0];
   return {v->numbers[0], v->numbers[1], v->numbers[2]};
 }
@@ -84,7 +90,8 @@ Vec3 BsdfParams::rgb(std::initializer_list<const char*> keys, const Vec3& defaul
     m_read.insert(key);
     if (!has(key)) continue;
     if (given)
-      throw BsdfParamError("gives both \"" + std::string(given) + "\" and \"" + key + "\": they are the same. Fix: keep one");
+      throw BsdfParamError("gives both \"" + std::string(given) + "\" and \"" + key +
+                           "\": they are the same. Fix: keep one");
     given = key;
   }
   return given ? rgb(given, defaultValue) : defaultValue;
@@ -100,15 +107,17 @@ std::string BsdfParams::text(const std::string& key, const std::string& defaultV
 void BsdfParams::checkAlbedo(const std::string& key, const Vec3& value) {
   for (int c = 0; c < 3; ++c)
     if (!(value[c] >= 0 && value[c] < 1))
-      throw BsdfParamError("\"" + key + "\" " + formatNumber(value[c]) + " (" + kChannel[c] +
-                           ") is outside [0, 1). Fix: use a value below 1; a reflectance of 1 makes the "
-                           "radiosity system singular.");
+      throw BsdfParamError(
+          "\"" + key + "\" " + formatNumber(value[c]) + " (" + kChannel[c] +
+          ") is outside [0, 1). Fix: use a value below 1; a reflectance of 1 makes the "
+          "radiosity system singular.");
 }
 
 void BsdfParams::checkUnit(const std::string& key, const Vec3& value) {
   for (int c = 0; c < 3; ++c)
     if (!(value[c] >= 0 && value[c] <= 1))
-      throw BsdfParamError("\"" + key + "\" " + formatNumber(value[c]) + " (" + kChannel[c] + ") is outside [0, 1].");
+      throw BsdfParamError("\"" + key + "\" " + formatNumber(value[c]) + " (" + kChannel[c] +
+                           ") is outside [0, 1].");
 }
 
 void BsdfParams::rejectUnused(const std::string& bsdfName) const {
@@ -117,8 +126,8 @@ void BsdfParams::rejectUnused(const std::string& bsdfName) const {
     if (!m_read.count(key)) unknown += (unknown.empty() ? "\"" : ", \"") + key + "\"";
   if (unknown.empty()) return;
   for (const std::string& key : m_read) known += (known.empty() ? "" : ", ") + key;
-  throw BsdfParamError("gives " + unknown + ", which " + bsdfName + " does not use. Fix: " + bsdfName +
-                       (known.empty() ? " has no parameters" : " reads " + known));
+  throw BsdfParamError("gives " + unknown + ", which " + bsdfName + " does not use. Fix: " +
+                       bsdfName + (known.empty() ? " has no parameters" : " reads " + known));
 }
 
 }  // namespace radkit

@@ -35,7 +35,9 @@ class BsdfParams {
   static BsdfParams parse(const std::string& text);
 
   void set(const std::string& key, double v) { m_values[key] = Value{{v}, {}, false}; }
-  void set(const std::string& key, const Vec3& v) { m_values[key] = Value{{v.x, v.y, v.z}, {}, false}; }
+  void set(const std::string& key, const Vec3& v) {
+    m_values[key] = Value{{v.x, v.y, v.z}, {}, false};
+  }
   void setText(const std::string& key, const std::string& v) { m_values[key] = Value{{}, v, true}; }
 
   bool has(const std::string& key) const { return m_values.count(key) > 0; }
@@ -45,8 +47,8 @@ class BsdfParams {
   /// \brief A finite number, or defaultValue when absent; throws BsdfParamError otherwise.
   double number(const std::string& key, double defaultValue);
   /// \brief A number in [lo, hi] (an open end when its flag is set), or defaultValue.
-  double number(const std::string& key, double defaultValue, double lo, double hi, bool openLo = false,
-                bool openHi = false, const std::string& fix = "");
+  double number(const std::string& key, double defaultValue, double lo, double hi,
+                bool openLo = false, bool openHi = false, const std::string& fix = "");
   /// \brief An RGB triple of finite numbers (a single number is grey), or defaultValue.
   Vec3 rgb(const std::string& key, const Vec3& defaultValue);
   /// \brief The first of several synonyms given ("kd" or "reflectance"); giving two is an error.

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <string>
 
-#include "geometry/frame.h"
 #include "bsdf/bsdf.h"
+#include "geometry/frame.h"
 
 namespace radkit {
 
@@ -34,15 +34,18 @@ class PhongBsdf final : public Bsdf {
     if (wo.z <= 0) return std::nullopt;
     if (u0 < m_diffuseChance) return mixtureSample(wo, sampleCosineHemisphere(u1, u2));
     // cos α = u^(1/(n+1)) has density (n + 1)/(2π) cos^n α about the mirror direction.
-    const double cosA = std::pow(u1, 1 / (m_n + 1)), sinA = std::sqrt(std::max(0.0, 1 - cosA * cosA));
+    const double cosA = std::pow(u1, 1 / (m_n + 1)),
+                 sinA = std::sqrt(std::max(0.0, 1 - cosA * cosA));
     const double phi = 2 * M_PI * u2;
-    return mixtureSample(wo, Frame(mirror(wo)).toWorld({sinA * std::cos(phi), sinA * std::sin(phi), cosA}));
+    return mixtureSample(
+        wo, Frame(mirror(wo)).toWorld({sinA * std::cos(phi), sinA * std::sin(phi), cosA}));
   }
 
   double pdf(const Vec3& wo, const Vec3& wi) const override {
     if (wo.z <= 0 || wi.z <= 0) return 0;
     const double cosA = std::max(0.0, dot(wi, mirror(wo)));
-    return m_diffuseChance * wi.z / M_PI + (1 - m_diffuseChance) * (m_n + 1) / (2 * M_PI) * std::pow(cosA, m_n);
+    return m_diffuseChance * wi.z / M_PI +
+           (1 - m_diffuseChance) * (m_n + 1) / (2 * M_PI) * std::pow(cosA, m_n);
   }
 
   Vec3 diffuseAlbedo() const override { return m_kd; }
@@ -55,8 +58,8 @@ class PhongBsdf final : public Bsdf {
 
   std::string describe() const override {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "phong(kd=[%g, %g, %g], ks=[%g, %g, %g], n=%g)", m_kd.x, m_kd.y, m_kd.z,
-                  m_ks.x, m_ks.y, m_ks.z, m_n);
+    std::snprintf(buf, sizeof buf, "phong(kd=[%g, %g, %g], ks=[%g, %g, %g], n=%g)", m_kd.x, m_kd.y,
+                  m_kd.z, m_ks.x, m_ks.y, m_ks.z, m_n);
     return buf;
   }
 
@@ -85,8 +88,9 @@ std::unique_ptr<Bsdf> createPhong(BsdfParams& p, const BsdfSettings&) {
   BsdfParams::checkUnit("ks", ks);
   for (int c = 0; c < 3; ++c)
     if (!(kd[c] + ks[c] < 1))
-      throw BsdfParamError("kd + ks = " + std::to_string(kd[c] + ks[c]) + " (channel " + std::to_string(c) +
-                           ") must stay below 1 for an energy-conserving Phong material. Fix: lower kd or ks.");
+      throw BsdfParamError(
+          "kd + ks = " + std::to_string(kd[c] + ks[c]) + " (channel " + std::to_string(c) +
+          ") must stay below 1 for an energy-conserving Phong material. Fix: lower kd or ks.");
   return makePhongBsdf(kd, ks, n);
 }
 

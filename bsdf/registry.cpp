@@ -31,17 +31,20 @@ constexpr BsdfEntry kBsdfs[] = {
      "energy-normalised Phong; kd|reflectance (0.5), ks (0), shininess (32); kd + ks < 1",
      "kd=0.3 0.3 0.3, ks=0.6 0.6 0.6, shininess=20"},
     {"cook-torrance", createCookTorrance,
-     "GGX microfacets; base_color|reflectance (0.5), metallic (0), roughness (0.5), f0 (0.04) or ior",
+     "GGX microfacets; base_color|reflectance (0.5), metallic (0), roughness (0.5), f0 (0.04) or "
+     "ior",
      "base_color=0.7 0.4 0.2, metallic=0.3, roughness=0.6"},
     {"mirror", createMirror, "perfect mirror; specular=[r,g,b] (1)", "specular=0.9 0.8 0.7"},
     {"glass", createGlass, "smooth dielectric; ior (1.5)", "ior=1.5"},
-    {"oren-nayar", createOrenNayar, "rough diffuse (Oren-Nayar 1994); reflectance (0.5), sigma in degrees (20)",
+    {"oren-nayar", createOrenNayar,
+     "rough diffuse (Oren-Nayar 1994); reflectance (0.5), sigma in degrees (20)",
      "reflectance=0.8 0.6 0.4, sigma=30"},
 };
 
 }  // namespace
 
-std::unique_ptr<Bsdf> makeBsdf(const std::string& name, BsdfParams params, const BsdfSettings& settings) {
+std::unique_ptr<Bsdf> makeBsdf(const std::string& name, BsdfParams params,
+                               const BsdfSettings& settings) {
   for (const BsdfEntry& entry : kBsdfs)
     if (name == entry.name) {
       std::unique_ptr<Bsdf> bsdf = entry.create(params, settings);
@@ -49,7 +52,8 @@ std::unique_ptr<Bsdf> makeBsdf(const std::string& name, BsdfParams params, const
       return bsdf;
     }
   std::string known;
-  for (const BsdfEntry& entry : kBsdfs) known += (known.empty() ? "" : ", ") + std::string(entry.name);
+  for (const BsdfEntry& entry : kBsdfs)
+    known += (known.empty() ? "" : ", ") + std::string(entry.name);
   throw BsdfParamError("has unknown \"brdf\" \"" + name + "\". Fix: use one of " + known);
 }
 

@@ -45,7 +45,8 @@ const fs::path& workDir() {
 }
 
 void writeFile(const fs::path& path, const char* data, std::size_t size) {
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(data, static_cast<std::streamsize>(size));
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(data, static_cast<std::streamsize>(size));
 }
 
 }  // namespace
@@ -61,7 +62,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     const std::string text(data, size);
     const std::string marker = "#mtl\n";
     std::size_t cut = text.find(marker);
-    while (cut != std::string::npos && cut != 0 && text[cut - 1] != '\n') cut = text.find(marker, cut + 1);
+    while (cut != std::string::npos && cut != 0 && text[cut - 1] != '\n')
+      cut = text.find(marker, cut + 1);
     const std::size_t objSize = cut == std::string::npos ? size : cut;
     scene = dir / "scene.obj";
     writeFile(scene, data, objSize);
@@ -69,8 +71,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     writeFile(dir / "m.mtl", data + mtlStart, size - mtlStart);
   } else {
     scene = dir / "scene.json";
-    const std::string json = R"({"materials": {"lamp": {"reflectance": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
-      "surfaces": [{"name": "m", "material": "lamp", "mesh": "m.)" + std::string(kFormat) + R"("}]})";
+    const std::string json =
+        R"({"materials": {"lamp": {"reflectance": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
+      "surfaces": [{"name": "m", "material": "lamp", "mesh": "m.)" +
+        std::string(kFormat) + R"("}]})";
     writeFile(scene, json.data(), json.size());
     writeFile(dir / ("m." + std::string(kFormat)), data, size);
   }

@@ -3,14 +3,14 @@
 #include "geometry/mesh_reader.h"
 #include "util/format.h"
 
+#include <tiny_obj_loader.h>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
-#include <tiny_obj_loader.h>
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 
@@ -32,7 +32,8 @@ using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -100,12 +101,13 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool 
   }
   const bool repeatedVertex = errors.text().find("equal vertices") != std::string::npos;
   if (repeatedVertex && !repair)
-    throw InputError(path + ": a face repeats a vertex (degenerate face). Fix: remove the "
+    throw InputError(path +
+                     ": a face repeats a vertex (degenerate face). Fix: remove the "
                      "repeated index from the face, or give --repair to drop such faces.");
   // A safety net behind checkMeshStructure: OpenMesh drops faces it cannot add without a word.
   if (declaredFaces >= 0 && (long long)mesh.n_faces() != declaredFaces && !repeatedVertex)
-    throw InputError(path + ": the file declares " + std::to_string(declaredFaces) + " faces, but only " +
-                     std::to_string(mesh.n_faces()) + " could be read" +
+    throw InputError(path + ": the file declares " + std::to_string(declaredFaces) +
+                     " faces, but only " + std::to_string(mesh.n_faces()) + " could be read" +
                      (errors.text().empty() ? "" : " (" + errors.text() + ")") +
                      ". Fix: correct the faces the reader refused.");
   RawMesh raw;
@@ -121,7 +123,8 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool 
     raw.faces.push_back(std::move(face));
   }
   if (!refused.empty()) restoreFileVertices(raw, refused);
-  if (repeatedVertex && declaredFaces > (long long)raw.faces.size()) raw.droppedFaces = declaredFaces - raw.faces.size();
+  if (repeatedVertex && declaredFaces > (long long)raw.faces.size())
+    raw.droppedFaces = declaredFaces - raw.faces.size();
   return raw;
 }
 
@@ -165,7 +168,8 @@ void compactVertices(const std::vector<Vec3>& all, Surface& surface, std::vector
   for (std::size_t face = 0; face < surface.faces.size(); ++face)
     for (int& v : surface.faces[face].vertices) {
       if (v < 0 || v >= int(all.size()))  // checkMeshStructure refuses these first
-        throw InputError(surface.source + ": face " + std::to_string(face) + " names a vertex that does not "
+        throw InputError(surface.source + ": face " + std::to_string(face) +
+                         " names a vertex that does not "
                          "exist. Fix: correct the face's indices.");
       if (map[v] < 0) {
         map[v] = static_cast<int>(surface.vertices.size());
@@ -181,12 +185,14 @@ void compactVertices(const std::vector<Vec3>& all, Surface& surface, std::vector
 
 RawMesh readMeshFile(const std::string& path, bool repair) {
   if (!fs::exists(path))
-    throw InputError(path + ": mesh file not found. Fix: give a path relative to the scene "
+    throw InputError(path +
+                     ": mesh file not found. Fix: give a path relative to the scene "
                      "file, or an absolute path.");
   const long long declaredFaces = checkMeshStructure(path);
   checkTextMeshNumbers(path);
   std::string ext = lowerExtension(path);
-  if (ext == ".ply" || ext == ".off" || ext == ".stl") return readWithOpenMesh(path, declaredFaces, repair);
+  if (ext == ".ply" || ext == ".off" || ext == ".stl")
+    return readWithOpenMesh(path, declaredFaces, repair);
   if (ext == ".obj") {
     tinyobj::ObjReader reader = parseObj(path);
     RawMesh raw;
@@ -204,11 +210,13 @@ namespace {
 /// the diffuse albedo, Ke the emission in W/m², Ks and Ns a glossy Phong lobe; Ka (ambient
 /// colour) has no physical meaning and is ignored. Each assumption is a warning naming the
 /// material.
-Material mtlMaterial(const tinyobj::material_t& m, const std::string& path, std::vector<std::string>* warnings) {
+Material mtlMaterial(const tinyobj::material_t& m, const std::string& path,
+                     std::vector<std::string>* warnings) {
   auto warn = [&](const std::string& what) {
     if (warnings) warnings->push_back(path + ": MTL material \"" + m.name + "\": " + what);
   };
-  const Vec3 kd{m.diffuse[0], m.diffuse[1], m.diffuse[2]}, ks{m.specular[0], m.specular[1], m.specular[2]};
+  const Vec3 kd{m.diffuse[0], m.diffuse[1], m.diffuse[2]},
+      ks{m.specular[0], m.specular[1], m.specular[2]};
   const Vec3 ka{m.ambient[0], m.ambient[1], m.ambient[2]};
   Material mat;
   mat.name = m.name;
@@ -223,13 +231,15 @@ Material mtlMaterial(const tinyobj::material_t& m, const std::string& path, std:
     mat.params.set("kd", kd * scale);
     mat.params.set("ks", ks * scale);
     mat.params.set("shininess", n);
-    warn("Ks read as a glossy Phong lobe (shininess " + formatNumber(n) + "); radiosity sees only Kd" +
-         (scale < 1 ? ", and Kd + Ks = " + formatNumber(sum) + " was scaled by " + formatNumber(scale) +
-                          " to conserve energy"
+    warn("Ks read as a glossy Phong lobe (shininess " + formatNumber(n) +
+         "); radiosity sees only Kd" +
+         (scale < 1 ? ", and Kd + Ks = " + formatNumber(sum) + " was scaled by " +
+                          formatNumber(scale) + " to conserve energy"
                     : ""));
   } else {
     mat.params.set("reflectance", kd);
-    if (maxComponent(kd) <= 0 && !mat.emits()) warn("Kd is 0 and there is no Ks: it absorbs all light (black)");
+    if (maxComponent(kd) <= 0 && !mat.emits())
+      warn("Kd is 0 and there is no Ks: it absorbs all light (black)");
   }
   if (maxComponent(ka) > 0 && !mat.emits())
     warn("Ka (ambient colour) is ignored; if this is a light, give it Ke (emission in W/m²)");
@@ -244,8 +254,7 @@ Material mtlMaterial(const tinyobj::material_t& m, const std::string& path, std:
 }  // namespace
 
 Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) {
-  if (!fs::exists(path))
-    throw InputError(path + ": scene file not found.");
+  if (!fs::exists(path)) throw InputError(path + ": scene file not found.");
   checkMeshStructure(path);
   checkTextMeshNumbers(path);
   tinyobj::ObjReader reader = parseObj(path);
@@ -254,9 +263,11 @@ Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) 
   scene.name = fs::path(path).stem().string();
   const std::string mtlWarning = reader.Warning();
   if (reader.GetMaterials().empty() && mtlWarning.find("not found") != std::string::npos)
-    throw InputError(path + ": its MTL file was not found (" + mtlWarning.substr(0, mtlWarning.find('\n')) +
+    throw InputError(path + ": its MTL file was not found (" +
+                     mtlWarning.substr(0, mtlWarning.find('\n')) +
                      "). Fix: put the .mtl named by \"mtllib\" next to the OBJ.");
-  for (const auto& m : reader.GetMaterials()) scene.materials.push_back(mtlMaterial(m, path, warnings));
+  for (const auto& m : reader.GetMaterials())
+    scene.materials.push_back(mtlMaterial(m, path, warnings));
   std::vector<Vec3> all = objVertices(reader.GetAttrib());
   // Surface index by name: looked up once per face, so it must not be a scan (a scan per face
   // over the group's faces made a 80 000-face OBJ take minutes; found by fuzzing).
@@ -287,7 +298,8 @@ Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) 
   std::vector<int> vertexMap(all.size(), -1);
   for (Surface& s : scene.surfaces) {
     if (s.material < 0)
-      throw InputError(s.source + " has no material (usemtl). Fix: assign a material with "
+      throw InputError(s.source +
+                       " has no material (usemtl). Fix: assign a material with "
                        "Kd (and Ke for emitters) in the MTL file.");
     compactVertices(all, s, vertexMap);
   }

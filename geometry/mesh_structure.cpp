@@ -28,14 +28,16 @@ std::string readAll(const std::string& path) {
 
 long long checkBinaryOff(const Fail& fail, const std::string& text, const Lines& lines) {
   const std::size_t at = lines.pos();
-  if (text.size() < at + 12) fail("binary OFF header ends before its counts." + std::string(kTruncated));
+  if (text.size() < at + 12)
+    fail("binary OFF header ends before its counts." + std::string(kTruncated));
   const std::size_t body = text.size() - at - 12;
   for (bool big : {true, false}) {  // the counts' byte order is not recorded in the file
     long long c[2];
     for (int k = 0; k < 2; ++k) {
       std::uint32_t v = 0;
       for (int b = 0; b < 4; ++b)
-        v |= std::uint32_t(static_cast<unsigned char>(text[at + 4 * k + b])) << (big ? 24 - 8 * b : 8 * b);
+        v |= std::uint32_t(static_cast<unsigned char>(text[at + 4 * k + b]))
+             << (big ? 24 - 8 * b : 8 * b);
       c[k] = v;
     }
     if (c[0] <= INT_MAX && c[1] <= INT_MAX && c[0] * 12.0 + c[1] * 16.0 <= double(body)) return -1;
@@ -47,7 +49,8 @@ long long checkBinaryOff(const Fail& fail, const std::string& text, const Lines&
 long long checkOff(const Fail& fail, const std::string& text) {
   Lines lines(text);
   std::vector<std::string> t;
-  if (!lines.nextTokens(t)) fail("the file is empty. Fix: an OFF file starts with 'OFF' and its counts.");
+  if (!lines.nextTokens(t))
+    fail("the file is empty. Fix: an OFF file starts with 'OFF' and its counts.");
   std::size_t first = 0;
   const std::string key = lower(t[0]);
   if (key.size() >= 3 && key.compare(key.size() - 3, 3, "off") == 0) {
@@ -55,13 +58,16 @@ long long checkOff(const Fail& fail, const std::string& text) {
     first = 1;
     if (t.size() == 1) {
       if (!lines.nextTokens(t))
-        fail("the header has no vertex and face counts. Fix: write 'vertices faces edges' after 'OFF'.");
+        fail(
+            "the header has no vertex and face counts. Fix: write 'vertices faces edges' after "
+            "'OFF'.");
       first = 0;
     }
   }
   const long header = lines.number();
   if (t.size() < first + 2)
-    fail.at(header, "the header needs the vertex and face counts. Fix: write 'vertices faces edges'.");
+    fail.at(header,
+            "the header needs the vertex and face counts. Fix: write 'vertices faces edges'.");
   const long long nv = headerCount(fail, header, t[first], "vertex");
   const long long nf = headerCount(fail, header, t[first + 1], "face");
   // At least "0 0 0\n" per vertex and "n\n" per face (a short face is named below); the last
@@ -71,23 +77,28 @@ long long checkOff(const Fail& fail, const std::string& text) {
   requireRoom(fail, header, nf, 2, rest - std::size_t(nv) * 6, "faces");
   for (long long v = 0; v < nv; ++v) {
     if (!lines.nextTokens(t))
-      fail("the file ends after " + std::to_string(v) + " of the " + std::to_string(nv) + " vertices "
-           "its header declares." + kTruncated);
+      fail("the file ends after " + std::to_string(v) + " of the " + std::to_string(nv) +
+           " vertices "
+           "its header declares." +
+           kTruncated);
     if (t.size() < 3)
       fail.at(lines.number(), "vertex " + std::to_string(v) + " has " + std::to_string(t.size()) +
                                   " coordinates. Fix: write x y z.");
   }
   for (long long f = 0; f < nf; ++f) {
     if (!lines.nextTokens(t))
-      fail("the file ends after " + std::to_string(f) + " of the " + std::to_string(nf) + " faces "
-           "its header declares." + kTruncated);
+      fail("the file ends after " + std::to_string(f) + " of the " + std::to_string(nf) +
+           " faces "
+           "its header declares." +
+           kTruncated);
     const long line = lines.number();
     long long n = 0;
     if (!parseInteger(t[0], n)) fail.at(line, "'" + t[0] + "' is not a face's vertex count.");
     checkFaceSize(fail, line, f, n);
     if (n > (long long)t.size() - 1)
-      fail.at(line, "face " + std::to_string(f) + " declares " + std::to_string(n) + " vertices but lists " +
-                        std::to_string(t.size() - 1) + ". Fix: list every vertex index.");
+      fail.at(line, "face " + std::to_string(f) + " declares " + std::to_string(n) +
+                        " vertices but lists " + std::to_string(t.size() - 1) +
+                        ". Fix: list every vertex index.");
     for (long long k = 1; k <= n; ++k) {
       long long index = 0;
       if (!parseInteger(t[k], index)) fail.at(line, "'" + t[k] + "' is not a vertex index.");
@@ -105,9 +116,11 @@ long long checkStl(const Fail& fail, const std::string& text) {
     for (int k = 3; k >= 0; --k) count = count << 8 | static_cast<unsigned char>(text[80 + k]);
   if (text.size() >= 84 && text.size() == 84 + 50 * std::uintmax_t(count)) return count;
   if (text.compare(0, 5, "solid") != 0) {
-    if (text.size() < 84) fail("too short for a binary STL (an 84-byte header) and not an ASCII STL ('solid').");
-    fail("a binary STL of " + std::to_string(count) + " triangles has " + std::to_string(84 + 50 * std::uintmax_t(count)) +
-         " bytes, but this file has " + std::to_string(text.size()) + "." + kTruncated);
+    if (text.size() < 84)
+      fail("too short for a binary STL (an 84-byte header) and not an ASCII STL ('solid').");
+    fail("a binary STL of " + std::to_string(count) + " triangles has " +
+         std::to_string(84 + 50 * std::uintmax_t(count)) + " bytes, but this file has " +
+         std::to_string(text.size()) + "." + kTruncated);
   }
   Lines lines(text);
   std::vector<std::string> t;
@@ -124,7 +137,8 @@ long long checkStl(const Fail& fail, const std::string& text) {
       ++vertices;
     } else if (t[0] == "endfacet") {
       if (vertices != 3)
-        fail.at(n, "facet " + std::to_string(facets) + " has " + std::to_string(std::max(vertices, 0)) +
+        fail.at(n, "facet " + std::to_string(facets) + " has " +
+                       std::to_string(std::max(vertices, 0)) +
                        " vertices. Fix: an STL facet is a triangle of 3 vertices.");
       vertices = -1;
       ++facets;
@@ -160,18 +174,21 @@ long long checkObj(const std::string& path, const Fail& fail, const std::string&
     const long n = lines.number();
     if (t[0] == "v") {
       if (t.size() < 4)
-        fail.at(n, "a vertex has " + std::to_string(t.size() - 1) + " coordinates. Fix: write 'v x y z'.");
+        fail.at(n, "a vertex has " + std::to_string(t.size() - 1) +
+                       " coordinates. Fix: write 'v x y z'.");
       ++vertices;
     } else if (t[0] == "f") {
       checkFaceSize(fail, n, faces, (long long)t.size() - 1);
       for (std::size_t k = 1; k < t.size(); ++k) {
         long long v = 0;
         if (!parseInteger(t[k].substr(0, t[k].find('/')), v) || v == 0)
-          fail.at(n, "'" + t[k] + "' is not a vertex reference. Fix: OBJ counts vertices from 1 "
-                     "(negative: back from the last one).");
+          fail.at(n, "'" + t[k] +
+                         "' is not a vertex reference. Fix: OBJ counts vertices from 1 "
+                         "(negative: back from the last one).");
         if (v < 0 && -v > vertices)
           fail.at(n, "face " + std::to_string(faces) + " refers to vertex " + t[k] + ", but only " +
-                         std::to_string(vertices) + " vertices come before it. Fix: correct the index.");
+                         std::to_string(vertices) +
+                         " vertices come before it. Fix: correct the index.");
         if (v > highest) highest = v, highestLine = n;
       }
       ++faces;
@@ -193,7 +210,8 @@ long long checkObj(const std::string& path, const Fail& fail, const std::string&
 void requireRegularFile(const std::string& path, const std::string& what) {
   std::error_code ec;
   if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
-    throw InputError(path + ": the " + what + " is not a regular file (a folder, pipe or device). "
+    throw InputError(path + ": the " + what +
+                     " is not a regular file (a folder, pipe or device). "
                      "Fix: give the path of a file.");
 }
 

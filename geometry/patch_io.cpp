@@ -11,7 +11,6 @@ namespace {
 // Enough digits that a double read back is the same double.
 constexpr int kDigits = 17;
 
-
 void writeTriple(std::ostream& o, const Vec3& v) { o << ',' << v.x << ',' << v.y << ',' << v.z; }
 }  // namespace
 
@@ -40,10 +39,12 @@ void writePatchesVtp(const std::string& path, const Scene& scene, const PatchMes
   o << std::setprecision(kDigits);
   o << "<?xml version=\"1.0\"?>\n"
     << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n<PolyData>\n"
-    << "<Piece NumberOfPoints=\"" << mesh.vertices.size() << "\" NumberOfPolys=\"" << mesh.size() << "\">\n"
+    << "<Piece NumberOfPoints=\"" << mesh.vertices.size() << "\" NumberOfPolys=\"" << mesh.size()
+    << "\">\n"
     << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (const Vec3& v : mesh.vertices) o << v.x << ' ' << v.y << ' ' << v.z << '\n';
-  o << "</DataArray></Points>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  o << "</DataArray></Points>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
+       "format=\"ascii\">\n";
   for (const Patch& p : mesh.patches) {
     for (int k = 0; k < p.vertexCount; ++k) o << p.vertex[k] << ' ';
     o << '\n';
@@ -58,7 +59,8 @@ void writePatchesVtp(const std::string& path, const Scene& scene, const PatchMes
   for (const Patch& p : mesh.patches) o << p.area << '\n';
   o << "</DataArray>\n";
   auto triples = [&](const char* name, auto value) {
-    o << "<DataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    o << "<DataArray type=\"Float64\" Name=\"" << name
+      << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (int i = 0; i < mesh.size(); ++i) {
       Vec3 v = value(i);
       o << v.x << ' ' << v.y << ' ' << v.z << '\n';

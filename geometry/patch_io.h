@@ -1,5 +1,5 @@
-// Per-patch output files: patches.csv (columns in docs/formats.md) and a VTK XML PolyData (.vtp) file
-// for ParaView, written as text without VTK (only viewer/ links VTK).
+// Per-patch output files: patches.csv (columns in docs/formats.md) and a VTK XML PolyData (.vtp)
+// file for ParaView, written as text without VTK (only viewer/ links VTK).
 #pragma once
 
 #include <string>

@@ -11,8 +11,7 @@ namespace {
 // vertices. Its length is the area of a planar polygon, its direction the normal.
 Vec3 vectorArea(const std::vector<Vec3>& poly) {
   Vec3 sum;
-  for (std::size_t k = 0; k < poly.size(); ++k)
-    sum += cross(poly[k], poly[(k + 1) % poly.size()]);
+  for (std::size_t k = 0; k < poly.size(); ++k) sum += cross(poly[k], poly[(k + 1) % poly.size()]);
   return sum * 0.5;
 }
 }  // namespace
@@ -75,8 +74,7 @@ double PatchMesh::aspectRatio(const Patch& p) const { return polygonAspectRatio(
 double rayEpsilon(const Bounds3& b) {
   if (b.empty()) return kRayEpsilonRelative;
   double extent = b.diagonal();
-  for (int a = 0; a < 3; ++a)
-    extent = std::max({extent, std::fabs(b.lo[a]), std::fabs(b.hi[a])});
+  for (int a = 0; a < 3; ++a) extent = std::max({extent, std::fabs(b.lo[a]), std::fabs(b.hi[a])});
   return kRayEpsilonRelative * extent;
 }
 

@@ -26,9 +26,9 @@ struct PlyElement {
 
 int plyTypeSize(const std::string& type) {
   static const std::pair<const char*, int> types[] = {
-      {"char", 1},   {"uchar", 1},  {"int8", 1},  {"uint8", 1},   {"short", 2},   {"ushort", 2},
-      {"int16", 2},  {"uint16", 2}, {"int", 4},   {"uint", 4},    {"int32", 4},   {"uint32", 4},
-      {"float", 4},  {"float32", 4}, {"double", 8}, {"float64", 8}};
+      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
+      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
   for (const auto& t : types)
     if (type == t.first) return t.second;
   return 0;
@@ -37,7 +37,8 @@ int plyTypeSize(const std::string& type) {
 /// Reads the values of a binary PLY body, checking that each lies inside the file.
 class BinaryCursor {
  public:
-  BinaryCursor(const std::string& text, std::size_t pos, bool big) : m_text(text), m_pos(pos), m_big(big) {}
+  BinaryCursor(const std::string& text, std::size_t pos, bool big)
+      : m_text(text), m_pos(pos), m_big(big) {}
   bool has(double bytes) const { return double(m_text.size() - m_pos) >= bytes; }
   void skip(std::size_t bytes) { m_pos += bytes; }
   /// The unsigned integer value of `size` (<= 4) bytes.
@@ -60,13 +61,15 @@ class BinaryCursor {
 /// ASCII PLY body tokens with their line numbers.
 class TokenCursor {
  public:
-  TokenCursor(const std::string& text, std::size_t pos, long line) : m_text(text), m_pos(pos), m_line(line) {}
+  TokenCursor(const std::string& text, std::size_t pos, long line)
+      : m_text(text), m_pos(pos), m_line(line) {}
   bool next(std::string& token) {
     while (m_pos < m_text.size() && std::isspace(static_cast<unsigned char>(m_text[m_pos])))
       if (m_text[m_pos++] == '\n') ++m_line;
     if (m_pos >= m_text.size()) return false;
     const std::size_t start = m_pos;
-    while (m_pos < m_text.size() && !std::isspace(static_cast<unsigned char>(m_text[m_pos]))) ++m_pos;
+    while (m_pos < m_text.size() && !std::isspace(static_cast<unsigned char>(m_text[m_pos])))
+      ++m_pos;
     token = m_text.substr(start, m_pos - start);
     return true;
   }
@@ -79,11 +82,13 @@ class TokenCursor {
 };
 
 bool isFaceIndexList(const PlyElement& e, const PlyProperty& p) {
-  return e.name == "face" && p.countSize > 0 && (p.name == "vertex_indices" || p.name == "vertex_index");
+  return e.name == "face" && p.countSize > 0 &&
+         (p.name == "vertex_indices" || p.name == "vertex_index");
 }
 
 void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, long line,
-                  const std::string& format, const std::vector<PlyElement>& elements, long long vertices) {
+                  const std::string& format, const std::vector<PlyElement>& elements,
+                  long long vertices) {
   const bool ascii = format == "ascii";
   TokenCursor tokens(text, pos, line);
   BinaryCursor bytes(text, pos, format == "binary_big_endian");
@@ -91,9 +96,9 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
   for (const PlyElement& e : elements)
     for (long long row = 0; row < e.count; ++row) {
       auto truncated = [&]() {
-        fail("the file ends inside element '" + e.name + "' row " + std::to_string(row) + " of the " +
-             std::to_string(e.count) + " its header declares (line " + std::to_string(e.line) + ")." +
-             kTruncated);
+        fail("the file ends inside element '" + e.name + "' row " + std::to_string(row) +
+             " of the " + std::to_string(e.count) + " its header declares (line " +
+             std::to_string(e.line) + ")." + kTruncated);
       };
       for (const PlyProperty& p : e.properties) {
         const bool indices = isFaceIndexList(e, p);
@@ -102,8 +107,9 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
           if (ascii) {
             if (!tokens.next(token)) truncated();
             if (!parseInteger(token, n) || n < 0)
-              fail.at(tokens.line(), "'" + token + "' is not a list length in element '" + e.name + "' row " +
-                                         std::to_string(row) + ". Fix: write a whole number >= 0.");
+              fail.at(tokens.line(), "'" + token + "' is not a list length in element '" + e.name +
+                                         "' row " + std::to_string(row) +
+                                         ". Fix: write a whole number >= 0.");
           } else {
             if (!bytes.has(p.countSize)) truncated();
             n = bytes.integer(p.countSize);
@@ -149,45 +155,54 @@ long long checkPly(const Fail& fail, const std::string& text) {
     if (t[0] == "end_header") {
       ended = true;
     } else if (t[0] == "format") {
-      if (t.size() < 2 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
-        fail.at(n, "unknown format. Fix: 'format ascii 1.0', 'format binary_little_endian 1.0' or "
-                   "'format binary_big_endian 1.0'.");
+      if (t.size() < 2 ||
+          (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
+        fail.at(n,
+                "unknown format. Fix: 'format ascii 1.0', 'format binary_little_endian 1.0' or "
+                "'format binary_big_endian 1.0'.");
       format = t[1];
     } else if (t[0] == "element") {
       if (t.size() != 3) fail.at(n, "an element line is 'element NAME COUNT'.");
       elements.push_back({t[1], headerCount(fail, n, t[2], "element"), n, {}});
     } else if (t[0] == "property") {
-      if (elements.empty()) fail.at(n, "a property comes before any element. Fix: declare the element first.");
+      if (elements.empty())
+        fail.at(n, "a property comes before any element. Fix: declare the element first.");
       PlyProperty p;
       const bool list = t.size() == 5 && t[1] == "list";
       if (!list && t.size() != 3)
-        fail.at(n, "a property line is 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'.");
+        fail.at(n,
+                "a property line is 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'.");
       p.name = t.back();
       p.size = plyTypeSize(t[t.size() - 2]);
       p.isFloat = t[t.size() - 2].find_first_of("fd") == 0;
       p.isSigned = t[t.size() - 2][0] != 'u';
       p.countSize = list ? plyTypeSize(t[2]) : 0;
       if (p.size == 0 || (list && (p.countSize == 0 || t[2][0] == 'f' || t[2][0] == 'd')))
-        fail.at(n, "unknown property type. Fix: use char, uchar, short, ushort, int, uint, float or double "
-                   "(an integer type for a list's count).");
+        fail.at(n,
+                "unknown property type. Fix: use char, uchar, short, ushort, int, uint, float or "
+                "double "
+                "(an integer type for a list's count).");
       if (isFaceIndexList(elements.back(), p) && p.isFloat)
         fail.at(n, "vertex indices must have an integer type.");
       elements.back().properties.push_back(p);
     } else {
-      fail.at(n, "unknown header line '" + t[0] + "'. Fix: the header holds format, element, property "
-                 "and comment lines and ends with 'end_header'.");
+      fail.at(n, "unknown header line '" + t[0] +
+                     "'. Fix: the header holds format, element, property "
+                     "and comment lines and ends with 'end_header'.");
     }
   }
   if (!ended) fail("the header has no 'end_header' line." + std::string(kTruncated));
-  if (format.empty()) fail("the header has no 'format' line. Fix: add 'format ascii 1.0' after 'ply'.");
+  if (format.empty())
+    fail("the header has no 'format' line. Fix: add 'format ascii 1.0' after 'ply'.");
   const std::size_t body = text.size() - lines.pos() + 1;  // the last value may lack a separator
   double minBytes = 0;
   long long vertices = 0, faces = 0;
   for (const PlyElement& e : elements) {
     double row = 0;
-    for (const PlyProperty& p : e.properties) row += format == "ascii" ? 2 : (p.countSize ? p.countSize : p.size);
-    requireRoom(fail, e.line, e.count, std::max(row, 1.0), std::size_t(std::max(0.0, body - minBytes)),
-                "'" + e.name + "' rows");
+    for (const PlyProperty& p : e.properties)
+      row += format == "ascii" ? 2 : (p.countSize ? p.countSize : p.size);
+    requireRoom(fail, e.line, e.count, std::max(row, 1.0),
+                std::size_t(std::max(0.0, body - minBytes)), "'" + e.name + "' rows");
     minBytes += e.count * std::max(row, 1.0);
     if (e.name == "vertex") vertices = e.count;
     if (e.name == "face") faces = e.count;

@@ -93,9 +93,8 @@ RayScene::RayScene(const PatchMesh& mesh, int threads) : m_impl(std::make_unique
   // the primitive id is the patch index for triangles and quads alike.
   RTCGeometry geom = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_QUAD);
   // Embree-managed buffers are padded for its 16-byte loads and live as long as the geometry.
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                         RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                         mesh.vertices.size()));
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
   for (std::size_t k = 0; k < mesh.vertices.size(); ++k) {
     Vec3 p = mesh.vertices[k] - im.centre;
     v[3 * k] = float(p.x);

@@ -53,14 +53,18 @@ void splitPatch(PatchMesh& out, SurfaceVertices& verts, const Patch& p) {
     int m01 = verts.at(midpoint(P(0), P(1))), m12 = verts.at(midpoint(P(1), P(2)));
     int m23 = verts.at(midpoint(P(2), P(3))), m30 = verts.at(midpoint(P(3), P(0)));
     int c = verts.at((P(0) + P(1) + P(2) + P(3)) * 0.25);
-    for (const std::array<int, 4>& q : {std::array<int, 4>{v[0], m01, c, m30}, {m01, v[1], m12, c},
-                                        {c, m12, v[2], m23}, {m30, c, m23, v[3]}})
+    for (const std::array<int, 4>& q : {std::array<int, 4>{v[0], m01, c, m30},
+                                        {m01, v[1], m12, c},
+                                        {c, m12, v[2], m23},
+                                        {m30, c, m23, v[3]}})
       out.patches.push_back(makePatch(out, q, 4, p.surface));
   } else {
     int m01 = verts.at(midpoint(P(0), P(1))), m12 = verts.at(midpoint(P(1), P(2)));
     int m20 = verts.at(midpoint(P(2), P(0)));
-    for (const std::array<int, 4>& t : {std::array<int, 4>{v[0], m01, m20, -1}, {m01, v[1], m12, -1},
-                                        {m20, m12, v[2], -1}, {m01, m12, m20, -1}})
+    for (const std::array<int, 4>& t : {std::array<int, 4>{v[0], m01, m20, -1},
+                                        {m01, v[1], m12, -1},
+                                        {m20, m12, v[2], -1},
+                                        {m01, m12, m20, -1}})
       out.patches.push_back(makePatch(out, t, 3, p.surface));
   }
 }

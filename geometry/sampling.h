@@ -29,8 +29,7 @@ class Rng {
 
 /// \brief Latin-hypercube samples: K points in [0,1)^dims, each dimension stratified into K
 /// intervals (one point each) and randomly permuted independently. out[k·dims + d].
-void latinHypercube(int K, int dims, Rng& rng, std::vector<double>& out,
-                    std::vector<int>& scratch);
+void latinHypercube(int K, int dims, Rng& rng, std::vector<double>& out, std::vector<int>& scratch);
 
 /// \brief Uniform point on triangle abc: barycentrics (1−√u0, u1√u0).
 Vec3 sampleUniformTriangle(const Vec3& a, const Vec3& b, const Vec3& c, double u0, double u1);

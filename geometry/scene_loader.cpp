@@ -6,12 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
-#include <string>
 #include <set>
+#include <string>
 
 #include "geometry/mesh_reader.h"
 #include "geometry/mesh_structure.h"
@@ -119,9 +119,12 @@ Material readMaterial(const std::string& name, const json& j, const std::string&
     const std::string& key = it.key();
     if (key == "brdf" || key == "emission" || key == "two_sided") continue;
     const json& v = it.value();
-    if (v.is_string()) m.params.setText(key, v.get<std::string>());
-    else if (v.is_array()) m.params.set(key, r.toVec3(v, key));
-    else m.params.set(key, r.toNumber(v, key));
+    if (v.is_string())
+      m.params.setText(key, v.get<std::string>());
+    else if (v.is_array())
+      m.params.set(key, r.toVec3(v, key));
+    else
+      m.params.set(key, r.toNumber(v, key));
   }
   try {
     resolveMaterial(m);
@@ -133,7 +136,8 @@ Material readMaterial(const std::string& name, const json& j, const std::string&
 }
 
 /// Adds a polygon given by coordinates, sharing vertices with identical coordinates.
-void addPolygon(Surface& s, const std::vector<Vec3>& points, std::map<std::array<double, 3>, int>& index) {
+void addPolygon(Surface& s, const std::vector<Vec3>& points,
+                std::map<std::array<double, 3>, int>& index) {
   Face face;
   for (const Vec3& p : points) {
     auto key = std::array<double, 3>{p.x, p.y, p.z};
@@ -148,9 +152,11 @@ void addPolygon(Surface& s, const std::vector<Vec3>& points, std::map<std::array
 }
 
 std::vector<Vec3> readPolygon(ObjectReader& r, const json& j, const std::string& what) {
-  if (!j.is_array() || j.size() < 3) r.fail("\"" + what + "\" must be an array of at least 3 points");
+  if (!j.is_array() || j.size() < 3)
+    r.fail("\"" + what + "\" must be an array of at least 3 points");
   std::vector<Vec3> points;
-  for (std::size_t k = 0; k < j.size(); ++k) points.push_back(r.toVec3(j[k], what + "[" + std::to_string(k) + "]"));
+  for (std::size_t k = 0; k < j.size(); ++k)
+    points.push_back(r.toVec3(j[k], what + "[" + std::to_string(k) + "]"));
   return points;
 }
 
@@ -161,7 +167,8 @@ void applyTransform(ObjectReader& surface, const json& j, const std::string& fil
   Vec3 scale{1, 1, 1};
   if (r.has("scale")) {
     const json& given = j.at("scale");
-    scale = given.is_array() ? r.toVec3(given, "scale") : Vec3{1, 1, 1} * r.toNumber(given, "scale");
+    scale =
+        given.is_array() ? r.toVec3(given, "scale") : Vec3{1, 1, 1} * r.toNumber(given, "scale");
   }
   if (scale.x == 0 || scale.y == 0 || scale.z == 0) r.fail("\"scale\" must be non-zero");
   Vec3 translate = r.vec3("translate", {0, 0, 0});
@@ -196,7 +203,8 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
     addPolygon(s, readPolygon(r, j.at("polygon"), "polygon"), vertexIndex);
   } else if (r.has("polygons")) {
     const json& list = j.at("polygons");
-    if (!list.is_array() || list.empty()) r.fail("\"polygons\" must be a non-empty array of polygons");
+    if (!list.is_array() || list.empty())
+      r.fail("\"polygons\" must be a non-empty array of polygons");
     for (std::size_t k = 0; k < list.size(); ++k)
       addPolygon(s, readPolygon(r, list[k], "polygons[" + std::to_string(k) + "]"), vertexIndex);
   } else {
@@ -209,8 +217,9 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
       r.fail("reads its mesh: " + std::string(e.what()));
     }
     if (raw.droppedFaces > 0)
-      report.warnings.push_back(file + ": " + where + " (mesh " + meshPath.string() + "): repair: the reader dropped " +
-                                std::to_string(raw.droppedFaces) + " face(s) that repeat a vertex.");
+      report.warnings.push_back(
+          file + ": " + where + " (mesh " + meshPath.string() + "): repair: the reader dropped " +
+          std::to_string(raw.droppedFaces) + " face(s) that repeat a vertex.");
     s.vertices = std::move(raw.vertices);
     s.faces = std::move(raw.faces);
     s.source += " (mesh " + meshPath.string() + ")";
@@ -232,10 +241,14 @@ void includeObj(const json& j, std::size_t index, Scene& scene, const std::strin
   if (!j.at("include").is_string()) r.fail("\"include\" must be the file name of an .obj");
   const fs::path objPath = fs::path(file).parent_path() / j.at("include").get<std::string>();
   std::string ext = objPath.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".obj") r.fail("includes " + objPath.string() + ", not an .obj. Fix: include an OBJ scene (with its MTL), or give a \"mesh\" surface");
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".obj")
+    r.fail("includes " + objPath.string() +
+           ", not an .obj. Fix: include an OBJ scene (with its MTL), or give a \"mesh\" surface");
   if (!fs::exists(objPath))
-    r.fail("includes " + objPath.string() + ", which does not exist. Fix: give the OBJ's path relative to " + file);
+    r.fail("includes " + objPath.string() +
+           ", which does not exist. Fix: give the OBJ's path relative to " + file);
   Scene obj;
   try {
     requireRegularFile(objPath.string(), "included OBJ");
@@ -282,7 +295,8 @@ Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadRep
     // nlohmann's message carries the line and column of the error.
     throw InputError(path + ": malformed JSON: " + e.what());
   } catch (const json::exception& e) {
-    throw InputError(path + ": unreadable JSON (" + e.what() + "). Fix: numbers must fit a double.");
+    throw InputError(path + ": unreadable JSON (" + e.what() +
+                     "). Fix: numbers must fit a double.");
   }
   Scene scene;
   scene.file = path;
@@ -304,8 +318,10 @@ Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadRep
   const json& surfaces = r.get("surfaces");
   if (!surfaces.is_array()) r.fail("\"surfaces\" must be an array");
   for (std::size_t i = 0; i < surfaces.size(); ++i) {
-    if (surfaces[i].is_object() && surfaces[i].contains("include")) includeObj(surfaces[i], i, scene, path);
-    else scene.surfaces.push_back(readSurface(surfaces[i], i, scene, path, options, report));
+    if (surfaces[i].is_object() && surfaces[i].contains("include"))
+      includeObj(surfaces[i], i, scene, path);
+    else
+      scene.surfaces.push_back(readSurface(surfaces[i], i, scene, path, options, report));
   }
   if (r.has("camera")) scene.camera = readCamera(root.at("camera"), path);
   return scene;
@@ -320,11 +336,13 @@ void warnOnImplausibleSize(const Scene& scene, LoadReport& report) {
   if (largest <= kLargestPlausibleMetres && largest >= kSmallestPlausibleMetres) return;
   char text[160];
   std::snprintf(text, sizeof text, "%.4g m x %.4g m x %.4g m", size.x, size.y, size.z);
-  report.warnings.push_back(scene.file + ": the scene spans " + text + " read in " + scene.units + ", " +
-                            (largest > kLargestPlausibleMetres ? "large" : "small") +
-                            " for a room or an object. Fix: if its coordinates are in another unit, give --units " +
-                            unitList() + (fs::path(scene.file).extension() == ".json" ? " (or \"units\" in the scene file)" : "") +
-                            ".");
+  report.warnings.push_back(
+      scene.file + ": the scene spans " + text + " read in " + scene.units + ", " +
+      (largest > kLargestPlausibleMetres ? "large" : "small") +
+      " for a room or an object. Fix: if its coordinates are in another unit, give --units " +
+      unitList() +
+      (fs::path(scene.file).extension() == ".json" ? " (or \"units\" in the scene file)" : "") +
+      ".");
 }
 
 }  // namespace
@@ -337,22 +355,29 @@ const std::vector<std::pair<std::string, double>>& knownUnits() {
 
 Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& options) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   requireRegularFile(path, "scene file");
   if (!options.units.empty() && !isKnownUnit(options.units))
-    throw InputError("--units " + options.units + " is not a unit radkit knows. Fix: use one of " + unitList() + ".");
+    throw InputError("--units " + options.units + " is not a unit radkit knows. Fix: use one of " +
+                     unitList() + ".");
   LoadReport local;
   LoadReport& out = report ? *report : local;
   Scene scene;
-  if (ext == ".json") scene = loadJsonScene(path, options, out);
+  if (ext == ".json")
+    scene = loadJsonScene(path, options, out);
   else if (ext == ".obj") {
     scene = loadObjScene(path, &out.warnings);
-    if (std::none_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.emits(); }))
-      throw InputError(path + ": no material emits light, so every result would be black. Fix: give the "
-                       "light's material an emission \"Ke r g b\" (W/m²) in the MTL file; Ka is ambient "
-                       "colour, which radkit does not read as emission.");
-  }
-  else throw InputError(path + ": unknown scene format '" + ext + "'. Fix: give a .json scene or an .obj with its .mtl.");
+    if (std::none_of(scene.materials.begin(), scene.materials.end(),
+                     [](const Material& m) { return m.emits(); }))
+      throw InputError(
+          path +
+          ": no material emits light, so every result would be black. Fix: give the "
+          "light's material an emission \"Ke r g b\" (W/m²) in the MTL file; Ka is ambient "
+          "colour, which radkit does not read as emission.");
+  } else
+    throw InputError(path + ": unknown scene format '" + ext +
+                     "'. Fix: give a .json scene or an .obj with its .mtl.");
   if (ext == ".obj" && !options.units.empty()) scene.units = options.units;
   validateScene(scene, out, options.repair);
   warnOnImplausibleSize(scene, out);

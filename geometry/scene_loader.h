@@ -18,7 +18,7 @@ class InputError : public std::runtime_error {
 
 /// What the mesh repair (LoadOptions::repair) changed in one surface.
 struct MeshRepair {
-  std::string surface;  ///< Surface::source
+  std::string surface;                  ///< Surface::source
   std::size_t weldedVertices = 0;       ///< vertices at the position of an earlier one, merged
   std::size_t duplicateFaces = 0;       ///< faces repeating another (same winding), removed
   std::size_t degenerateFaces = 0;      ///< faces repeating a vertex or of zero area, removed
@@ -52,6 +52,7 @@ const std::vector<std::pair<std::string, double>>& knownUnits();
 /// \brief Loads a scene file: `.json`, or `.obj` (with its MTL) as a whole scene.
 /// Mesh surfaces (OBJ, PLY, OFF, STL) are read relative to the scene file. The result is
 /// validated (see validation.h): every error throws InputError, warnings go to `report`.
-Scene loadScene(const std::string& path, LoadReport* report = nullptr, const LoadOptions& options = {});
+Scene loadScene(const std::string& path, LoadReport* report = nullptr,
+                const LoadOptions& options = {});
 
 }  // namespace radkit

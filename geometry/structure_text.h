@@ -73,7 +73,9 @@ class Lines {
 class Fail {
  public:
   explicit Fail(std::string path) : m_path(std::move(path)) {}
-  [[noreturn]] void operator()(const std::string& what) const { throw InputError(m_path + ": " + what); }
+  [[noreturn]] void operator()(const std::string& what) const {
+    throw InputError(m_path + ": " + what);
+  }
   /// line <= 0: a binary body, where lines mean nothing.
   [[noreturn]] void at(long line, const std::string& what) const {
     (*this)(line > 0 ? "line " + std::to_string(line) + ": " + what : what);
@@ -83,20 +85,24 @@ class Fail {
   std::string m_path;
 };
 
-inline const char* const kTruncated = " Fix: restore the missing data (the file looks truncated) or correct the count.";
+inline const char* const kTruncated =
+    " Fix: restore the missing data (the file looks truncated) or correct the count.";
 
 /// A count read from a header: a whole number in [0, INT_MAX] (what the readers index with).
-inline long long headerCount(const Fail& fail, long line, const std::string& token, const std::string& what) {
+inline long long headerCount(const Fail& fail, long line, const std::string& token,
+                             const std::string& what) {
   long long v = 0;
   if (!parseInteger(token, v) || v < 0 || v > INT_MAX)
-    fail.at(line, "'" + token + "' is not a valid " + what + " count. Fix: write a whole number "
-                  "from 0 to " + std::to_string(INT_MAX) + ".");
+    fail.at(line, "'" + token + "' is not a valid " + what +
+                      " count. Fix: write a whole number "
+                      "from 0 to " +
+                      std::to_string(INT_MAX) + ".");
   return v;
 }
 
 /// Refuses a count that the file's bytes cannot hold at `minBytes` per item.
-inline void requireRoom(const Fail& fail, long line, long long count, double minBytes, std::size_t bytes,
-                 const std::string& what) {
+inline void requireRoom(const Fail& fail, long line, long long count, double minBytes,
+                        std::size_t bytes, const std::string& what) {
   if (count * minBytes > double(bytes))
     fail.at(line, "the header declares " + std::to_string(count) + " " + what + ", but the " +
                       std::to_string(bytes) + " bytes that follow can hold at most " +
@@ -104,7 +110,8 @@ inline void requireRoom(const Fail& fail, long line, long long count, double min
 }
 
 /// One face's vertex index against the vertex count.
-inline void checkIndex(const Fail& fail, long line, long long face, long long index, long long vertices) {
+inline void checkIndex(const Fail& fail, long line, long long face, long long index,
+                       long long vertices) {
   if (index < 0 || index >= vertices)
     fail.at(line, "face " + std::to_string(face) + " names vertex " + std::to_string(index) +
                       ", but the file has " + std::to_string(vertices) + " vertices (0 to " +

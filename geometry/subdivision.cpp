@@ -32,7 +32,7 @@ Vec3 toVec3(const OpenMesh::Vec3d& p) { return {p[0], p[1], p[2]}; }
 /// One surface as a halfedge mesh plus its edge classes.
 struct SurfaceTopology {
   PolyMesh mesh;
-  std::vector<int> edgeClass;      ///< class of each edge
+  std::vector<int> edgeClass;       ///< class of each edge
   std::vector<double> classLength;  ///< longest edge of each class
 };
 
@@ -104,7 +104,8 @@ SurfaceTopology buildTopology(const Surface& s) {
 }
 
 [[noreturn]] void tooManyPatches() {
-  throw TooManyPatches("subdivide: the settings need more than " + std::to_string(kMaxPatches) + " patches");
+  throw TooManyPatches("subdivide: the settings need more than " + std::to_string(kMaxPatches) +
+                       " patches");
 }
 
 /// Segments per edge class for a target edge length h (0: one segment each). Counted in
@@ -186,8 +187,8 @@ void emitPatches(const SurfaceTopology& t, const std::vector<int>& n, int surfac
         for (int i = 1; i < a; ++i) {
           double u = double(i) / a, v = double(j) / b;
           g(i, j) = int(out.vertices.size());
-          out.vertices.push_back(c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) +
-                                 c[3] * ((1 - u) * v));
+          out.vertices.push_back(c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) +
+                                 c[2] * (u * v) + c[3] * ((1 - u) * v));
         }
       for (int j = 0; j < b; ++j)
         for (int i = 0; i < a; ++i) addPatch({g(i, j), g(i + 1, j), g(i + 1, j + 1), g(i, j + 1)});
@@ -257,8 +258,9 @@ double surfaceArea(const SurfaceTopology& t) {
 
 /// Per-surface edge lengths for a patch target spread by area (see subdivide in the header):
 /// hGlobal everywhere unless surfaces with more faces than their share starve the others.
-std::vector<double> spreadByArea(const Scene& scene, const std::vector<SurfaceTopology>& tops, long long target,
-                                 double hGlobal, std::vector<std::string>* warnings) {
+std::vector<double> spreadByArea(const Scene& scene, const std::vector<SurfaceTopology>& tops,
+                                 long long target, double hGlobal,
+                                 std::vector<std::string>* warnings) {
   std::vector<double> h(tops.size(), hGlobal), share(tops.size());
   double total = 0;
   for (std::size_t s = 0; s < tops.size(); ++s) total += share[s] = surfaceArea(tops[s]);
@@ -274,7 +276,8 @@ std::vector<double> spreadByArea(const Scene& scene, const std::vector<SurfaceTo
     }
     open.push_back(&tops[s]);
     openShare += share[s];
-    if (4.0 * double(patchCount(tops[s], classCounts(tops[s], hGlobal))) < share[s]) starved.push_back(s);
+    if (4.0 * double(patchCount(tops[s], classCounts(tops[s], hGlobal))) < share[s])
+      starved.push_back(s);
   }
   if (full.empty() || starved.empty()) return h;
   const double hOpen = lengthForPatchCount(open, std::max(1LL, std::llround(openShare)));
@@ -290,14 +293,16 @@ std::vector<double> spreadByArea(const Scene& scene, const std::vector<SurfaceTo
     const Surface& mesh = scene.surfaces[biggest];
     warnings->push_back(
         mesh.source + ": its " + std::to_string(tops[biggest].mesh.n_faces()) + " faces" +
-        (full.size() > 1 ? " (" + std::to_string(fullFaces) + " in the " + std::to_string(full.size()) +
-                               " surfaces finer than their share)"
+        (full.size() > 1 ? " (" + std::to_string(fullFaces) + " in the " +
+                               std::to_string(full.size()) + " surfaces finer than their share)"
                          : "") +
-        " exceed their area's share (" + std::to_string(std::llround(share[biggest])) + ") of the " +
-        std::to_string(target) + "-patch target, which left " + std::to_string(starved.size()) + " other surface" +
-        (starved.size() == 1 ? "" : "s") + " (\"" + scene.surfaces[starved.front()].name + "\"" +
-        (starved.size() > 1 ? ", ..." : "") + ") nearly whole. They were split to their own share instead, so " +
-        "the scene has more patches than the target. Fix: give --max-area for one patch size everywhere, or "
+        " exceed their area's share (" + std::to_string(std::llround(share[biggest])) +
+        ") of the " + std::to_string(target) + "-patch target, which left " +
+        std::to_string(starved.size()) + " other surface" + (starved.size() == 1 ? "" : "s") +
+        " (\"" + scene.surfaces[starved.front()].name + "\"" + (starved.size() > 1 ? ", ..." : "") +
+        ") nearly whole. They were split to their own share instead, so " +
+        "the scene has more patches than the target. Fix: give --max-area for one patch size "
+        "everywhere, or "
         "simplify the mesh.");
   }
   return h;
@@ -305,7 +310,8 @@ std::vector<double> spreadByArea(const Scene& scene, const std::vector<SurfaceTo
 
 }  // namespace
 
-PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings, std::vector<std::string>* warnings) {
+PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings,
+                    std::vector<std::string>* warnings) {
   if (!(settings.maxArea >= 0) || !std::isfinite(settings.maxArea) || settings.targetPatches < 0)
     throw std::invalid_argument("subdivide: maxArea and targetPatches must be finite and >= 0");
   if (settings.targetPatches > kMaxPatches) tooManyPatches();
@@ -314,15 +320,18 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings, std
     tops.push_back(buildTopology(s));
     for (double len : tops.back().classLength)
       if (!std::isfinite(len))
-        throw InputError(s.source + " is too large to measure: its edge lengths overflow a double. Fix: "
+        throw InputError(s.source +
+                         " is too large to measure: its edge lengths overflow a double. Fix: "
                          "scale the scene down (coordinates beyond about 1e150 overflow).");
   }
   std::vector<const SurfaceTopology*> all;
   for (const SurfaceTopology& t : tops) all.push_back(&t);
-  const double hGlobal = settings.targetPatches > 0 ? lengthForPatchCount(all, settings.targetPatches) : 0;
-  const std::vector<double> hSurface = settings.targetPatches > 0
-                                           ? spreadByArea(scene, tops, settings.targetPatches, hGlobal, warnings)
-                                           : std::vector<double>(tops.size(), 0.0);
+  const double hGlobal =
+      settings.targetPatches > 0 ? lengthForPatchCount(all, settings.targetPatches) : 0;
+  const std::vector<double> hSurface =
+      settings.targetPatches > 0
+          ? spreadByArea(scene, tops, settings.targetPatches, hGlobal, warnings)
+          : std::vector<double>(tops.size(), 0.0);
 
   PatchMesh out;
   for (std::size_t s = 0; s < tops.size(); ++s) {
@@ -338,7 +347,8 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings, std
       if (out.size() + patchCount(tops[s], counts) > kMaxPatches) tooManyPatches();
       PatchMesh trial = out;
       emitPatches(tops[s], counts, int(s), trial);
-      double over = settings.maxArea > 0 ? maxFaceAreaLimitViolation(trial, out.size(), settings.maxArea) : 0;
+      double over =
+          settings.maxArea > 0 ? maxFaceAreaLimitViolation(trial, out.size(), settings.maxArea) : 0;
       if (over <= 1 + 1e-12 || attempt > 60) {
         out = std::move(trial);
         break;

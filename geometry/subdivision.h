@@ -19,7 +19,7 @@ struct TooManyPatches : std::length_error {
 };
 
 struct SubdivisionSettings {
-  double maxArea = 0;  ///< every patch <= maxArea (scene units²); 0: no limit
+  double maxArea = 0;     ///< every patch <= maxArea (scene units²); 0: no limit
   int targetPatches = 0;  ///< about this many patches in total; 0: no target
 };
 

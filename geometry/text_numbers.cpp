@@ -125,8 +125,10 @@ void checkStl(std::istream& in, const Checker& check) {
     ++n;
     const auto t = tokens(line);
     if (t.empty()) continue;
-    if (t[0] == "vertex") check.numbers(t, 1, n);
-    else if (t[0] == "facet" && t.size() > 1 && t[1] == "normal") check.numbers(t, 2, n);
+    if (t[0] == "vertex")
+      check.numbers(t, 1, n);
+    else if (t[0] == "facet" && t.size() > 1 && t[1] == "normal")
+      check.numbers(t, 2, n);
   }
 }
 

@@ -6,7 +6,6 @@
 #include "util/format.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/intersections.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/Polygon_mesh_processing/merge_border_vertices.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
@@ -16,6 +15,7 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/intersections.h>
 
 #include <algorithm>
 #include <array>
@@ -59,8 +59,9 @@ void checkMaterials(const Scene& scene) {
     for (int c = 0; c < 3; ++c) {
       const double e = m.emission[c];
       if (!(e >= 0) || !std::isfinite(e))
-        throw InputError(where + ": emission " + fmt(e) + " (channel " + std::to_string(c) +
-                         ") must be a finite number >= 0. Fix: use 0 for surfaces that do not emit.");
+        throw InputError(
+            where + ": emission " + fmt(e) + " (channel " + std::to_string(c) +
+            ") must be a finite number >= 0. Fix: use 0 for surfaces that do not emit.");
     }
   }
 }
@@ -73,18 +74,22 @@ void checkFace(const Surface& s, std::size_t f) {
                      " vertices. Fix: a face needs at least 3.");
   for (int v : face.vertices)
     if (v < 0 || v >= int(s.vertices.size()))
-      throw InputError(faceName(s, f) + " names vertex " + std::to_string(v) + ", which does not exist.");
+      throw InputError(faceName(s, f) + " names vertex " + std::to_string(v) +
+                       ", which does not exist.");
   std::set<int> seen(face.vertices.begin(), face.vertices.end());
   if (seen.size() != face.vertices.size())
-    throw InputError(faceName(s, f) + " repeats a vertex (degenerate face). Fix: remove the repeated point, "
+    throw InputError(faceName(s, f) +
+                     " repeats a vertex (degenerate face). Fix: remove the repeated point, "
                      "or give --repair to drop such faces.");
   std::vector<Vec3> p = facePoints(s, face);
   bool allCollinear = true;
   for (std::size_t k = 2; k < p.size() && allCollinear; ++k)
     allCollinear = CGAL::collinear(toCgal(p[0]), toCgal(p[1]), toCgal(p[k]));
   if (allCollinear || length(newellNormal(p)) == 0)
-    throw InputError(faceName(s, f) + " is degenerate: its vertices are collinear, so its area "
-                     "is zero. Fix: remove the face or correct its vertices, or give --repair to drop such faces.");
+    throw InputError(faceName(s, f) +
+                     " is degenerate: its vertices are collinear, so its area "
+                     "is zero. Fix: remove the face or correct its vertices, or give --repair to "
+                     "drop such faces.");
 }
 
 /// Two faces of one surface running an edge the same way.
@@ -122,7 +127,8 @@ struct OrientationVisitor : PMP::Default_orientation_visitor {
   void polygon_orientation_reversed(std::size_t p) { record->reversed[p] ^= 1; }
   void non_manifold_edge(std::size_t a, std::size_t b, std::size_t faces) {
     // CGAL reports an edge once per face beyond the second; keep one entry per edge.
-    if (record->seen.insert(std::minmax(a, b)).second) record->nonManifoldEdges.push_back({a, b, faces});
+    if (record->seen.insert(std::minmax(a, b)).second)
+      record->nonManifoldEdges.push_back({a, b, faces});
   }
   void non_manifold_vertex(std::size_t, std::size_t) { ++record->nonManifoldVertices; }
 };
@@ -163,9 +169,10 @@ void repairOrientation(Surface& s, LoadReport& report) {
     std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
     const auto [it, inserted] = byVertices.emplace(key, f);
     if (!inserted)
-      throw InputError(faceName(s, f) + " repeats face " + std::to_string(it->second) +
-                       " (same vertices, same winding). Fix: remove one of them (or reverse it, "
-                       "for a sheet lit from both sides), or give --repair to remove every such copy.");
+      throw InputError(
+          faceName(s, f) + " repeats face " + std::to_string(it->second) +
+          " (same vertices, same winding). Fix: remove one of them (or reverse it, "
+          "for a sheet lit from both sides), or give --repair to remove every such copy.");
   }
   std::vector<Point3> points;
   for (const Vec3& v : s.vertices) points.push_back(toCgal(v));
@@ -173,14 +180,16 @@ void repairOrientation(Surface& s, LoadReport& report) {
   for (const Face& f : s.faces) polygons.emplace_back(f.vertices.begin(), f.vertices.end());
   OrientationRecord record;
   record.reversed.assign(polygons.size(), 0);
-  PMP::orient_polygon_soup(points, polygons, CGAL::parameters::visitor(OrientationVisitor(&record)));
+  PMP::orient_polygon_soup(points, polygons,
+                           CGAL::parameters::visitor(OrientationVisitor(&record)));
   if (!record.nonManifoldEdges.empty()) {
     const auto& e = record.nonManifoldEdges.front();
-    throw InputError(s.source + ": the edge between vertices " + std::to_string(e[0]) + " and " +
-                     std::to_string(e[1]) + " is shared by " + std::to_string(e[2]) +
-                     " faces (non-manifold), so no side of them is the front. Fix: give --repair to "
-                     "cut such edges (and report what changed), or split the surface so that every "
-                     "edge has at most two faces.");
+    throw InputError(
+        s.source + ": the edge between vertices " + std::to_string(e[0]) + " and " +
+        std::to_string(e[1]) + " is shared by " + std::to_string(e[2]) +
+        " faces (non-manifold), so no side of them is the front. Fix: give --repair to "
+        "cut such edges (and report what changed), or split the surface so that every "
+        "edge has at most two faces.");
   }
   const std::vector<std::size_t> part = edgeConnectedParts(s);
   std::map<std::size_t, std::pair<std::size_t, std::size_t>> counts;  // part: reversed, faces
@@ -201,14 +210,17 @@ void repairOrientation(Surface& s, LoadReport& report) {
       flipped.push_back(f);
     }
   if (const auto clash = firstEdgeClash(s))
-    throw InputError(faceName(s, clash->face) + " and face " + std::to_string(clash->other) +
-                     " run the edge between vertices " + std::to_string(clash->edge.first) +
-                     " and " + std::to_string(clash->edge.second) + " the same way whichever "
-                     "faces are reversed: the surface has one side only (like a Möbius strip). "
-                     "Fix: cut it into surfaces that each have a front and a back, or give --repair "
-                     "to cut it along one edge.");
+    throw InputError(
+        faceName(s, clash->face) + " and face " + std::to_string(clash->other) +
+        " run the edge between vertices " + std::to_string(clash->edge.first) + " and " +
+        std::to_string(clash->edge.second) +
+        " the same way whichever "
+        "faces are reversed: the surface has one side only (like a Möbius strip). "
+        "Fix: cut it into surfaces that each have a front and a back, or give --repair "
+        "to cut it along one edge.");
   std::string list;
-  for (std::size_t k = 0; k < flipped.size() && k < 10; ++k) list += (k ? ", " : "") + std::to_string(flipped[k]);
+  for (std::size_t k = 0; k < flipped.size() && k < 10; ++k)
+    list += (k ? ", " : "") + std::to_string(flipped[k]);
   if (flipped.size() > 10) list += " and " + std::to_string(flipped.size() - 10) + " more";
   const bool one = flipped.size() == 1;
   report.warnings.push_back(s.source + ": " + std::to_string(flipped.size()) +
@@ -295,7 +307,8 @@ std::vector<Face> triangulate(const Surface& s, const std::vector<int>& v) {
   while (left.size() > 3 && guard++ < 10 * v.size() * v.size()) {
     bool clipped = false;
     for (std::size_t k = 0; k < left.size() && !clipped; ++k) {
-      int ia = left[(k + left.size() - 1) % left.size()], ib = left[k], ic = left[(k + 1) % left.size()];
+      int ia = left[(k + left.size() - 1) % left.size()], ib = left[k],
+          ic = left[(k + 1) % left.size()];
       Vec3 a = at(ia), b = at(ib), c = at(ic);
       if (dot(cross(b - a, c - b), n) <= 0) continue;  // reflex vertex: not an ear
       bool empty = true;
@@ -308,7 +321,8 @@ std::vector<Face> triangulate(const Surface& s, const std::vector<int>& v) {
     }
     if (!clipped) break;  // not simple in projection: fall back to a fan below
   }
-  for (std::size_t k = 1; k + 1 < left.size(); ++k) out.push_back(Face{{left[0], left[k], left[k + 1]}});
+  for (std::size_t k = 1; k + 1 < left.size(); ++k)
+    out.push_back(Face{{left[0], left[k], left[k + 1]}});
   return out;
 }
 
@@ -339,8 +353,9 @@ void normaliseFaces(Surface& s, LoadReport& report) {
     double dev = nonPlanarity(p, &diameter);
     bool planar = dev <= kPlanarityTolerance;
     if (!planar && warned++ < 5)
-      report.warnings.push_back(faceName(s, f) + " is not planar (deviation " + fmt(dev * diameter) +
-                                " = " + fmt(100 * dev) + "% of its size): split into triangles.");
+      report.warnings.push_back(faceName(s, f) + " is not planar (deviation " +
+                                fmt(dev * diameter) + " = " + fmt(100 * dev) +
+                                "% of its size): split into triangles.");
     if (v.size() == 4 && planar && isConvex(p)) {
       out.push_back(Face{v});
     } else {
@@ -349,7 +364,8 @@ void normaliseFaces(Surface& s, LoadReport& report) {
     }
   }
   if (warned > 5)
-    report.warnings.push_back(s.source + ": " + std::to_string(warned - 5) + " more non-planar faces split.");
+    report.warnings.push_back(s.source + ": " + std::to_string(warned - 5) +
+                              " more non-planar faces split.");
   s.faces = std::move(out);
 }
 
@@ -369,20 +385,29 @@ std::string count(std::size_t n, const std::string& one, const std::string& many
 }  // namespace
 
 bool MeshRepair::changed() const {
-  return weldedVertices + duplicateFaces + degenerateFaces + nonManifoldEdges + nonManifoldVertices + stitchedEdges +
-             reversedFaces > 0;
+  return weldedVertices + duplicateFaces + degenerateFaces + nonManifoldEdges +
+             nonManifoldVertices + stitchedEdges + reversedFaces >
+         0;
 }
 
 std::string MeshRepair::describe() const {
   std::vector<std::string> parts;
-  if (weldedVertices) parts.push_back("welded " + count(weldedVertices, "duplicate vertex", "duplicate vertices"));
-  if (duplicateFaces) parts.push_back("removed " + count(duplicateFaces, "duplicate face", "duplicate faces"));
-  if (degenerateFaces) parts.push_back("removed " + count(degenerateFaces, "degenerate face", "degenerate faces"));
-  if (nonManifoldEdges) parts.push_back("cut " + count(nonManifoldEdges, "non-manifold edge", "non-manifold edges"));
+  if (weldedVertices)
+    parts.push_back("welded " + count(weldedVertices, "duplicate vertex", "duplicate vertices"));
+  if (duplicateFaces)
+    parts.push_back("removed " + count(duplicateFaces, "duplicate face", "duplicate faces"));
+  if (degenerateFaces)
+    parts.push_back("removed " + count(degenerateFaces, "degenerate face", "degenerate faces"));
+  if (nonManifoldEdges)
+    parts.push_back("cut " + count(nonManifoldEdges, "non-manifold edge", "non-manifold edges"));
   if (nonManifoldVertices)
-    parts.push_back("split " + count(nonManifoldVertices, "non-manifold vertex", "non-manifold vertices"));
-  if (stitchedEdges) parts.push_back("stitched " + count(stitchedEdges, "border edge", "border edges"));
-  if (reversedFaces) parts.push_back("reversed " + count(reversedFaces, "face", "faces") + " to match their neighbours");
+    parts.push_back("split " +
+                    count(nonManifoldVertices, "non-manifold vertex", "non-manifold vertices"));
+  if (stitchedEdges)
+    parts.push_back("stitched " + count(stitchedEdges, "border edge", "border edges"));
+  if (reversedFaces)
+    parts.push_back("reversed " + count(reversedFaces, "face", "faces") +
+                    " to match their neighbours");
   std::string text;
   for (const std::string& p : parts) text += (text.empty() ? "" : ", ") + p;
   return text.empty() ? "nothing to repair" : text;
@@ -398,26 +423,32 @@ MeshRepair repairMesh(Surface& s) {
   r.weldedVertices = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
   // A face repeating a vertex or with all vertices on a line has no area and no front.
   const std::size_t before = polygons.size();
-  polygons.erase(std::remove_if(polygons.begin(), polygons.end(),
-                                [&](const std::vector<std::size_t>& p) {
-                                  if (std::set<std::size_t>(p.begin(), p.end()).size() != p.size() || p.size() < 3)
-                                    return true;
-                                  for (std::size_t k = 2; k < p.size(); ++k)
-                                    if (!CGAL::collinear(points[p[0]], points[p[1]], points[p[k]])) return false;
-                                  return true;
-                                }),
-                 polygons.end());
+  polygons.erase(
+      std::remove_if(polygons.begin(), polygons.end(),
+                     [&](const std::vector<std::size_t>& p) {
+                       if (std::set<std::size_t>(p.begin(), p.end()).size() != p.size() ||
+                           p.size() < 3)
+                         return true;
+                       for (std::size_t k = 2; k < p.size(); ++k)
+                         if (!CGAL::collinear(points[p[0]], points[p[1]], points[p[k]]))
+                           return false;
+                       return true;
+                     }),
+      polygons.end());
   r.degenerateFaces = before - polygons.size();
   // Copies wound the other way are kept: they make a sheet lit from both sides.
   r.duplicateFaces = PMP::merge_duplicate_polygons_in_polygon_soup(
-      points, polygons, CGAL::parameters::erase_all_duplicates(false).require_same_orientation(true));
+      points, polygons,
+      CGAL::parameters::erase_all_duplicates(false).require_same_orientation(true));
   PMP::remove_isolated_points_in_polygon_soup(points, polygons);
   if (polygons.empty())
-    throw InputError(s.source + ": no face is left after removing degenerate and duplicate faces. Fix: "
+    throw InputError(s.source +
+                     ": no face is left after removing degenerate and duplicate faces. Fix: "
                      "check the mesh's faces.");
   OrientationRecord record;
   record.reversed.assign(polygons.size(), 0);
-  PMP::orient_polygon_soup(points, polygons, CGAL::parameters::visitor(OrientationVisitor(&record)));
+  PMP::orient_polygon_soup(points, polygons,
+                           CGAL::parameters::visitor(OrientationVisitor(&record)));
   r.nonManifoldEdges = record.nonManifoldEdges.size();
   r.nonManifoldVertices = record.nonManifoldVertices;
   CGAL::Surface_mesh<Point3> mesh;
@@ -445,14 +476,16 @@ std::size_t countSelfIntersections(const Surface& surface) {
   std::vector<std::vector<std::size_t>> triangles;
   for (const Face& f : surface.faces)
     for (std::size_t k = 1; k + 1 < f.vertices.size(); ++k)
-      triangles.push_back({std::size_t(f.vertices[0]), std::size_t(f.vertices[k]), std::size_t(f.vertices[k + 1])});
+      triangles.push_back(
+          {std::size_t(f.vertices[0]), std::size_t(f.vertices[k]), std::size_t(f.vertices[k + 1])});
   // Faces that meet at copies of a vertex would count as crossing: weld them first.
   PMP::merge_duplicate_points_in_polygon_soup(points, triangles);
   // orient_polygon_soup duplicates non-manifold vertices so that the soup becomes a mesh.
   PMP::orient_polygon_soup(points, triangles);
   CGAL::Surface_mesh<Point3> mesh;
   PMP::polygon_soup_to_polygon_mesh(points, triangles, mesh);
-  using FacePair = std::pair<CGAL::Surface_mesh<Point3>::Face_index, CGAL::Surface_mesh<Point3>::Face_index>;
+  using FacePair =
+      std::pair<CGAL::Surface_mesh<Point3>::Face_index, CGAL::Surface_mesh<Point3>::Face_index>;
   std::vector<FacePair> pairs;
   PMP::self_intersections(faces(mesh), mesh, std::back_inserter(pairs));
   // Faces that orient_polygon_soup cut apart at a non-manifold edge or vertex share corners
@@ -483,8 +516,10 @@ std::size_t countSelfIntersections(const Surface& surface) {
       touching = !CGAL::coplanar(a[0], a[1], a[2], onlyB[0]) ||
                  CGAL::coplanar_orientation(edge[0], edge[1], onlyA[0], onlyB[0]) == CGAL::NEGATIVE;
     } else if (onlyB.size() == 2 && onlyA.size() == 2) {
-      touching = !CGAL::do_intersect(Kernel::Segment_3(onlyA[0], onlyA[1]), Kernel::Triangle_3(b[0], b[1], b[2])) &&
-                 !CGAL::do_intersect(Kernel::Segment_3(onlyB[0], onlyB[1]), Kernel::Triangle_3(a[0], a[1], a[2]));
+      touching = !CGAL::do_intersect(Kernel::Segment_3(onlyA[0], onlyA[1]),
+                                     Kernel::Triangle_3(b[0], b[1], b[2])) &&
+                 !CGAL::do_intersect(Kernel::Segment_3(onlyB[0], onlyB[1]),
+                                     Kernel::Triangle_3(a[0], a[1], a[2]));
     }
     crossing += !touching;
   }
@@ -498,45 +533,52 @@ void validateScene(Scene& scene, LoadReport& report, bool repair) {
   std::set<std::string> names;
   for (Surface& s : scene.surfaces) {
     if (!names.insert(s.name).second)
-      throw InputError(s.source + ": the surface name \"" + s.name + "\" is used twice. Fix: give each surface its own name.");
+      throw InputError(s.source + ": the surface name \"" + s.name +
+                       "\" is used twice. Fix: give each surface its own name.");
     if (s.faces.empty())
       throw InputError(s.source + " has no faces. Fix: give it a polygon or a non-empty mesh.");
     for (std::size_t v = 0; v < s.vertices.size(); ++v) {
       const Vec3& p = s.vertices[v];
       if (!isFinite(p))
-        throw InputError(s.source + ", vertex " + std::to_string(v) + " has a NaN or infinite coordinate. Fix: correct the coordinates.");
+        throw InputError(s.source + ", vertex " + std::to_string(v) +
+                         " has a NaN or infinite coordinate. Fix: correct the coordinates.");
       // Embree refuses (asserts on) rays whose origin lies beyond about 1.8e18 in float.
       if (std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) > kMaxCoordinate)
         throw InputError(s.source + ", vertex " + std::to_string(v) + " has a coordinate of " +
                          fmt(std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)})) +
-                         ", beyond the " + fmt(kMaxCoordinate) + " the ray tracer handles. Fix: "
+                         ", beyond the " + fmt(kMaxCoordinate) +
+                         " the ray tracer handles. Fix: "
                          "use a larger unit or move the scene nearer the origin.");
     }
     if (repair) {
       for (std::size_t f = 0; f < s.faces.size(); ++f)
         for (int v : s.faces[f].vertices)
           if (v < 0 || v >= int(s.vertices.size()))
-            throw InputError(faceName(s, f) + " names vertex " + std::to_string(v) + ", which does not exist.");
+            throw InputError(faceName(s, f) + " names vertex " + std::to_string(v) +
+                             ", which does not exist.");
       MeshRepair r = repairMesh(s);
       if (r.changed()) {
         report.warnings.push_back(s.source + ": repaired: " + r.describe() + ".");
         report.repairs.push_back(std::move(r));
       }
     } else if (std::size_t n = unweldedVertices(s)) {
-      report.warnings.push_back(s.source + ": " + count(n, "vertex repeats", "vertices repeat") +
-                                " the position of another, so the faces there are not joined. Fix: give "
-                                "--repair to weld them.");
+      report.warnings.push_back(
+          s.source + ": " + count(n, "vertex repeats", "vertices repeat") +
+          " the position of another, so the faces there are not joined. Fix: give "
+          "--repair to weld them.");
     }
     for (std::size_t f = 0; f < s.faces.size(); ++f) checkFace(s, f);
     repairOrientation(s, report);
     normaliseFaces(s, report);
     if (std::size_t n = countSelfIntersections(s))
-      report.warnings.push_back(s.source + " intersects itself (" + std::to_string(n) +
-                                " pairs of triangles cross): form factors near the crossing are unreliable.");
+      report.warnings.push_back(
+          s.source + " intersects itself (" + std::to_string(n) +
+          " pairs of triangles cross): form factors near the crossing are unreliable.");
   }
   bool emits = std::any_of(scene.surfaces.begin(), scene.surfaces.end(),
                            [&](const Surface& s) { return scene.materials[s.material].emits(); });
-  if (!emits) report.warnings.push_back(scene.file + ": no surface emits, so every radiosity is zero.");
+  if (!emits)
+    report.warnings.push_back(scene.file + ": no surface emits, so every radiosity is zero.");
 }
 
 }  // namespace radkit

@@ -19,9 +19,24 @@ struct Vec3 {
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
   constexpr Vec3 operator*(double s) const { return {x * s, y * s, z * s}; }
   constexpr Vec3 operator/(double s) const { return {x / s, y / s, z / s}; }
-  Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  Vec3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
+  Vec3& operator+=(const Vec3& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  Vec3& operator-=(const Vec3& o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  Vec3& operator*=(double s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
   constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
   constexpr bool operator!=(const Vec3& o) const { return !(*this == o); }
 };
@@ -39,7 +54,9 @@ inline bool isFinite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 /// Luminance Y of a linear RGB triple with the Rec. 709 weights (radiometric RGB → Y).
-constexpr double luminance(const Vec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
+constexpr double luminance(const Vec3& rgb) {
+  return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z;
+}
 inline double maxComponent(const Vec3& v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
 
 /// Axis-aligned bounding box.
@@ -51,13 +68,16 @@ struct Bounds3 {
     lo = {std::fmin(lo.x, p.x), std::fmin(lo.y, p.y), std::fmin(lo.z, p.z)};
     hi = {std::fmax(hi.x, p.x), std::fmax(hi.y, p.y), std::fmax(hi.z, p.z)};
   }
-  void extend(const Bounds3& b) { extend(b.lo); extend(b.hi); }
+  void extend(const Bounds3& b) {
+    extend(b.lo);
+    extend(b.hi);
+  }
   bool empty() const { return lo.x > hi.x; }
   double diagonal() const { return empty() ? 0.0 : length(hi - lo); }
   /// True when the boxes overlap (touching counts).
   bool overlaps(const Bounds3& b) const {
-    return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y &&
-           lo.z <= b.hi.z && b.lo.z <= hi.z;
+    return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y && lo.z <= b.hi.z &&
+           b.lo.z <= hi.z;
   }
 };
 

@@ -23,8 +23,9 @@ Vec3 absDiff(const Vec3& a, const Vec3& b) {
 
 }  // namespace
 
-HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links, GatherOrder order,
-                                       const std::vector<char>& closed, const std::vector<char>& hidden)
+HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links,
+                                       GatherOrder order, const std::vector<char>& closed,
+                                       const std::vector<char>& hidden)
     : m_h(h), m_links(std::move(links)) {
   tbb::parallel_sort(m_links.begin(), m_links.end(), [](const HLink& a, const HLink& b) {
     return a.receiver < b.receiver || (a.receiver == b.receiver && a.source < b.source);
@@ -50,7 +51,8 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
   m_incoming.resize(m_slotTarget.size());
   {
     std::vector<int> fill(m_incomingBegin.begin(), m_incomingBegin.end() - 1);
-    for (std::size_t k = 0; k < m_slotTarget.size(); ++k) m_incoming[fill[m_slotTarget[k]]++] = static_cast<int>(k);
+    for (std::size_t k = 0; k < m_slotTarget.size(); ++k)
+      m_incoming[fill[m_slotTarget[k]]++] = static_cast<int>(k);
   }
   m_leafIrradiance.assign(h.size(), Vec3{});
   m_fromParent.assign(h.size(), Vec3{});
@@ -75,7 +77,8 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
   {
     std::vector<double> seen(h.size(), 0.0);
     for (int n = h.size() - 1; n >= 0; --n) {
-      if (h[n].isLeaf()) seen[n] = n < static_cast<int>(hidden.size()) && hidden[n] ? 0.0 : h[n].area;
+      if (h[n].isLeaf())
+        seen[n] = n < static_cast<int>(hidden.size()) && hidden[n] ? 0.0 : h[n].area;
       if (n > 0 && h[n].parent >= 0) seen[h[n].parent] += seen[n];
       m_visibleFraction[n] = h[n].area > 0 ? std::min(1.0, seen[n] / h[n].area) : 1.0;
     }
@@ -158,7 +161,8 @@ HierarchicalSystem::Accumulator HierarchicalSystem::gathered(int n) const {
 void HierarchicalSystem::gatherList(const std::vector<int>& receivers, const SourceState& state) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, receivers.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i < range.end(); ++i) gather(receivers[i], state);
+                      for (std::size_t i = range.begin(); i < range.end(); ++i)
+                        gather(receivers[i], state);
                     });
 }
 
@@ -201,7 +205,8 @@ void pull(const Hierarchy& h, SourceState& state) {
   for (int n = h.size() - 1; n >= 0; --n) pullNode(h, n, state);
 }
 
-HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator& inherited, SourceState* state) {
+HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator& inherited,
+                                                        SourceState* state) {
   const HNode& node = m_h[n];
   Change change;
   auto recurse = [&](const Accumulator& down, bool parallel) {
@@ -279,7 +284,8 @@ HierarchicalSystem::Change HierarchicalSystem::sweep(SourceState& state) {
     gatherList(m_blockReceivers[b], state);
     change.add(pushPull(m_blocks[b], blockInherited[b], &state));
   }
-  for (auto it = m_aboveClusters.rbegin(); it != m_aboveClusters.rend(); ++it) pullNode(m_h, *it, state);
+  for (auto it = m_aboveClusters.rbegin(); it != m_aboveClusters.rend(); ++it)
+    pullNode(m_h, *it, state);
   return change;
 }
 

@@ -89,7 +89,7 @@ class HierarchicalSystem {
   /// parent's mean (HLink::receiverShare); written only by the parent's gather.
   std::vector<Vec3> m_fromParent;
   std::vector<double> m_visibleFraction;  ///< per node: share of its area on leaves not hidden
-  std::vector<double> m_rowScale;  ///< per node: 1 / max(1, row sum) at leaves
+  std::vector<double> m_rowScale;         ///< per node: 1 / max(1, row sum) at leaves
   int m_clamped = 0, m_normalised = 0;
   double m_largestRowSumError = 0;
   /// Blocks in sweep order (Jacobi: the root alone), the receivers inside each, and those

@@ -19,7 +19,9 @@ namespace radkit {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 /// Largest channel of any node's B: the size the gather's rounding error is relative to.
 double maxRadiosity(const SourceState& state) {
@@ -91,7 +93,9 @@ constexpr double kAmplification = 10;
 constexpr int kEmitterClosureRays = 1024;
 /// Share of a surface's rays that may miss for it to count as closed (seams, not openings).
 constexpr double kSeamMisses = 1e-3;
-int closureRays(const SurfaceRadiometry& r) { return maxComponent(r.emission) > 0 ? kEmitterClosureRays : kClosureRays; }
+int closureRays(const SurfaceRadiometry& r) {
+  return maxComponent(r.emission) > 0 ? kEmitterClosureRays : kClosureRays;
+}
 
 /// Marks the leaves of closed surfaces. Each leaf (tested once) casts K stratified,
 /// cosine-distributed rays; a ray that misses the front of every face escapes. A surface is
@@ -101,8 +105,8 @@ int closureRays(const SurfaceRadiometry& r) { return maxComponent(r.emission) > 
 /// The same rays estimate each leaf's escape fraction 1 − Σ_j F_ij (the share that misses
 /// every face's front), for an energy balance that does not rely on the links.
 std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::uint64_t seed,
-                               std::vector<char>& leafClosed, std::vector<char>& tested, std::vector<float>& escape,
-                               std::vector<char>& hidden) {
+                               std::vector<char>& leafClosed, std::vector<char>& tested,
+                               std::vector<float>& escape, std::vector<char>& hidden) {
   leafClosed.resize(h.size(), 0);
   hidden.resize(h.size(), 0);
   tested.resize(h.size(), 0);
@@ -111,32 +115,35 @@ std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::ui
   for (int n = 0; n < h.size(); ++n)
     if (h[n].element && h[n].isLeaf() && !tested[n]) todo.push_back(n);
   const PatchMesh& base = h.base();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<double> u;
-    std::vector<int> scratch;
-    for (std::size_t i = range.begin(); i < range.end(); ++i) {
-      const int n = todo[i];
-      const HPolygon& p = h.polygon(n);
-      Rng rng(seed, h[n].key, 0x636c6f736564ULL);
-      const int K = closureRays(h.radiometry(n));
-      latinHypercube(K, 4, rng, u, scratch);
-      Frame frame(p.normal);
-      int misses = 0, backs = 0;
-      for (int k = 0; k < K; ++k) {
-        const double* q = &u[std::size_t(k) * 4];
-        Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
-        Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
-        std::optional<RayHit> hit = rays.closestHit(x, d, 0.0);
-        const bool front = hit && dot(base.patches[hit->patch].normal, d) < 0;
-        misses += !front;
-        backs += hit && !front;
-      }
-      leafClosed[n] = misses == 0;
-      hidden[n] = backs == K;  // sees only the backs of faces (a floor under a block): nothing sees it
-      escape[n] = float(misses) / K;
-      tested[n] = 1;
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, todo.size(), 64),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        std::vector<double> u;
+        std::vector<int> scratch;
+        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+          const int n = todo[i];
+          const HPolygon& p = h.polygon(n);
+          Rng rng(seed, h[n].key, 0x636c6f736564ULL);
+          const int K = closureRays(h.radiometry(n));
+          latinHypercube(K, 4, rng, u, scratch);
+          Frame frame(p.normal);
+          int misses = 0, backs = 0;
+          for (int k = 0; k < K; ++k) {
+            const double* q = &u[std::size_t(k) * 4];
+            Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
+            Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
+            std::optional<RayHit> hit = rays.closestHit(x, d, 0.0);
+            const bool front = hit && dot(base.patches[hit->patch].normal, d) < 0;
+            misses += !front;
+            backs += hit && !front;
+          }
+          leafClosed[n] = misses == 0;
+          hidden[n] =
+              backs == K;  // sees only the backs of faces (a floor under a block): nothing sees it
+          escape[n] = float(misses) / K;
+          tested[n] = 1;
+        }
+      });
   // Rays that slip through the seams between faces (single-precision tests at shared edges)
   // must not open a closed surface: a surface is closed when at most kSeamMisses of its rays
   // miss. An opening that large changes its row sums by at most that much.
@@ -150,7 +157,8 @@ std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::ui
   }
   std::vector<char> closed(h.size(), 0);
   for (int n = 0; n < h.size(); ++n)
-    closed[n] = h[n].element && h[n].isLeaf() && !hidden[n] && misses[h.surfaceOf(n)] <= kSeamMisses * cast[h.surfaceOf(n)];
+    closed[n] = h[n].element && h[n].isLeaf() && !hidden[n] &&
+                misses[h.surfaceOf(n)] <= kSeamMisses * cast[h.surfaceOf(n)];
   return closed;
 }
 
@@ -159,26 +167,32 @@ std::vector<char> closedLeaves(const Hierarchy& h, const RayScene& rays, std::ui
 GatherOrder parseGatherOrder(const std::string& name) {
   if (name == "jacobi") return GatherOrder::Jacobi;
   if (name == "gauss-seidel") return GatherOrder::GaussSeidel;
-  throw std::invalid_argument("--gather '" + name + "' is not an ordering: use jacobi or gauss-seidel");
+  throw std::invalid_argument("--gather '" + name +
+                              "' is not an ordering: use jacobi or gauss-seidel");
 }
 
 void validateHierarchicalSettings(const HierarchicalSettings& s) {
   if (!(s.epsilon >= kMinEpsilon) || s.epsilon >= 1)
-    throw std::invalid_argument("--epsilon " + num(s.epsilon) +
-                                " is not a link error threshold: use a number in [" + num(kMinEpsilon) +
-                                ", 1), for example 1e-4 (smaller is more accurate and slower)");
+    throw std::invalid_argument(
+        "--epsilon " + num(s.epsilon) + " is not a link error threshold: use a number in [" +
+        num(kMinEpsilon) + ", 1), for example 1e-4 (smaller is more accurate and slower)");
   if (!(s.minArea >= 0) || !std::isfinite(s.minArea))
-    throw std::invalid_argument("--min-area " + num(s.minArea) +
-                                " is not an area: use a positive area in scene units², or 0 for the default");
+    throw std::invalid_argument(
+        "--min-area " + num(s.minArea) +
+        " is not an area: use a positive area in scene units², or 0 for the default");
   if (s.raysPerLink < 1 || s.raysPerLink > 4096)
-    throw std::invalid_argument("--hr-rays " + std::to_string(s.raysPerLink) + " must be between 1 and 4096 (default 16)");
+    throw std::invalid_argument("--hr-rays " + std::to_string(s.raysPerLink) +
+                                " must be between 1 and 4096 (default 16)");
   if (s.rounds < 1 || s.rounds > 8)
-    throw std::invalid_argument("--hr-rounds " + std::to_string(s.rounds) + " must be between 1 and 8 (default 3)");
+    throw std::invalid_argument("--hr-rounds " + std::to_string(s.rounds) +
+                                " must be between 1 and 8 (default 3)");
   if (!(s.stopping.tolerance > 0) || !std::isfinite(s.stopping.tolerance))
-    throw std::invalid_argument("--tol " + num(s.stopping.tolerance) + " must be a positive number, e.g. 1e-6");
+    throw std::invalid_argument("--tol " + num(s.stopping.tolerance) +
+                                " must be a positive number, e.g. 1e-6");
 }
 
-HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSettings& settings, const PipelineLog& log) {
+HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSettings& settings,
+                                     const PipelineLog& log) {
   std::vector<SurfaceRadiometry> radiometry;
   for (const Surface& s : scene.surfaces) {
     const Material& m = scene.materials[s.material];
@@ -213,7 +227,8 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
   for (int c = 0; c < 3; ++c)
     if (e.emitted[c] > 0)
       e.relativeImbalance =
-          std::max(e.relativeImbalance, std::fabs(e.emitted[c] - e.absorbed[c] - e.escaped[c]) / e.emitted[c]);
+          std::max(e.relativeImbalance,
+                   std::fabs(e.emitted[c] - e.absorbed[c] - e.escaped[c]) / e.emitted[c]);
   r.seconds.results += since(start);
   return r;
 }
@@ -233,19 +248,21 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     emissionNorm = std::max(emissionNorm, maxComponent(s.emission));
   }
   if (!(emitted > 0))
-    throw std::invalid_argument("the scene emits no light: give at least one material an \"emission\" above 0");
+    throw std::invalid_argument(
+        "the scene emits no light: give at least one material an \"emission\" above 0");
   r.minArea = settings.minArea > 0 ? settings.minArea : kDefaultMinAreaFraction * totalArea;
   if (r.minArea > totalArea)
-    throw std::invalid_argument("--min-area " + num(r.minArea) + " is larger than the whole scene (" + num(totalArea) +
-                                " scene units²): use at most " + num(totalArea * 1e-3) +
-                                ", or 0 for the default (" + num(kDefaultMinAreaFraction) + " of the scene's area)");
+    throw std::invalid_argument(
+        "--min-area " + num(r.minArea) + " is larger than the whole scene (" + num(totalArea) +
+        " scene units²): use at most " + num(totalArea * 1e-3) + ", or 0 for the default (" +
+        num(kDefaultMinAreaFraction) + " of the scene's area)");
 
   Clock::time_point t = Clock::now();
   r.hierarchy = std::make_unique<Hierarchy>(base, std::move(surfaces));
   Hierarchy& h = *r.hierarchy;
   r.seconds.hierarchy = since(t);
-  say("hierarchy: " + std::to_string(base.size()) + " input faces, " + std::to_string(h.size()) + " nodes, " +
-      num(r.seconds.hierarchy) + " s");
+  say("hierarchy: " + std::to_string(base.size()) + " input faces, " + std::to_string(h.size()) +
+      " nodes, " + num(r.seconds.hierarchy) + " s");
   t = Clock::now();
   r.rays = std::make_unique<RayScene>(base);
   r.seconds.rayScene = since(t);
@@ -273,9 +290,9 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   r.solve.solver = "hierarchical";
   r.solve.description = std::string("hierarchical radiosity with clustering, ") +
                         (settings.order == GatherOrder::Jacobi ? "Jacobi" : "Gauss-Seidel") +
-                        " gather, push-pull, epsilon " + num(settings.epsilon) + ", min area " + num(r.minArea) +
-                        ", K=" + std::to_string(settings.raysPerLink) + " rays per link, seed " +
-                        std::to_string(settings.seed);
+                        " gather, push-pull, epsilon " + num(settings.epsilon) + ", min area " +
+                        num(r.minArea) + ", K=" + std::to_string(settings.raysPerLink) +
+                        " rays per link, seed " + std::to_string(settings.seed);
   Clock::time_point solveStart = Clock::now();
   long iteration = 0;
   // The dense solvers' rules (solvers/solver.h): exit reasons, a spectral-radius estimate,
@@ -309,16 +326,21 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     // Progress: the share of the candidates known so far that are settled (new candidates
     // appear as links split, so it can step back).
     RefineStats stats = refiner.refine(links, state, [&](long long settled, long long pending) {
-      if (log.progress) log.progress("links, epsilon " + num(info.epsilon), double(settled) / double(settled + pending));
+      if (log.progress)
+        log.progress("links, epsilon " + num(info.epsilon),
+                     double(settled) / double(settled + pending));
     });
     // After the last refinement every source's light is known: links still kept blocked for a
     // dark source carry nothing.
     if (round + 1 == settings.rounds)
-      links.erase(std::remove_if(links.begin(), links.end(), [](const HLink& l) { return !(l.visibility > 0); }),
+      links.erase(std::remove_if(links.begin(), links.end(),
+                                 [](const HLink& l) { return !(l.visibility > 0); }),
                   links.end());
-    std::vector<char> closed = closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape, hidden);
+    std::vector<char> closed =
+        closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape, hidden);
     r.system.reset();
-    r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed, hidden);
+    r.system =
+        std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed, hidden);
     r.system->setVisibleArea(state);
     pull(h, state);
     info.refineSeconds = since(t);
@@ -329,20 +351,22 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
 
     t = Clock::now();
     const bool last = round + 1 == settings.rounds;
-    const double tolerance = last ? settings.stopping.tolerance : std::max(settings.stopping.tolerance, kRoundTolerance);
+    const double tolerance =
+        last ? settings.stopping.tolerance : std::max(settings.stopping.tolerance, kRoundTolerance);
     const long maxSweeps = last ? settings.stopping.maxIterations : 1000;
     for (long sweep = 0;; ++sweep) {
       const std::string after = " after " + std::to_string(iteration) + " sweeps";
       if (sweep >= maxSweeps) {
         if (last)
           stop("max_iterations", "not converged: maximum iterations (" + std::to_string(maxSweeps) +
-                                     ") reached with change " + num(r.solve.residual) + " > tolerance " +
-                                     num(tolerance) + monitor.rateText());
+                                     ") reached with change " + num(r.solve.residual) +
+                                     " > tolerance " + num(tolerance) + monitor.rateText());
         break;
       }
       if (since(solveStart) >= settings.stopping.maxSeconds) {
-        stop("time_limit", "not converged: time limit " + num(settings.stopping.maxSeconds) + " s reached" + after +
-                               " with change " + num(r.solve.residual) + monitor.rateText());
+        stop("time_limit", "not converged: time limit " + num(settings.stopping.maxSeconds) +
+                               " s reached" + after + " with change " + num(r.solve.residual) +
+                               monitor.rateText());
         break;
       }
       HierarchicalSystem::Change c = r.system->sweep(state);
@@ -355,14 +379,15 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
         log.progress("solve, epsilon " + num(info.epsilon),
                      std::clamp(std::log(residual) / std::log(tolerance), 0.0, 1.0));
       if (!std::isfinite(residual) || residual > 1e12) {
-        stop("diverged", "diverged: the change grew to " + num(residual) + " after " + std::to_string(iteration) +
-                             " sweeps" + monitor.rateText());
+        stop("diverged", "diverged: the change grew to " + num(residual) + " after " +
+                             std::to_string(iteration) + " sweeps" + monitor.rateText());
       } else if (residual <= tolerance) {
         if (last) r.solve.converged = true, stop("converged", "converged");
       } else if (iteration - monitor.bestSweeps >= kStagnationSweeps &&
                  monitor.stagnated(double(iteration), maxRadiosity(state) / emissionNorm)) {
-        stop("stagnated", "stagnated: no change below " + num(monitor.best) + " for " + num(kStagnationSweeps) +
-                              " sweeps" + " after " + std::to_string(iteration) + " sweeps" + monitor.rateText() +
+        stop("stagnated", "stagnated: no change below " + num(monitor.best) + " for " +
+                              num(kStagnationSweeps) + " sweeps" + " after " +
+                              std::to_string(iteration) + " sweeps" + monitor.rateText() +
                               " (rounding error: tolerance " + num(tolerance) +
                               " is below what this system reaches; raise --tol)");
       }
@@ -384,8 +409,10 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     r.rounds.push_back(info);
     say("hierarchy: epsilon " + num(info.epsilon) + ", " + std::to_string(info.links) + " links, " +
         std::to_string(info.nodes) + " nodes, " + std::to_string(info.rays) + " rays, " +
-        std::to_string(info.sweeps) + " sweeps, " + num(info.refineSeconds + info.solveSeconds) + " s");
-    if (r.solve.exit == "diverged" || r.solve.exit == "stagnated" || r.solve.exit == "time_limit") break;
+        std::to_string(info.sweeps) + " sweeps, " + num(info.refineSeconds + info.solveSeconds) +
+        " s");
+    if (r.solve.exit == "diverged" || r.solve.exit == "stagnated" || r.solve.exit == "time_limit")
+      break;
   }
   r.threshold = rs.threshold;  // the last round's
   r.solve.iterations = iteration;
@@ -410,7 +437,8 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   r.linkBytes = r.system->links().capacity() * sizeof(HLink);
   for (int c = 0; c < 3; ++c) {
     r.solve.radiosity[c].resize(r.radiosity.size());
-    for (std::size_t i = 0; i < r.radiosity.size(); ++i) r.solve.radiosity[c][i] = r.radiosity[i][c];
+    for (std::size_t i = 0; i < r.radiosity.size(); ++i)
+      r.solve.radiosity[c][i] = r.radiosity[i][c];
   }
   r.seconds.results = since(t);
   return r;

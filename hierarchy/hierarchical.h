@@ -53,13 +53,14 @@ struct HierarchicalResult {
   std::unique_ptr<RayScene> rays;  ///< over the input faces
   PatchMesh leaves;                ///< leaf elements in output order (grouped by surface)
   std::vector<int> leafNodes;      ///< node of each leaf patch
-  SourceState state;               ///< every node's radiosity (leaves solved, inner nodes pulled up)
-  std::vector<Vec3> radiosity;     ///< B per leaf, W/m²
-  std::vector<Vec3> irradiance;    ///< H per leaf, W/m²
-  std::vector<double> rowSums;     ///< Σ_j F_ij of each leaf as the links see it
-  std::vector<float> escape;       ///< 1 − Σ_j F_ij of each leaf from 32 rays, 1 024 on emitters (float: a ray count's fraction)
-  Vec3 escapedStandardError;       ///< of energy.escaped, W
-  SolveResult solve;               ///< convergence of every round, one history
+  SourceState state;             ///< every node's radiosity (leaves solved, inner nodes pulled up)
+  std::vector<Vec3> radiosity;   ///< B per leaf, W/m²
+  std::vector<Vec3> irradiance;  ///< H per leaf, W/m²
+  std::vector<double> rowSums;   ///< Σ_j F_ij of each leaf as the links see it
+  std::vector<float> escape;  ///< 1 − Σ_j F_ij of each leaf from 32 rays, 1 024 on emitters (float:
+                              ///< a ray count's fraction)
+  Vec3 escapedStandardError;  ///< of energy.escaped, W
+  SolveResult solve;          ///< convergence of every round, one history
   std::vector<HierarchicalRound> rounds;
   std::array<long long, 4> linksByKind{};  ///< LinkKind order
   long long raysCast = 0;
@@ -81,7 +82,8 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
 /// \brief The same on input faces made elsewhere (tests): `base` has one patch per input face,
 /// `surfaces` one entry per surface index.
 HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces,
-                                     const HierarchicalSettings& settings, const PipelineLog& log = {});
+                                     const HierarchicalSettings& settings,
+                                     const PipelineLog& log = {});
 
 /// "jacobi" or "gauss-seidel"; throws std::invalid_argument otherwise.
 GatherOrder parseGatherOrder(const std::string& name);

@@ -41,7 +41,8 @@ Hierarchy::Hierarchy(const PatchMesh& base, std::vector<SurfaceRadiometry> surfa
   buildClusters(faces, 0, n, -1, 0, 0);
 }
 
-int Hierarchy::buildClusters(std::vector<int>& faces, int begin, int end, int parent, int level, int at) {
+int Hierarchy::buildClusters(std::vector<int>& faces, int begin, int end, int parent, int level,
+                             int at) {
   HNode& node = m_nodes[at];
   node.parent = parent;
   node.level = level;
@@ -88,9 +89,10 @@ int Hierarchy::buildClusters(std::vector<int>& faces, int begin, int end, int pa
     Vec3 spread = normals.hi - normals.lo;
     int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
     double cut = 0.5 * (normals.lo[axis] + normals.hi[axis]);
-    mid = static_cast<int>(std::stable_partition(faces.begin() + begin, faces.begin() + end,
-                                                 [&](int f) { return m_base.patches[f].normal[axis] < cut; }) -
-                           faces.begin());
+    mid = static_cast<int>(
+        std::stable_partition(faces.begin() + begin, faces.begin() + end,
+                              [&](int f) { return m_base.patches[f].normal[axis] < cut; }) -
+        faces.begin());
   }
   if (mid == begin || mid == end) {
     Vec3 extent = box.hi - box.lo;
@@ -162,7 +164,8 @@ void quarterPolygons(const HPolygon& parent, HPolygon kids[4], double areas[4]) 
   for (int k = 0; k < 4; ++k) {
     const HPolygon& p = kids[k];
     areas[k] = 0;
-    for (int t = 1; t + 1 < p.count; ++t) areas[k] += 0.5 * length(cross(p.v[t] - p.v[0], p.v[t + 1] - p.v[0]));
+    for (int t = 1; t + 1 < p.count; ++t)
+      areas[k] += 0.5 * length(cross(p.v[t] - p.v[0], p.v[t + 1] - p.v[0]));
   }
 }
 
@@ -192,12 +195,14 @@ void Hierarchy::split(int node) {
     // Centroid by the fan of the (planar, convex) polygon.
     Vec3 c;
     for (int t = 1; t + 1 < p.count; ++t)
-      c += (p.v[0] + p.v[t] + p.v[t + 1]) * (0.5 * length(cross(p.v[t] - p.v[0], p.v[t + 1] - p.v[0])) / 3.0);
+      c += (p.v[0] + p.v[t] + p.v[t + 1]) *
+           (0.5 * length(cross(p.v[t] - p.v[0], p.v[t + 1] - p.v[0])) / 3.0);
     const double area = areas[k];
     child.area = area;
     child.centre = area > 0 ? c / area : p.v[0];
     child.areaNormal = p.normal * area;
-    for (int t = 0; t < p.count; ++t) child.radius = std::max(child.radius, length(p.v[t] - child.centre));
+    for (int t = 0; t < p.count; ++t)
+      child.radius = std::max(child.radius, length(p.v[t] - child.centre));
     m_polygons.push_back(p);
     m_nodes.push_back(child);
   }

@@ -16,21 +16,21 @@ namespace radkit {
 /// face or a quarter of an element). Every node carries what the link oracle bounds with: a
 /// bounding sphere, its area, its area-weighted normal sum and a cone holding every normal.
 struct HNode {
-  Vec3 centre;              ///< bounding-sphere centre (element: area centroid)
-  double radius = 0;        ///< bounding-sphere radius
-  double area = 0;          ///< surface area below this node (scene units²)
-  Vec3 areaNormal;          ///< Σ A_k n_k over the elements below (|·| = area when all coplanar)
-  Vec3 coneAxis;            ///< unit axis of the normal cone
-  double coneAngle = 0;     ///< every normal below lies within this angle (radians) of coneAxis
+  Vec3 centre;           ///< bounding-sphere centre (element: area centroid)
+  double radius = 0;     ///< bounding-sphere radius
+  double area = 0;       ///< surface area below this node (scene units²)
+  Vec3 areaNormal;       ///< Σ A_k n_k over the elements below (|·| = area when all coplanar)
+  Vec3 coneAxis;         ///< unit axis of the normal cone
+  double coneAngle = 0;  ///< every normal below lies within this angle (radians) of coneAxis
   double reflectanceMax = 0;  ///< largest ρ (any channel) below: the oracle's worst case
   int parent = -1;
-  int firstChild = -1;      ///< an element's four children are contiguous from here
-  int rightChild = -1;      ///< a cluster's second child (its left subtree lies in between)
-  int childCount = 0;       ///< 2 for clusters, 4 for split elements, 0 for leaves
-  int level = 0;            ///< elements: splits below the input face; clusters: depth in the tree
-  int face = -1;            ///< elements: the input face (patch of the base mesh); clusters: -1
-  int polygon = -1;         ///< elements: index into Hierarchy::polygons
-  std::uint64_t key = 0;    ///< stable identity, independent of creation order: seeds rays
+  int firstChild = -1;    ///< an element's four children are contiguous from here
+  int rightChild = -1;    ///< a cluster's second child (its left subtree lies in between)
+  int childCount = 0;     ///< 2 for clusters, 4 for split elements, 0 for leaves
+  int level = 0;          ///< elements: splits below the input face; clusters: depth in the tree
+  int face = -1;          ///< elements: the input face (patch of the base mesh); clusters: -1
+  int polygon = -1;       ///< elements: index into Hierarchy::polygons
+  std::uint64_t key = 0;  ///< stable identity, independent of creation order: seeds rays
   bool element = false;
 
   bool isLeaf() const { return childCount == 0; }

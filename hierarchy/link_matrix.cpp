@@ -13,8 +13,8 @@ double linkFormFactor(const Hierarchy& h, const HLink& l) {
   if (R.element && h[l.source].element) return l.formFactor * l.visibility;
   // The gather's transfer with B_s = 1: I_s = P_s(−ω)/π, spread over r's projected area.
   const ClusterTransfer t = clusterTransfer(h, l.receiver, l.source);
-  return projectedArea(h, l.source, -t.w) / M_PI * l.visibility / t.denominator * projectedArea(h, l.receiver, t.w) /
-         R.area;
+  return projectedArea(h, l.source, -t.w) / M_PI * l.visibility / t.denominator *
+         projectedArea(h, l.receiver, t.w) / R.area;
 }
 
 void writeLinkMatrix(const std::string& path, const Hierarchy& h, const std::vector<HLink>& links,
@@ -43,14 +43,19 @@ void writeLinkMatrix(const std::string& path, const Hierarchy& h, const std::vec
         p = std::max(p, v);
       }
   }
-  const int fs = 2, th = Canvas::textHeight(fs), left = 12, top = 12 + (s.title.empty() ? 0 : 2 * th + 12) + 2 * th;
-  const std::string legend = s.colour == LinkColour::Power ? "power a link carries" : "mean F_ij of a block";
+  const int fs = 2, th = Canvas::textHeight(fs), left = 12,
+            top = 12 + (s.title.empty() ? 0 : 2 * th + 12) + 2 * th;
+  const std::string legend =
+      s.colour == LinkColour::Power ? "power a link carries" : "mean F_ij of a block";
   LogColourScale scale(value, s.decades);
-  Canvas canvas(left + side + 30 + std::max(28 + Canvas::textWidth("1e-10", fs), Canvas::textWidth(legend, fs)) + 12,
+  Canvas canvas(left + side + 30 +
+                    std::max(28 + Canvas::textWidth("1e-10", fs), Canvas::textWidth(legend, fs)) +
+                    12,
                 top + side + 16);
   if (!s.title.empty()) canvas.text(8, 8, s.title, fs);
   for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x) canvas.set(left + x, top + y, scale.colour(value[std::size_t(y) * side + x]));
+    for (int x = 0; x < side; ++x)
+      canvas.set(left + x, top + y, scale.colour(value[std::size_t(y) * side + x]));
   scale.drawBar(canvas, left + side + 30, top, side, legend, fs);
   writePng(path, canvas);
 }

@@ -15,7 +15,8 @@ template <typename Leaf>
 double sumOverCoherent(const Hierarchy& h, int n, int levels, const Leaf& leaf) {
   const HNode& node = h[n];
   if (node.element || node.coneAngle <= kCoherentCone || levels == 0) return leaf(n);
-  return sumOverCoherent(h, h.child(n, 0), levels - 1, leaf) + sumOverCoherent(h, h.child(n, 1), levels - 1, leaf);
+  return sumOverCoherent(h, h.child(n, 0), levels - 1, leaf) +
+         sumOverCoherent(h, h.child(n, 1), levels - 1, leaf);
 }
 
 }  // namespace
@@ -46,10 +47,14 @@ LinkKind linkKind(const Hierarchy& h, const HLink& link) {
 
 const char* linkKindName(LinkKind kind) {
   switch (kind) {
-    case LinkKind::ElementElement: return "element_element";
-    case LinkKind::ElementCluster: return "element_cluster";
-    case LinkKind::ClusterElement: return "cluster_element";
-    case LinkKind::ClusterCluster: return "cluster_cluster";
+    case LinkKind::ElementElement:
+      return "element_element";
+    case LinkKind::ElementCluster:
+      return "element_cluster";
+    case LinkKind::ClusterElement:
+      return "cluster_element";
+    case LinkKind::ClusterCluster:
+      return "cluster_cluster";
   }
   return "?";
 }

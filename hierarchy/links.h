@@ -16,7 +16,7 @@ namespace radkit {
 struct HLink {
   int receiver = -1;
   int source = -1;
-  double formFactor = 0;      ///< element ← element: unoccluded F_rs; otherwise unused (0)
+  double formFactor = 0;  ///< element ← element: unoccluded F_rs; otherwise unused (0)
   /// Visible share from rays: for element pairs the control-variate estimate with the
   /// unoccluded F, else the kernel-weighted ratio; times 1/P for a link that looked blocked and
   /// survived the last round's roulette with probability P (refine.cpp), so it may exceed 1.
@@ -42,7 +42,8 @@ struct HLink {
 
 /// Radiosity of source s as link l sees it: its quarters weighted by the link's shares where
 /// set, else s's mean.
-inline Vec3 linkSourceRadiosity(const Hierarchy& h, const std::vector<Vec3>& radiosity, const HLink& l) {
+inline Vec3 linkSourceRadiosity(const Hierarchy& h, const std::vector<Vec3>& radiosity,
+                                const HLink& l) {
   const HNode& s = h[l.source];
   if (l.quarterShare[0] < 0 || s.childCount != 4) return radiosity[l.source];
   Vec3 b;

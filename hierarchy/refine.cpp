@@ -35,7 +35,8 @@ double angleBetween(const Vec3& a, const Vec3& b) {
 
 /// Largest and smallest max(0, n·w) over normals within `cone` of `axis` and directions within
 /// `spread` of w: the cosine bounds of a node seen along directions near w.
-std::pair<double, double> cosineBounds(const Vec3& axis, double cone, const Vec3& w, double spread) {
+std::pair<double, double> cosineBounds(const Vec3& axis, double cone, const Vec3& w,
+                                       double spread) {
   double phi = angleBetween(axis, w);
   double hi = std::max(0.0, std::cos(std::max(0.0, phi - cone - spread)));
   double lo = std::max(0.0, std::cos(std::min(kPi, phi + cone + spread)));
@@ -50,12 +51,14 @@ struct QuarterSampler {
   bool element;
   HPolygon kids[4];
   double cumulative[4] = {0, 0, 0, 1};
-  QuarterSampler(const Hierarchy& hierarchy, int n) : h(hierarchy), node(n), element(hierarchy[n].element) {
+  QuarterSampler(const Hierarchy& hierarchy, int n)
+      : h(hierarchy), node(n), element(hierarchy[n].element) {
     if (!element) return;
     double areas[4];
     quarterPolygons(h.polygon(n), kids, areas);
     const double total = areas[0] + areas[1] + areas[2] + areas[3];
-    for (int k = 0; k < 3; ++k) cumulative[k] = (k > 0 ? cumulative[k - 1] : 0.0) + areas[k] / total;
+    for (int k = 0; k < 3; ++k)
+      cumulative[k] = (k > 0 ? cumulative[k - 1] : 0.0) + areas[k] / total;
   }
   Vec3 sample(double u0, double u1, double u2, Vec3& normal, int& quarter) const {
     quarter = 0;
@@ -121,13 +124,16 @@ double Refiner::elementFormFactor(int r, int s, double estimate) const {
   Vec3 domain[kMaxPolygonVertices];
   int count = clipToHalfSpace(pr.v, pr.count, m_h[s].centre, ps.normal, domain);
   if (count < 3) return 0.0;
-  auto integrand = [&](const Vec3& x) { return pointToPolygonFormFactor(x, pr.normal, ps.v, ps.count); };
+  auto integrand = [&](const Vec3& x) {
+    return pointToPolygonFormFactor(x, pr.normal, ps.v, ps.count);
+  };
   QuadratureStats stats;
   const double area = m_h[r].area;
   TargetSphere target{m_h[s].centre, m_h[s].radius};
   // Relative accuracy: a link's F need not be known better than the error its oracle allows,
   // and the four-point estimate already has it to (size/distance)⁴ for distant pairs.
-  const double tolerance = std::max(kFormFactorTolerance * estimate, QuadratureSettings{}.tolerance) * area;
+  const double tolerance =
+      std::max(kFormFactorTolerance * estimate, QuadratureSettings{}.tolerance) * area;
   return m_cubature.integrate(domain, count, tolerance, integrand, stats, target) / area;
 }
 
@@ -146,8 +152,10 @@ void Refiner::quarterShares(int r, int s, HLink& link) const {
         if (dot(x - m_h[S.firstChild + k].centre, q.normal) > 0)
           f[k] += chart.jacobian(a, b) * pointToPolygonFormFactor(x, pr.normal, q.v, q.count);
       }
-    if (link.quarterVisible[k] >= 0) f[k] *= link.quarterVisible[k];
-    else if (link.visibility < 1) f[k] *= link.visibility;  // no ray ended there: the link's mean
+    if (link.quarterVisible[k] >= 0)
+      f[k] *= link.quarterVisible[k];
+    else if (link.visibility < 1)
+      f[k] *= link.visibility;  // no ray ended there: the link's mean
     total += f[k];
   }
   if (!(total > 0)) return;
@@ -164,9 +172,13 @@ void Refiner::receiverShares(int r, int s, const VisibilityEstimate& v, HLink& l
     Vec3 c;
     for (int t = 0; t < kids[k].count; ++t) c += kids[k].v[t];
     c = c / double(kids[k].count);
-    f[k] = dot(c - m_h[s].centre, ps.normal) > 0 ? pointToPolygonFormFactor(c, kids[k].normal, ps.v, ps.count) : 0.0;
-    if (v.receiverQuarter[k] >= 0) f[k] *= v.receiverQuarter[k];
-    else if (v.visible < 1) f[k] *= v.visible;  // no ray started there: the link's mean
+    f[k] = dot(c - m_h[s].centre, ps.normal) > 0
+               ? pointToPolygonFormFactor(c, kids[k].normal, ps.v, ps.count)
+               : 0.0;
+    if (v.receiverQuarter[k] >= 0)
+      f[k] *= v.receiverQuarter[k];
+    else if (v.visible < 1)
+      f[k] *= v.visible;  // no ray started there: the link's mean
     mean += areas[k] * f[k], total += areas[k];
   }
   mean /= total;
@@ -202,13 +214,16 @@ Refiner::VisibilityEstimate Refiner::visibleFraction(int r, int s, int K, int st
     sumW2 += w * w;
     quarterW[quarter] += w;
     receiverW[receiverQuarter] += w;
-    if (visible) sumWV += w, sumW2V += w * w, quarterWV[quarter] += w, receiverWV[receiverQuarter] += w;
-    else sumBlocked += w, sumBlocked2 += w * w;
+    if (visible)
+      sumWV += w, sumW2V += w * w, quarterWV[quarter] += w, receiverWV[receiverQuarter] += w;
+    else
+      sumBlocked += w, sumBlocked2 += w * w;
   }
   VisibilityEstimate out;
   out.blockedKernel = sumBlocked / K;
   if (K > 1)
-    out.blockedKernelError = std::sqrt(std::max(0.0, sumBlocked2 / K - out.blockedKernel * out.blockedKernel) / (K - 1));
+    out.blockedKernelError =
+        std::sqrt(std::max(0.0, sumBlocked2 / K - out.blockedKernel * out.blockedKernel) / (K - 1));
   if (!(sumW > 0)) return out;  // no sample pair faces both ways: nothing known
   out.visible = sumWV / sumW;
   // Σ w_k²(v_k − V)² with v_k ∈ {0, 1}, expanded.
@@ -216,12 +231,14 @@ Refiner::VisibilityEstimate Refiner::visibleFraction(int r, int s, int K, int st
   out.standardError = std::sqrt(std::max(0.0, var)) / sumW;
   for (int k = 0; k < 4; ++k) {
     if (sq.element) out.quarter[k] = quarterW[k] > 0 ? float(quarterWV[k] / quarterW[k]) : -1.0f;
-    if (rq.element) out.receiverQuarter[k] = receiverW[k] > 0 ? float(receiverWV[k] / receiverW[k]) : -1.0f;
+    if (rq.element)
+      out.receiverQuarter[k] = receiverW[k] > 0 ? float(receiverWV[k] / receiverW[k]) : -1.0f;
   }
   return out;
 }
 
-Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const SourceState& state) const {
+Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility,
+                                   const SourceState& state) const {
   Outcome out;
   out.link = c;
   const int r = c.receiver, s = c.source;
@@ -253,10 +270,12 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
     // (symmetric points alone miss it: directly opposite squares give four equal values).
     // Points behind s's plane see nothing of its front.
     auto pointValue = [&](const Vec3& x) {
-      return dot(x - S.centre, ps.normal) > 0 ? pointToPolygonFormFactor(x, pr.normal, ps.v, ps.count) : 0.0;
+      return dot(x - S.centre, ps.normal) > 0
+                 ? pointToPolygonFormFactor(x, pr.normal, ps.v, ps.count)
+                 : 0.0;
     };
     PatchChart chart(pr.v, pr.count);
-      double fMin = INFINITY, fMax = 0, sum = 0, weight = 0;
+    double fMin = INFINITY, fMax = 0, sum = 0, weight = 0;
     for (double a : kGauss2)
       for (double b : kGauss2) {
         double f = pointValue(chart.point(a, b));
@@ -294,7 +313,8 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
       double tMax = power / kPi * sHi * R.area * rHi / (near * near);
       double tMin = power / kPi * sLo * R.area * rLo / (far * far);
       Vec3 intensity = intensityToward(m_h, state, s, -w);
-      transfer = std::clamp(maxComponent(intensity) * projectedArea(m_h, r, w) / clusterTransfer(m_h, r, s).denominator,
+      transfer = std::clamp(maxComponent(intensity) * projectedArea(m_h, r, w) /
+                                clusterTransfer(m_h, r, s).denominator,
                             tMin, tMax);
       errorGeometry = rho * 0.5 * (tMax - tMin);
     }
@@ -302,7 +322,8 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
 
   // The source's own variation: the receiver may see only its brighter or darker part.
   if (sourceRadiosity > 0)
-    errorGeometry += kSourceSpreadWeight * rho * transfer * (state.radiosityMax[s] - state.radiosityMin[s]) / sourceRadiosity;
+    errorGeometry += kSourceSpreadWeight * rho * transfer *
+                     (state.radiosityMax[s] - state.radiosityMin[s]) / sourceRadiosity;
   if (errorGeometry > tau) {
     out.decision = splitLarger(r, s);
     if (out.decision != Decision::Keep) return out;
@@ -311,7 +332,9 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
   VisibilityEstimate decided, fresh;  // the rays behind the decision, and behind the kept value
   const int K = m_settings.raysPerLink;
   int cast = K;  // rays behind the decision
-  auto unanimous = [](const VisibilityEstimate& v) { return (v.visible <= 0 || v.visible >= 1) && v.standardError < 0.5; };
+  auto unanimous = [](const VisibilityEstimate& v) {
+    return (v.visible <= 0 || v.visible >= 1) && v.standardError < 0.5;
+  };
   if (!knownVisibility) {
     VisibilityEstimate& v = decided;
     v = visibleFraction(r, s, K, 2 * m_settings.round);
@@ -323,7 +346,8 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
       v = visibleFraction(r, s, cast, 2 * m_settings.round);
       out.rays += cast;
     }
-    V = v.visible, se = unanimous(v) ? 1.0 / (cast + 1) : v.standardError;  // unanimous: one ray's worth
+    V = v.visible,
+    se = unanimous(v) ? 1.0 / (cast + 1) : v.standardError;  // unanimous: one ray's worth
   }
   // A partly blocked link may hide a shadow boundary: refine it first (its uncertainty counts
   // the smaller of the visible and blocked shares, plus one sample's worth; a unanimous one
@@ -346,7 +370,8 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
   double weight = 1;
   if (!(V > 0) && (transfer > 0 || sourceRadiosity > 0) && m_settings.last) {
     const double survive = std::min(1.0, rho * transfer / tau);
-    Rng roulette(m_settings.seed + 0x9E3779B97F4A7C15ull * std::uint64_t(2 * m_settings.round + 2), m_h[r].key, m_h[s].key);
+    Rng roulette(m_settings.seed + 0x9E3779B97F4A7C15ull * std::uint64_t(2 * m_settings.round + 2),
+                 m_h[r].key, m_h[s].key);
     if (!(roulette.uniform() < survive)) return out;  // Drop
     weight = 1 / survive;
   }
@@ -379,7 +404,8 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility, const S
   // expected share (the last round's links with V = 0 are removed after refinement).
   out.decision = Decision::Keep;
   if (elements) {
-    out.link.formFactor = knownVisibility && c.formFactor > 0 ? c.formFactor : elementFormFactor(r, s, fMean);
+    out.link.formFactor =
+        knownVisibility && c.formFactor > 0 ? c.formFactor : elementFormFactor(r, s, fMean);
     // The ratio Σwv/Σw is biased at small K (measured: 2 % too little light on a shadowed
     // receiver at K = 4). With the unoccluded F known, E[w] = πF/A_s over uniform pairs, so
     // V = 1 − mean(w(1 − v))·A_s/(πF) is unbiased, and exactly 1 when no ray is blocked.
@@ -422,8 +448,12 @@ RefineStats Refiner::refine(std::vector<HLink>& links, SourceState& state,
       stats.rays += o.rays;
       const int r = o.link.receiver, s = o.link.source;
       switch (o.decision) {
-        case Decision::Keep: links.push_back(o.link); break;
-        case Decision::Drop: ++stats.dropped; break;
+        case Decision::Keep:
+          links.push_back(o.link);
+          break;
+        case Decision::Drop:
+          ++stats.dropped;
+          break;
         case Decision::SplitReceiver:
           ++stats.splits;
           if (m_h[r].element) m_h.split(r);
@@ -437,7 +467,8 @@ RefineStats Refiner::refine(std::vector<HLink>& links, SourceState& state,
         case Decision::SplitBoth:
           ++stats.splits;
           for (int a = 0; a < m_h[r].childCount; ++a)
-            for (int b = 0; b < m_h[r].childCount; ++b) next.push_back(candidate(m_h.child(r, a), m_h.child(r, b)));
+            for (int b = 0; b < m_h[r].childCount; ++b)
+              next.push_back(candidate(m_h.child(r, a), m_h.child(r, b)));
           break;
       }
     }
@@ -449,21 +480,24 @@ RefineStats Refiner::refine(std::vector<HLink>& links, SourceState& state,
                         outcomes.capacity() * sizeof(Outcome) +
                         state.radiosity.capacity() * (sizeof(Vec3) * 4);
     if (bytes > m_settings.memoryBudget)
-      throw HierarchyMemoryError("hierarchical radiosity outgrew --memory-budget " + gib(m_settings.memoryBudget) +
-                                 " while refining links (" + std::to_string(m_h.size()) + " nodes, " +
-                                 std::to_string(links.size() + frontier.size()) + " links, about " + gib(bytes) +
-                                 "). Raise --memory-budget, or ask for less: a larger --epsilon or --min-area");
+      throw HierarchyMemoryError(
+          "hierarchical radiosity outgrew --memory-budget " + gib(m_settings.memoryBudget) +
+          " while refining links (" + std::to_string(m_h.size()) + " nodes, " +
+          std::to_string(links.size() + frontier.size()) + " links, about " + gib(bytes) +
+          "). Raise --memory-budget, or ask for less: a larger --epsilon or --min-area");
     if (progress) progress(stats.evaluated, static_cast<long long>(frontier.size()));
   }
   // Sources split after a link to them was kept (by a later link in this round) get their
   // quarter shares now: without them the gather takes such a source's mean.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, links.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i < range.end(); ++i) {
-      HLink& l = links[i];
-      if (l.quarterShare[0] < 0 && m_h[l.receiver].element && m_h[l.source].element && m_h[l.source].childCount == 4)
-        quarterShares(l.receiver, l.source, l);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, links.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                        HLink& l = links[i];
+                        if (l.quarterShare[0] < 0 && m_h[l.receiver].element &&
+                            m_h[l.source].element && m_h[l.source].childCount == 4)
+                          quarterShares(l.receiver, l.source, l);
+                      }
+                    });
   return stats;
 }
 

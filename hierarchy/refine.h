@@ -15,10 +15,10 @@
 namespace radkit {
 
 struct RefineSettings {
-  double threshold = 0;     ///< τ: the largest error a link may carry, W (scene units² · W/m²)
-  bool last = true;          ///< the last round: blocked links may be dropped (by roulette)
-  double minArea = 0;       ///< elements are not split below this area (scene units²)
-  int raysPerLink = 16;     ///< K visibility rays per new link
+  double threshold = 0;  ///< τ: the largest error a link may carry, W (scene units² · W/m²)
+  bool last = true;      ///< the last round: blocked links may be dropped (by roulette)
+  double minArea = 0;    ///< elements are not split below this area (scene units²)
+  int raysPerLink = 16;  ///< K visibility rays per new link
   std::uint64_t seed = 1;
   int round = 0;  ///< refine-and-solve round: each round's visibility rays are a fresh stream
   std::size_t memoryBudget = std::size_t(8) << 30;

@@ -20,13 +20,12 @@ struct RateMeasurement {
 
 /// \brief Closest-hit queries per second (all threads, TBB) on `rays` random rays: origins
 /// uniform in the mesh's bounding box, directions uniform on the sphere; stream (seed, i, 2).
-RateMeasurement measureClosestHitRate(const PatchMesh& mesh, const Visibility& rays, std::size_t count,
-                                      std::uint64_t seed);
-
+RateMeasurement measureClosestHitRate(const PatchMesh& mesh, const Visibility& rays,
+                                      std::size_t count, std::uint64_t seed);
 
 /// \brief k-nearest irradiance estimates per second (all threads) at `queries` stored
 /// photons' positions (every photons/queries-th one).
-RateMeasurement measureKdTreeQueries(const PhotonMap& map, const PatchMesh& mesh, std::size_t queries, int k,
-                                     IrradianceFilter filter);
+RateMeasurement measureKdTreeQueries(const PhotonMap& map, const PatchMesh& mesh,
+                                     std::size_t queries, int k, IrradianceFilter filter);
 
 }  // namespace radkit

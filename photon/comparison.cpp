@@ -20,14 +20,17 @@ std::vector<std::string> splitCsv(const std::string& line) {
   bool quoted = false;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') out.back() += '"', ++i;
-    else if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) out.emplace_back();
-    else if (c != '\r') out.back() += c;
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+      out.back() += '"', ++i;
+    else if (c == '"')
+      quoted = !quoted;
+    else if (c == ',' && !quoted)
+      out.emplace_back();
+    else if (c != '\r')
+      out.back() += c;
   }
   return out;
 }
-
 
 double ratioOrZero(double a, double b) { return b != 0 ? a / b : 0.0; }
 
@@ -42,13 +45,17 @@ Rgb8 diverging(double z) {
 
 std::vector<SurfaceRadiosity> readSurfacesCsv(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open. Fix: give the folder of a `radkit run` (it holds surfaces.csv)");
+  if (!in)
+    throw std::runtime_error(
+        path + ": cannot open. Fix: give the folder of a `radkit run` (it holds surfaces.csv)");
   std::string line;
   std::getline(in, line);
   const std::vector<std::string> header = splitCsv(line);
   if (header.size() < 5 || header[0] != "surface" || header[2] != "b_r" || header[4] != "b_b")
-    throw std::runtime_error(path + ": line 1 is not the header surface,area,b_r,b_g,b_b. Fix: give the folder of a "
-                                    "`radkit run` of this scene");
+    throw std::runtime_error(
+        path +
+        ": line 1 is not the header surface,area,b_r,b_g,b_b. Fix: give the folder of a "
+        "`radkit run` of this scene");
   std::vector<SurfaceRadiosity> rows;
   for (int number = 2; std::getline(in, line); ++number) {
     if (line.empty()) continue;
@@ -60,8 +67,9 @@ std::vector<SurfaceRadiosity> readSurfacesCsv(const std::string& path) {
       r.area = std::stod(f[1]);
       r.radiosity = {std::stod(f[2]), std::stod(f[3]), std::stod(f[4])};
     } catch (const std::exception&) {
-      throw std::runtime_error(path + ": line " + std::to_string(number) +
-                               " is not `surface,area,b_r,b_g,b_b` with numbers. Fix: rerun `radkit run`");
+      throw std::runtime_error(
+          path + ": line " + std::to_string(number) +
+          " is not `surface,area,b_r,b_g,b_b` with numbers. Fix: rerun `radkit run`");
     }
     rows.push_back(r);
   }
@@ -101,7 +109,8 @@ void writeComparisonCsv(const std::string& path, const std::vector<SurfaceCompar
   o << '\n';
   for (const SurfaceComparison& r : rows) {
     o << csvField(r.name) << ',' << r.area;
-    for (const Vec3* v : {&r.photon, &r.radiosity, &r.relativeDifference, &r.photonError, &r.zScore})
+    for (const Vec3* v :
+         {&r.photon, &r.radiosity, &r.relativeDifference, &r.photonError, &r.zScore})
       o << ',' << v->x << ',' << v->y << ',' << v->z;
     o << '\n';
   }
@@ -119,15 +128,18 @@ Canvas differenceImage(const RadianceImage& seen, const std::vector<Vec3>& photo
       if (p < 0) continue;
       // σ of the luminance: the channels' errors are fully correlated (one photon carries
       // all three), so σ_Y = Y(σ) bounds it from above.
-      const double z = ratioOrZero(luminance(photon[p]) - luminance(radiosity[p]), luminance(photonError[p]));
+      const double z =
+          ratioOrZero(luminance(photon[p]) - luminance(radiosity[p]), luminance(photonError[p]));
       c.set(x, y, diverging(z));
     }
   const int y0 = seen.height + 4, barWidth = std::max(16, seen.width - 20);
-  for (int x = 0; x < barWidth; ++x) c.fill(10 + x, y0, 11 + x, y0 + 10, diverging(-4 + 8.0 * x / (barWidth - 1)));
+  for (int x = 0; x < barWidth; ++x)
+    c.fill(10 + x, y0, 11 + x, y0 + 10, diverging(-4 + 8.0 * x / (barWidth - 1)));
   const int scale = seen.width >= 400 ? 2 : 1;
   c.text(10, y0 + 13, "-4", scale, {255, 255, 255});
   c.text(10 + barWidth - Canvas::textWidth("+4", scale), y0 + 13, "+4", scale, {255, 255, 255});
-  c.text(10 + barWidth / 2 - Canvas::textWidth(title, scale) / 2, y0 + 13, title, scale, {255, 255, 255});
+  c.text(10 + barWidth / 2 - Canvas::textWidth(title, scale) / 2, y0 + 13, title, scale,
+         {255, 255, 255});
   return c;
 }
 

@@ -18,14 +18,14 @@ struct SurfaceRadiosity {
   Vec3 radiosity;   ///< W/m²
 };
 
-/// \brief Reads `surface,area,b_r,b_g,b_b[,...]` (docs/formats.md). Throws std::runtime_error naming
-/// the file, the line and what to fix.
+/// \brief Reads `surface,area,b_r,b_g,b_b[,...]` (docs/formats.md). Throws std::runtime_error
+/// naming the file, the line and what to fix.
 std::vector<SurfaceRadiosity> readSurfacesCsv(const std::string& path);
 
 /// One row of comparison.csv.
 struct SurfaceComparison {
   std::string name;
-  double area = 0;  ///< scene units²
+  double area = 0;           ///< scene units²
   Vec3 photon, photonError;  ///< photon-map B and its estimated standard error
   Vec3 radiosity;            ///< the radiosity solution's B
   Vec3 relativeDifference;   ///< (photon − radiosity)/radiosity, 0 where radiosity is 0
@@ -37,7 +37,8 @@ struct SurfaceComparison {
 std::vector<SurfaceComparison> compareSurfaces(const std::vector<SurfaceEstimate>& photon,
                                                const std::vector<SurfaceRadiosity>& radiosity);
 
-/// \brief Writes `surface,area,photon_b_r,...,radiosity_b_r,...,rel_diff_r,...,photon_se_r,...,z_r,...`.
+/// \brief Writes
+/// `surface,area,photon_b_r,...,radiosity_b_r,...,rel_diff_r,...,photon_se_r,...,z_r,...`.
 void writeComparisonCsv(const std::string& path, const std::vector<SurfaceComparison>& rows);
 
 /// \brief A false-colour image of z = (Y_photon − Y_radiosity)/σ_photon per pixel, Y the

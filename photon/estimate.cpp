@@ -11,7 +11,8 @@ namespace {
 /// of the current path are collected in `open` first, so X_j sums all its visits to a bin.
 class PathTally {
  public:
-  explicit PathTally(std::size_t bins) : m_sum(bins), m_sum2(bins), m_pending(bins), m_isOpen(bins, 0) {}
+  explicit PathTally(std::size_t bins)
+      : m_sum(bins), m_sum2(bins), m_pending(bins), m_isOpen(bins, 0) {}
 
   void add(int bin, const Vec3& power) {
     if (!m_isOpen[bin]) m_open.push_back(bin), m_isOpen[bin] = 1;
@@ -49,8 +50,8 @@ class PathTally {
 
 }  // namespace
 
-PhotonRadiosity estimateRadiosity(const Scene& scene, const PatchMesh& mesh, const std::vector<Photon>& photons,
-                                  std::size_t paths) {
+PhotonRadiosity estimateRadiosity(const Scene& scene, const PatchMesh& mesh,
+                                  const std::vector<Photon>& photons, std::size_t paths) {
   const std::size_t surfaces = scene.surfaces.size();
   PathTally perPatch(mesh.size()), perSurface(surfaces), caustic(surfaces);
   std::vector<std::size_t> counts(surfaces, 0);
@@ -80,8 +81,8 @@ PhotonRadiosity estimateRadiosity(const Scene& scene, const PatchMesh& mesh, con
     const Patch& patch = mesh.patches[i];
     const Material& m = scene.materials[scene.surfaces[patch.surface].material];
     const Vec3 rho = m.diffuseAlbedo();
-    r.irradiance[i] = perPatch.sum(i) / patch.area;                // H_i = Φ_i / A_i
-    r.radiosity[i] = m.emission + mul(rho, r.irradiance[i]);      // B_i = E_i + ρ_i H_i
+    r.irradiance[i] = perPatch.sum(i) / patch.area;           // H_i = Φ_i / A_i
+    r.radiosity[i] = m.emission + mul(rho, r.irradiance[i]);  // B_i = E_i + ρ_i H_i
     r.radiosityError[i] = mul(rho, perPatch.standardError(i, paths)) / patch.area;
   }
   r.surfaces.resize(surfaces);
@@ -90,7 +91,8 @@ PhotonRadiosity estimateRadiosity(const Scene& scene, const PatchMesh& mesh, con
     const Material& m = scene.materials[scene.surfaces[s].material];
     const Vec3 rho = m.diffuseAlbedo();
     e.name = scene.surfaces[s].name;
-    for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i) e.area += mesh.patches[i].area;
+    for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i)
+      e.area += mesh.patches[i].area;
     e.photons = counts[s];
     if (!(e.area > 0)) continue;
     e.irradiance = perSurface.sum(int(s)) / e.area;

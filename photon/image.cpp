@@ -46,7 +46,8 @@ class PhotonShader {
   Vec3 radiance(const ShadedHit& h, PhotonView view, Rng& rng) const {
     Vec3 l = m_shading.emitted(h.hit);
     if (view == PhotonView::GlobalMap) l += mapRadiance(m_in.global, h.hit);
-    if (view == PhotonView::CausticMap || view == PhotonView::FinalGather) l += mapRadiance(m_in.caustic, h.hit);
+    if (view == PhotonView::CausticMap || view == PhotonView::FinalGather)
+      l += mapRadiance(m_in.caustic, h.hit);
     if (view == PhotonView::FinalGather) l += direct(h.hit, rng) + indirect(h.hit, rng);
     return mul(h.throughput, l);
   }
@@ -100,7 +101,8 @@ class PhotonShader {
       const SurfaceHit& yh = y->hit;
       Vec3 ly;
       if (yh.bsdf->lambertian() && m_in.global.hasPrecomputed())
-        ly = mul(yh.bsdf->diffuseAlbedo(), m_in.global.precomputedIrradiance(yh.point, yh.normal)) / M_PI;
+        ly = mul(yh.bsdf->diffuseAlbedo(), m_in.global.precomputedIrradiance(yh.point, yh.normal)) /
+             M_PI;
       else
         ly = mapRadiance(m_in.global, yh);
       sum += mul(s->weight, mul(y->throughput, ly));
@@ -117,9 +119,12 @@ class PhotonShader {
 
 const char* viewName(PhotonView view) {
   switch (view) {
-    case PhotonView::FinalGather: return "gather";
-    case PhotonView::GlobalMap: return "map";
-    case PhotonView::CausticMap: return "caustic";
+    case PhotonView::FinalGather:
+      return "gather";
+    case PhotonView::GlobalMap:
+      return "map";
+    case PhotonView::CausticMap:
+      return "caustic";
   }
   return "?";
 }

@@ -5,9 +5,9 @@
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
 #include "geometry/visibility.h"
-#include "render/emitters.h"
 #include "photon/map.h"
 #include "photon/tracer.h"
+#include "render/emitters.h"
 #include "render/radiosity_image.h"
 
 namespace radkit {

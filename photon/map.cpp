@@ -1,8 +1,8 @@
 #include "photon/map.h"
 
-#include <nanoflann.hpp>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
+#include <nanoflann.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -48,7 +48,9 @@ class FacingKnnResultSet {
   void setBase(std::uint32_t base) { m_base = base; }
   std::size_t size() const { return m_heap.size(); }
   bool full() const { return m_heap.size() == m_k; }
-  float worstDist() const { return full() ? m_heap.front().first : std::numeric_limits<float>::max(); }
+  float worstDist() const {
+    return full() ? m_heap.front().first : std::numeric_limits<float>::max();
+  }
   bool addPoint(float distance2, std::uint32_t local) {
     const std::uint32_t index = m_base + local;
     const Vec3& pn = m_mesh.patches[m_photons[index].patch].normal;
@@ -239,8 +241,11 @@ const char* filterName(IrradianceFilter filter) {
   return filter == IrradianceFilter::Cone ? "cone" : "epanechnikov";
 }
 
-PhotonMap::PhotonMap(const PatchMesh& mesh, std::vector<Photon> photons, std::size_t maxPhotonsPerPart)
-    : m_mesh(&mesh), m_maxPhotonsPerPart(std::max<std::size_t>(1, maxPhotonsPerPart)), m_photons(std::move(photons)) {
+PhotonMap::PhotonMap(const PatchMesh& mesh, std::vector<Photon> photons,
+                     std::size_t maxPhotonsPerPart)
+    : m_mesh(&mesh),
+      m_maxPhotonsPerPart(std::max<std::size_t>(1, maxPhotonsPerPart)),
+      m_photons(std::move(photons)) {
   if (m_photons.empty()) return;
   PhotonBox frame;
   const std::vector<std::uint64_t> codes = sortAlongMortonCurve(m_photons, frame);
@@ -256,7 +261,8 @@ PhotonMap& PhotonMap::operator=(PhotonMap&&) noexcept = default;
 std::size_t PhotonMap::kdParts() const { return m_tree ? m_tree->parts.size() : 0; }
 
 std::size_t PhotonMap::memoryBytes() const {
-  std::size_t bytes = m_photons.capacity() * sizeof(Photon) + m_precomputed.capacity() * sizeof(Photon) +
+  std::size_t bytes = m_photons.capacity() * sizeof(Photon) +
+                      m_precomputed.capacity() * sizeof(Photon) +
                       m_precomputedRadius.capacity() * sizeof(float);
   if (m_tree) bytes += m_tree->memoryBytes();
   if (m_precomputedTree) bytes += m_precomputedTree->memoryBytes();
@@ -283,7 +289,9 @@ namespace {
 
 /// Octahedral map of the unit sphere onto [−1, 1]² (Cigolle et al. 2014, JCGT 3(2)).
 double signNotZero(double v) { return v >= 0 ? 1.0 : -1.0; }
-std::uint16_t quantise(double v) { return std::uint16_t(std::lround((std::clamp(v, -1.0, 1.0) * 0.5 + 0.5) * 65535)); }
+std::uint16_t quantise(double v) {
+  return std::uint16_t(std::lround((std::clamp(v, -1.0, 1.0) * 0.5 + 0.5) * 65535));
+}
 
 }  // namespace
 
@@ -308,11 +316,13 @@ Vec3 Photon::incomingDirection() const {
   return normalize(w);
 }
 
-IrradianceEstimate PhotonMap::irradiance(const Vec3& x, const Vec3& n, int k, IrradianceFilter filter) const {
+IrradianceEstimate PhotonMap::irradiance(const Vec3& x, const Vec3& n, int k,
+                                         IrradianceFilter filter) const {
   return reflected(x, n, k, filter, nullptr);
 }
 
-IrradianceEstimate PhotonMap::reflected(const Vec3& x, const Vec3& n, int k, IrradianceFilter filter,
+IrradianceEstimate PhotonMap::reflected(const Vec3& x, const Vec3& n, int k,
+                                        IrradianceFilter filter,
                                         const std::function<Vec3(const Vec3&)>& f) const {
   std::vector<std::uint32_t> index;
   std::vector<float> distance2;
@@ -340,15 +350,17 @@ void PhotonMap::precomputeIrradiance(int k, IrradianceFilter filter, int stride)
   const std::size_t count = (m_photons.size() + stride - 1) / std::size_t(stride);
   m_precomputed.assign(count, Photon{});
   m_precomputedRadius.assign(count, 0.f);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      Photon p = m_photons[i * stride];
-      IrradianceEstimate e = irradiance(p.point(), m_mesh->patches[p.patch].normal, k, filter);
-      for (int c = 0; c < 3; ++c) p.power[c] = float(e.irradiance[c]);
-      m_precomputed[i] = p;
-      m_precomputedRadius[i] = float(e.radius);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        Photon p = m_photons[i * stride];
+                        IrradianceEstimate e =
+                            irradiance(p.point(), m_mesh->patches[p.patch].normal, k, filter);
+                        for (int c = 0; c < 3; ++c) p.power[c] = float(e.irradiance[c]);
+                        m_precomputed[i] = p;
+                        m_precomputedRadius[i] = float(e.radius);
+                      }
+                    });
   if (!count) {
     m_precomputedTree = nullptr;
     return;
@@ -356,7 +368,9 @@ void PhotonMap::precomputeIrradiance(int k, IrradianceFilter filter, int stride)
   // Every stride-th photon of a Morton order is in Morton order: its own octree cells, which
   // are fewer than the map's (each part costs a k = 1 lookup a box test).
   std::vector<std::uint64_t> codes(count);
-  tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { codes[i] = m_tree->frame.mortonCode(m_precomputed[i].position); });
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) {
+    codes[i] = m_tree->frame.mortonCode(m_precomputed[i].position);
+  });
   std::vector<std::size_t> ends;
   octreeCells(codes, 0, count, 0, m_maxPhotonsPerPart, ends);
   m_precomputedTree = std::make_unique<Tree>(m_precomputed, ends, m_tree->frame);

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "geometry/ray_scene.h"
-#include "geometry/scene_loader.h"
 #include "geometry/sampling.h"
+#include "geometry/scene_loader.h"
 #include "render/shading_context.h"
 
 namespace radkit {
@@ -24,8 +24,8 @@ struct BlockResult {
   PhotonTraceStats stats;
 };
 
-Photon makePhoton(const Vec3& x, const Vec3& power, const Vec3& incoming, int patch, std::size_t path,
-                  bool caustic) {
+Photon makePhoton(const Vec3& x, const Vec3& power, const Vec3& incoming, int patch,
+                  std::size_t path, bool caustic) {
   Photon p;
   for (int c = 0; c < 3; ++c) {
     p.position[c] = float(x[c]);
@@ -51,7 +51,8 @@ struct Tracer {
     Rng rng(settings.seed, index, 0);
     double u[5];
     for (double& v : u) v = rng.uniform();
-    PhotonEmission e = samplePhotonEmission(emitters, settings.photons, u[0], u[1], u[2], u[3], u[4]);
+    PhotonEmission e =
+        samplePhotonEmission(emitters, settings.photons, u[0], u[1], u[2], u[3], u[4]);
     out.emittedPower += e.power;
     ++out.stats.emitted;
     Vec3 origin = e.origin + e.normal * rays.epsilon(), dir = e.direction, power = e.power;
@@ -92,8 +93,10 @@ struct Tracer {
         return;
       }
       power = mul(power, weight) / p;
-      if (s->delta) sawSpecular = true;
-      else specularOnly = false;
+      if (s->delta)
+        sawSpecular = true;
+      else
+        specularOnly = false;
       dir = hit->frame.toWorld(s->wi);
       origin = shading.spawn(*hit, dir);
     }
@@ -116,13 +119,14 @@ void addStats(PhotonTraceStats& a, const PhotonTraceStats& b) {
 EmitterSampler photonEmitters(const Scene& scene, const PatchMesh& mesh) {
   EmitterSampler emitters(scene, mesh);
   if (emitters.empty())
-    throw InputError(scene.file + ": no surface emits, so no photon can start. Fix: give a material an "
+    throw InputError(scene.file +
+                     ": no surface emits, so no photon can start. Fix: give a material an "
                      "\"emission\" above zero");
   return emitters;
 }
 
-PhotonEmission samplePhotonEmission(const EmitterSampler& emitters, std::size_t photons, double u0, double u1,
-                                    double u2, double u3, double u4) {
+PhotonEmission samplePhotonEmission(const EmitterSampler& emitters, std::size_t photons, double u0,
+                                    double u1, double u2, double u3, double u4) {
   EmitterSample s = emitters.sample(u0, u1, u2);
   PhotonEmission e;
   e.patch = s.patch;
@@ -134,15 +138,17 @@ PhotonEmission samplePhotonEmission(const EmitterSampler& emitters, std::size_t 
   return e;
 }
 
-double photonEmissionPdf(const EmitterSampler& emitters, int patch, const Vec3& normal, const Vec3& direction) {
+double photonEmissionPdf(const EmitterSampler& emitters, int patch, const Vec3& normal,
+                         const Vec3& direction) {
   return emitters.pdfArea(patch) * cosineHemispherePdf(Frame(normal).toLocal(direction));
 }
 
 PhotonTrace tracePhotons(const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
                          const EmitterSampler& emitters, const PhotonSettings& settings) {
   if (emitters.empty())
-    throw std::invalid_argument("the scene has no emitters: photon mapping needs a surface whose material has "
-                                "\"emission\" > 0");
+    throw std::invalid_argument(
+        "the scene has no emitters: photon mapping needs a surface whose material has "
+        "\"emission\" > 0");
   if (settings.photons == 0 || settings.photons >= std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("photon count must lie in [1, 2^32 - 1)");
   const auto start = std::chrono::steady_clock::now();
@@ -167,7 +173,8 @@ PhotonTrace tracePhotons(const Scene& scene, const PatchMesh& mesh, const Visibi
     addStats(trace.stats, r.stats);
     std::vector<Photon>().swap(r.photons);
   }
-  trace.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  trace.stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return trace;
 }
 

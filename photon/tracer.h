@@ -7,12 +7,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "bsdf/bsdf.h"
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
-#include "bsdf/bsdf.h"
 #include "geometry/visibility.h"
-#include "render/emitters.h"
 #include "photon/map.h"
+#include "render/emitters.h"
 
 namespace radkit {
 
@@ -23,11 +23,11 @@ struct PhotonSettings {
   int maxBounces = 256;          ///< path length cap (a hall of mirrors never absorbs)
   int neighbours = 100;          ///< k of the k-nearest-photon irradiance estimate
   IrradianceFilter filter = IrradianceFilter::Epanechnikov;
-  int gatherRays = 64;           ///< final-gathering rays per pixel; 0 shows the map directly
-  int directRays = 4;            ///< shadow rays per pixel toward the emitters (final gathering)
-  int precomputeStride = 4;      ///< irradiance precomputed at every n-th photon for gathering
-  int maxSpecularDepth = 16;     ///< mirror/glass bounces followed by camera and gather rays
-  BsdfSettings bsdf;             ///< how the materials' BSDFs are built (Cook-Torrance's G)
+  int gatherRays = 64;        ///< final-gathering rays per pixel; 0 shows the map directly
+  int directRays = 4;         ///< shadow rays per pixel toward the emitters (final gathering)
+  int precomputeStride = 4;   ///< irradiance precomputed at every n-th photon for gathering
+  int maxSpecularDepth = 16;  ///< mirror/glass bounces followed by camera and gather rays
+  BsdfSettings bsdf;          ///< how the materials' BSDFs are built (Cook-Torrance's G)
 };
 
 /// Counts of one tracing run.
@@ -61,10 +61,11 @@ struct PhotonEmission {
 /// (u3, u4). Power = E/(N · p_A): with L_e = E/π and p_ω = cos θ/π the weight
 /// L_e cos θ/(N p_A p_ω) reduces to this, which is totalPower/N exactly when every emitter
 /// has the same colour (then p_A = Y(E)/Σ A Y(E)). Requires !emitters.empty().
-PhotonEmission samplePhotonEmission(const EmitterSampler& emitters, std::size_t photons, double u0, double u1,
-                                    double u2, double u3, double u4);
+PhotonEmission samplePhotonEmission(const EmitterSampler& emitters, std::size_t photons, double u0,
+                                    double u1, double u2, double u3, double u4);
 /// \brief Density of samplePhotonEmission per unit area and steradian: p_A(patch) · cos θ/π.
-double photonEmissionPdf(const EmitterSampler& emitters, int patch, const Vec3& normal, const Vec3& direction);
+double photonEmissionPdf(const EmitterSampler& emitters, int patch, const Vec3& normal,
+                         const Vec3& direction);
 
 /// \brief The emitters photons start from. \throws InputError naming the scene file when no
 /// surface emits.

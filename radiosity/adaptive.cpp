@@ -14,7 +14,9 @@ namespace radkit {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 const Material& materialOf(const Scene& scene, const PatchMesh& mesh, int i) {
   return scene.materials[scene.surfaces[mesh.patches[i].surface].material];
@@ -22,15 +24,16 @@ const Material& materialOf(const Scene& scene, const PatchMesh& mesh, int i) {
 
 /// Points on the emitters (corners pulled toward their patch centroid, and centroids), with
 /// their normals, at most `perSurface` per emitting surface, spread evenly over the list.
-void emitterPoints(const Scene& scene, const PatchMesh& mesh, int perSurface, std::vector<Vec3>& points,
-                   std::vector<Vec3>& normals) {
+void emitterPoints(const Scene& scene, const PatchMesh& mesh, int perSurface,
+                   std::vector<Vec3>& points, std::vector<Vec3>& normals) {
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
     if (!scene.materials[scene.surfaces[s].material].emits()) continue;
     std::vector<Vec3> candidates, candidateNormals;
     for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i) {
       const Patch& p = mesh.patches[i];
       candidates.push_back(p.centroid);
-      for (int k = 0; k < p.vertexCount; ++k) candidates.push_back(mesh.vertex(p, k) + (p.centroid - mesh.vertex(p, k)) * 1e-3);
+      for (int k = 0; k < p.vertexCount; ++k)
+        candidates.push_back(mesh.vertex(p, k) + (p.centroid - mesh.vertex(p, k)) * 1e-3);
       candidateNormals.insert(candidateNormals.end(), p.vertexCount + 1, p.normal);
     }
     int take = std::min<int>(perSurface, int(candidates.size()));
@@ -44,8 +47,8 @@ void emitterPoints(const Scene& scene, const PatchMesh& mesh, int perSurface, st
 
 /// Which patches to split: the largest indicators above tolerance, within the budget and the
 /// per-round fraction, never below the minimum area. Returns the count.
-int choosePatches(const PatchMesh& mesh, const std::vector<double>& indicator, const AdaptiveSettings& a,
-                  std::vector<char>& split) {
+int choosePatches(const PatchMesh& mesh, const std::vector<double>& indicator,
+                  const AdaptiveSettings& a, std::vector<char>& split) {
   std::vector<int> order(mesh.patches.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int x, int y) { return indicator[x] > indicator[y]; });
@@ -65,7 +68,8 @@ int choosePatches(const PatchMesh& mesh, const std::vector<double>& indicator, c
 
 }  // namespace
 
-std::vector<double> refinementIndicator(const Scene& scene, const PatchMesh& mesh, const std::vector<Vec3>& radiosity,
+std::vector<double> refinementIndicator(const Scene& scene, const PatchMesh& mesh,
+                                        const std::vector<Vec3>& radiosity,
                                         const std::vector<char>& shadowed) {
   std::vector<std::vector<int>> nb = surfaceNeighbours(mesh);
   double power = 0;  // Σ A_k Y(B_k): the scale the indicator is relative to
@@ -82,8 +86,8 @@ std::vector<double> refinementIndicator(const Scene& scene, const PatchMesh& mes
   return ind;
 }
 
-std::vector<char> shadowBoundaryPatches(const Scene& scene, const PatchMesh& mesh, const Visibility& visibility,
-                                        int perSurface) {
+std::vector<char> shadowBoundaryPatches(const Scene& scene, const PatchMesh& mesh,
+                                        const Visibility& visibility, int perSurface) {
   std::vector<Vec3> points, normals;
   emitterPoints(scene, mesh, perSurface, points, normals);
   std::vector<char> shadowed(mesh.patches.size(), 0);
@@ -103,8 +107,8 @@ std::vector<char> shadowBoundaryPatches(const Scene& scene, const PatchMesh& mes
   return shadowed;
 }
 
-AdaptiveResult solveAdaptive(const Scene& scene, const PipelineSettings& settings, const AdaptiveSettings& adaptive,
-                             const PipelineLog& log) {
+AdaptiveResult solveAdaptive(const Scene& scene, const PipelineSettings& settings,
+                             const AdaptiveSettings& adaptive, const PipelineLog& log) {
   auto start = Clock::now();
   AdaptiveResult r;
   auto t = Clock::now();
@@ -121,21 +125,23 @@ AdaptiveResult solveAdaptive(const Scene& scene, const PipelineSettings& setting
     info.seconds.mesh = meshSeconds;
     t = Clock::now();
     std::vector<char> shadowed;
-    if (adaptive.shadowBoundaries) shadowed = shadowBoundaryPatches(scene, mesh, *m.rays, adaptive.emitterPoints);
+    if (adaptive.shadowBoundaries)
+      shadowed = shadowBoundaryPatches(scene, mesh, *m.rays, adaptive.emitterPoints);
     info.shadowPatches = int(std::count(shadowed.begin(), shadowed.end(), 1));
     std::vector<double> ind = refinementIndicator(scene, mesh, m.radiosity, shadowed);
     info.maxIndicator = ind.empty() ? 0 : *std::max_element(ind.begin(), ind.end());
     std::vector<char> split;
     int count = round < adaptive.maxRounds ? choosePatches(mesh, ind, adaptive, split) : 0;
-    r.stopReason = round >= adaptive.maxRounds            ? "maximum rounds reached"
+    r.stopReason = round >= adaptive.maxRounds               ? "maximum rounds reached"
                    : info.maxIndicator <= adaptive.tolerance ? "indicator below tolerance"
-                   : count == 0                               ? "patch budget or minimum area reached"
-                                                              : "";
+                   : count == 0 ? "patch budget or minimum area reached"
+                                : "";
     info.split = count;
     if (log.message)
-      log.message("adaptive round " + std::to_string(round) + ": " + std::to_string(info.patches) + " patches, " +
-                  std::to_string(info.shadowPatches) + " on shadow boundaries, max indicator " +
-                  std::to_string(info.maxIndicator) + ", splitting " + std::to_string(count));
+      log.message("adaptive round " + std::to_string(round) + ": " + std::to_string(info.patches) +
+                  " patches, " + std::to_string(info.shadowPatches) +
+                  " on shadow boundaries, max indicator " + std::to_string(info.maxIndicator) +
+                  ", splitting " + std::to_string(count));
     if (count == 0) {
       r.final = std::move(m);
       r.rounds.push_back(info);

@@ -12,14 +12,14 @@ namespace radkit {
 
 /// When and where to refine. The starting mesh is PipelineSettings::mesh.
 struct AdaptiveSettings {
-  int maxPatches = 2000;        ///< patch budget: stop before a round would exceed it
-  int maxRounds = 8;            ///< refine-and-solve rounds after the first solve
+  int maxPatches = 2000;  ///< patch budget: stop before a round would exceed it
+  int maxRounds = 8;      ///< refine-and-solve rounds after the first solve
   /// Stop when no patch's indicator A_i·δ_i / Σ_k A_k Y(B_k) exceeds this (δ_i below).
   double tolerance = 1e-4;
-  double splitFraction = 0.25;  ///< split at most this fraction of the patches per round
-  bool shadowBoundaries = true; ///< also split patches whose corners disagree on seeing an emitter
-  int emitterPoints = 16;       ///< points per emitter surface used by the shadow test
-  double minAreaFraction = 1e-6; ///< never split a patch smaller than this × total area
+  double splitFraction = 0.25;   ///< split at most this fraction of the patches per round
+  bool shadowBoundaries = true;  ///< also split patches whose corners disagree on seeing an emitter
+  int emitterPoints = 16;        ///< points per emitter surface used by the shadow test
+  double minAreaFraction = 1e-6;  ///< never split a patch smaller than this × total area
 };
 
 /// One round: the mesh it solved on and what it decided.
@@ -37,26 +37,27 @@ struct AdaptiveResult {
   PipelineResult final;
   std::vector<AdaptiveRound> rounds;
   std::string stopReason;
-  double seconds = 0;            ///< wall clock of every round
+  double seconds = 0;  ///< wall clock of every round
 };
 
 /// \brief Refinement indicator per patch: A_i·δ_i / Σ_k A_k Y(B_k), with δ_i the largest
 /// |Y(B_i) − Y(B_j)| over the neighbours j on the same surface (surfaceNeighbours), raised to
 /// Y(B_i) when shadowed[i] (a shadow boundary can change B across the patch by all of its
 /// direct part). Y = Rec. 709 luminance. Emitters get 0: their B is mostly E.
-std::vector<double> refinementIndicator(const Scene& scene, const PatchMesh& mesh, const std::vector<Vec3>& radiosity,
+std::vector<double> refinementIndicator(const Scene& scene, const PatchMesh& mesh,
+                                        const std::vector<Vec3>& radiosity,
                                         const std::vector<char>& shadowed);
 
 /// \brief Marks patches crossed by a shadow boundary: for some point on an emitter, one corner
 /// of the patch (pulled 1e-3 toward the centroid) sees it and another does not.
-std::vector<char> shadowBoundaryPatches(const Scene& scene, const PatchMesh& mesh, const Visibility& visibility,
-                                        int emitterPoints);
+std::vector<char> shadowBoundaryPatches(const Scene& scene, const PatchMesh& mesh,
+                                        const Visibility& visibility, int emitterPoints);
 
 /// \brief Solves on settings.mesh, then refines and re-solves until the indicator is below
 /// adaptive.tolerance, the patch budget or maxRounds is reached. Form factors are recomputed
 /// from scratch each round (settings.formFactors); the first of settings.solvers solves.
 /// Throws what runPipeline throws.
-AdaptiveResult solveAdaptive(const Scene& scene, const PipelineSettings& settings, const AdaptiveSettings& adaptive,
-                             const PipelineLog& log = {});
+AdaptiveResult solveAdaptive(const Scene& scene, const PipelineSettings& settings,
+                             const AdaptiveSettings& adaptive, const PipelineLog& log = {});
 
 }  // namespace radkit

@@ -10,10 +10,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "radiosity/form_factors.h"
-#include "util/process_memory.h"
-#include "radiosity/patch_pairs.h"
 #include "geometry/sampling.h"
+#include "radiosity/form_factors.h"
+#include "radiosity/patch_pairs.h"
+#include "util/process_memory.h"
 
 namespace radkit {
 
@@ -30,23 +30,23 @@ std::vector<Segment> referenceSegments(const PatchMesh& mesh, const RayScene& sc
   const int n = table.size();
   tbb::parallel_for(tbb::blocked_range<long long>(0, count, 4096),
                     [&](const tbb::blocked_range<long long>& r) {
-    Rng rng(seed, std::uint64_t(r.begin()), 0);
-    for (long long k = r.begin(); k < r.end(); ++k) {
-      int i = 0, j = 0;
-      for (int attempt = 0; attempt < 1000; ++attempt) {
-        i = int(rng.nextBits() % std::uint64_t(n));
-        j = int(rng.nextBits() % std::uint64_t(n));
-        if (i != j && table.facing(i, j)) break;
-      }
-      const PatchInfo& a = table[i];
-      const PatchInfo& b = table[j];
-      Vec3 x = samplePatchUniform(a.v, a.count, rng.uniform(), rng.uniform());
-      Vec3 y = samplePatchUniform(b.v, b.count, rng.uniform(), rng.uniform());
-      Vec3 p = liftToward(x, a.normal, y, scene.epsilon());
-      Vec3 q = liftToward(y, b.normal, x, scene.epsilon());
-      segments[std::size_t(k)] = {p, q - p};
-    }
-  });
+                      Rng rng(seed, std::uint64_t(r.begin()), 0);
+                      for (long long k = r.begin(); k < r.end(); ++k) {
+                        int i = 0, j = 0;
+                        for (int attempt = 0; attempt < 1000; ++attempt) {
+                          i = int(rng.nextBits() % std::uint64_t(n));
+                          j = int(rng.nextBits() % std::uint64_t(n));
+                          if (i != j && table.facing(i, j)) break;
+                        }
+                        const PatchInfo& a = table[i];
+                        const PatchInfo& b = table[j];
+                        Vec3 x = samplePatchUniform(a.v, a.count, rng.uniform(), rng.uniform());
+                        Vec3 y = samplePatchUniform(b.v, b.count, rng.uniform(), rng.uniform());
+                        Vec3 p = liftToward(x, a.normal, y, scene.epsilon());
+                        Vec3 q = liftToward(y, b.normal, x, scene.epsilon());
+                        segments[std::size_t(k)] = {p, q - p};
+                      }
+                    });
   return segments;
 }
 
@@ -97,13 +97,17 @@ nlohmann::json toJson(const FormFactorBenchmark& b) {
       {"benchmark", "formfactors"},
       {"patches", b.patches},
       {"threads", b.threads},
-      {"figure", {{"name", "visibility rays per second inside point-polygon"},
-                  {"rays", b.raysCast}, {"seconds", b.raySeconds},
-                  {"rays_per_second", b.raysPerSecond}}},
-      {"reference", {{"name", "raw Embree rtcOccluded1 on random patch-to-patch segments"},
-                     {"rays", b.referenceRays}, {"seconds", b.referenceSeconds},
-                     {"rays_per_second", b.referenceRaysPerSecond},
-                     {"occluded_fraction", b.referenceOccludedFraction}}},
+      {"figure",
+       {{"name", "visibility rays per second inside point-polygon"},
+        {"rays", b.raysCast},
+        {"seconds", b.raySeconds},
+        {"rays_per_second", b.raysPerSecond}}},
+      {"reference",
+       {{"name", "raw Embree rtcOccluded1 on random patch-to-patch segments"},
+        {"rays", b.referenceRays},
+        {"seconds", b.referenceSeconds},
+        {"rays_per_second", b.referenceRaysPerSecond},
+        {"occluded_fraction", b.referenceOccludedFraction}}},
       {"ratio", b.ratio},
       {"form_factor_seconds", b.formFactorSeconds},
       {"rays_per_second_overall", b.raysPerSecondOverall},

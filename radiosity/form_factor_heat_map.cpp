@@ -1,7 +1,6 @@
 // Heat-map rendering on util's Canvas (text by stb_easy_font, PNG by libstb).
 #include "radiosity/form_factor_heat_map.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -17,7 +16,8 @@ namespace {
 /// Mean of F over each block×block tile: the downsampled matrix, row-major.
 std::vector<double> blockMeans(const FormFactorMatrix& f, int n, int block, int cells) {
   std::vector<double> sum(std::size_t(cells) * cells, 0.0);
-  forEachNonZero(f, [&](int i, int j, double v) { sum[std::size_t(i / block) * cells + j / block] += v; });
+  forEachNonZero(
+      f, [&](int i, int j, double v) { sum[std::size_t(i / block) * cells + j / block] += v; });
   for (int a = 0; a < cells; ++a)
     for (int b = 0; b < cells; ++b) {
       int rows = std::min(n, (a + 1) * block) - a * block;
@@ -33,14 +33,15 @@ void writeFormFactorHeatMap(const std::string& path, const PatchMesh& mesh,
                             const std::vector<std::string>& names, const FormFactorMatrix& f,
                             const HeatMapSettings& s) {
   const int n = std::max(1, matrixSize(f));
-  const int block = (n + s.matrixPixels - 1) / s.matrixPixels;        // patches per pixel
-  const int cells = (n + block - 1) / block;                           // matrix cells per side
-  const int cellPx = std::max(1, s.matrixPixels / cells);              // pixels per cell
+  const int block = (n + s.matrixPixels - 1) / s.matrixPixels;  // patches per pixel
+  const int cells = (n + block - 1) / block;                    // matrix cells per side
+  const int cellPx = std::max(1, s.matrixPixels / cells);       // pixels per cell
   const int side = cells * cellPx, fs = s.fontScale, th = Canvas::textHeight(fs);
   std::vector<double> value = blockMeans(f, matrixSize(f), block, cells);
 
   int nameWidth = 0;
-  for (const std::string& name : names) nameWidth = std::max(nameWidth, Canvas::textWidth(name, fs));
+  for (const std::string& name : names)
+    nameWidth = std::max(nameWidth, Canvas::textWidth(name, fs));
   const int left = nameWidth + 12, top = nameWidth + 12 + (s.title.empty() ? 0 : th + 12);
   const std::string legend = block > 1 ? "block mean of F" : "F_ij";
   const int barArea = std::max(28 + Canvas::textWidth("1e-10", fs), Canvas::textWidth(legend, fs));
@@ -56,7 +57,8 @@ void writeFormFactorHeatMap(const std::string& path, const PatchMesh& mesh,
   // Surface boundaries and names: rows on the left, columns on top (vertical text).
   int lastLabel = -2 * th;
   for (std::size_t surf = 0; surf + 1 < mesh.surfaceBegin.size(); ++surf) {
-    int p0 = mesh.surfaceBegin[surf] / block * cellPx, p1 = mesh.surfaceBegin[surf + 1] / block * cellPx;
+    int p0 = mesh.surfaceBegin[surf] / block * cellPx,
+        p1 = mesh.surfaceBegin[surf + 1] / block * cellPx;
     if (surf > 0) {
       canvas.fill(left + p0, top, left + p0 + 1, top + side, {220, 50, 47});
       canvas.fill(left, top + p0, left + side, top + p0 + 1, {220, 50, 47});
@@ -64,7 +66,8 @@ void writeFormFactorHeatMap(const std::string& path, const PatchMesh& mesh,
     int mid = (p0 + p1) / 2 - th / 2;
     if (surf >= names.size() || p1 <= p0 || mid < lastLabel + th + 2) continue;
     canvas.text(left - 6 - Canvas::textWidth(names[surf], fs), top + mid, names[surf], fs);
-    canvas.text(left + mid, top - 6 - Canvas::textWidth(names[surf], fs), names[surf], fs, {0, 0, 0}, true);
+    canvas.text(left + mid, top - 6 - Canvas::textWidth(names[surf], fs), names[surf], fs,
+                {0, 0, 0}, true);
     lastLabel = mid;
   }
 
@@ -85,14 +88,16 @@ Rgb8 LogColourScale::colour(double v) const {
   return v > 0 ? viridis((std::log10(v) - lo) / (hi - lo)) : Rgb8{225, 225, 225};
 }
 
-void LogColourScale::drawBar(Canvas& canvas, int x, int top, int side, const std::string& legend, int fs) const {
+void LogColourScale::drawBar(Canvas& canvas, int x, int top, int side, const std::string& legend,
+                             int fs) const {
   const int th = Canvas::textHeight(fs);
   for (int y = 0; y < side; ++y)
     canvas.fill(x, top + y, x + 24, top + y + 1, viridis(1.0 - double(y) / std::max(1, side - 1)));
   for (int d = lo; d <= hi; ++d) {
     int y = top + int(std::lround(double(hi - d) / (hi - lo) * (side - 1)));
     canvas.fill(x - 4, y, x, y + 1, {0, 0, 0});
-    canvas.text(x + 28, std::clamp(y - th / 2, 0, canvas.height() - th), "1e" + std::to_string(d), fs);
+    canvas.text(x + 28, std::clamp(y - th / 2, 0, canvas.height() - th), "1e" + std::to_string(d),
+                fs);
   }
   canvas.text(x, top - 2 * th - 6, legend, fs);
 }

@@ -11,10 +11,10 @@
 namespace radkit {
 
 struct HeatMapSettings {
-  int matrixPixels = 800;     ///< target side of the matrix area in pixels
-  double decades = 6;         ///< log colour scale spans at most this many decades below max
-  int fontScale = 2;          ///< stb_easy_font pixels per font unit
-  std::string title;          ///< drawn above the matrix when non-empty
+  int matrixPixels = 800;  ///< target side of the matrix area in pixels
+  double decades = 6;      ///< log colour scale spans at most this many decades below max
+  int fontScale = 2;       ///< stb_easy_font pixels per font unit
+  std::string title;       ///< drawn above the matrix when non-empty
 };
 
 /// \brief Writes the heat map as PNG (path + ".tmp", then renamed). Row i, column j shows
@@ -25,8 +25,8 @@ struct HeatMapSettings {
 /// the b×b block of F it covers (b = ceil(n/matrixPixels)), so a pixel is the average
 /// coupling of the patches it stands for, zeros included.
 void writeFormFactorHeatMap(const std::string& path, const PatchMesh& mesh,
-                            const std::vector<std::string>& surfaceNames,
-                            const FormFactorMatrix& f, const HeatMapSettings& settings = {});
+                            const std::vector<std::string>& surfaceNames, const FormFactorMatrix& f,
+                            const HeatMapSettings& settings = {});
 
 /// A log10 colour scale over whole decades [10^lo, 10^hi] (viridis; zeros light grey), spanning
 /// at most `decades` below the largest value; shared by the F heat map and the link matrix.
@@ -35,7 +35,8 @@ struct LogColourScale {
   LogColourScale(const std::vector<double>& values, double decades);
   Rgb8 colour(double v) const;
   /// A vertical bar of `side` pixels at (x, top), a label per decade and the legend above.
-  void drawBar(Canvas& canvas, int x, int top, int side, const std::string& legend, int fontScale) const;
+  void drawBar(Canvas& canvas, int x, int top, int side, const std::string& legend,
+               int fontScale) const;
 };
 
 }  // namespace radkit

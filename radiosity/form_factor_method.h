@@ -23,7 +23,7 @@ struct FormFactorSettings {
   std::uint64_t seed = 1;                ///< --seed: every stream derives from it
   bool enforceReciprocity = false;       ///< --ff-enforce reciprocity: A_iF_ij, A_jF_ji → mean
   FormFactorPrecision precision = FormFactorPrecision::Double;  ///< --ff-storage float
-  std::size_t memoryBudget = std::size_t(8) << 30;               ///< --memory-budget, bytes
+  std::size_t memoryBudget = std::size_t(8) << 30;              ///< --memory-budget, bytes
   QuadratureSettings quadrature;  ///< point-polygon's cubature over patch i
   bool cullUnblockable = true;    ///< point-polygon, monte-carlo: no rays for unblockable pairs
 };
@@ -39,14 +39,14 @@ struct RowEntry {
 struct RowResult {
   std::vector<RowEntry> entries;  ///< non-zero entries only, columns ascending
   long long raysCast = 0;
-  long long raysSaved = 0;          ///< rays not cast because nothing could block the pair
-  long long pairsCulled = 0;        ///< facing pairs proven unblockable
-  long long pairsFacing = 0;        ///< pairs that passed the facing test
-  long long overlappingPairs = 0;   ///< coplanar pairs sharing area (coincident patches)
-  long long quadraturePoints = 0;   ///< contour-formula evaluations
-  double raySeconds = 0;            ///< thread time spent casting (and sampling) rays
-  double geometrySeconds = 0;       ///< thread time spent on everything else
-  int firstOverlap[2] = {-1, -1};   ///< one overlapping pair, for the report
+  long long raysSaved = 0;         ///< rays not cast because nothing could block the pair
+  long long pairsCulled = 0;       ///< facing pairs proven unblockable
+  long long pairsFacing = 0;       ///< pairs that passed the facing test
+  long long overlappingPairs = 0;  ///< coplanar pairs sharing area (coincident patches)
+  long long quadraturePoints = 0;  ///< contour-formula evaluations
+  double raySeconds = 0;           ///< thread time spent casting (and sampling) rays
+  double geometrySeconds = 0;      ///< thread time spent on everything else
+  int firstOverlap[2] = {-1, -1};  ///< one overlapping pair, for the report
   void clear();
 };
 

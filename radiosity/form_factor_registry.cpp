@@ -29,8 +29,10 @@ constexpr MethodEntry kMethods[] = {
      createPointPolygon},
     {"monte-carlo", "K uniform point pairs per patch pair (area-to-area), slow reference",
      createMonteCarlo},
-    {"hemisphere", "K cosine-distributed rays per patch, counting first hits (ray-traced "
-     "hemicube)", createHemisphere},
+    {"hemisphere",
+     "K cosine-distributed rays per patch, counting first hits (ray-traced "
+     "hemicube)",
+     createHemisphere},
 };
 }  // namespace
 

@@ -27,8 +27,8 @@ std::string StoragePlan::storageName() const {
 }
 
 std::string StoragePlan::describe() const {
-  return storageName() + ": " + formatBytes(double(bytes)) + " needed (" +
-         std::to_string(patches) + " patches; budget " + formatBytes(double(budget)) + ")";
+  return storageName() + ": " + formatBytes(double(bytes)) + " needed (" + std::to_string(patches) +
+         " patches; budget " + formatBytes(double(budget)) + ")";
 }
 
 namespace {
@@ -53,7 +53,7 @@ long long facingPairsLowerBound(const PatchMesh& mesh) {
   const long long n = table.size();
   const long long pairs = n * (n - 1) / 2;
   const int samples = 200000;
-  if (pairs <= 4LL * samples) return 0;  // the exact count is as quick
+  if (pairs <= 4LL * samples) return 0;         // the exact count is as quick
   std::uint64_t state = 0x9E3779B97F4A7C15ULL;  // fixed seed: the same mesh, the same answer
   auto next = [&] {
     state ^= state << 13, state ^= state >> 7, state ^= state << 17;
@@ -75,8 +75,8 @@ long long facingPairsLowerBound(const PatchMesh& mesh) {
 std::size_t sparseBytes(int n, long long pairs, std::size_t scalar) {
   std::size_t nnz = std::size_t(2 * pairs);
   std::size_t entry = 16;  // std::pair<int, double> per entry while assembling
-  return (std::size_t(n) + 1) * sizeof(std::int64_t) + nnz * (sizeof(int) + scalar) +
-         nnz * entry + std::size_t(n) * 24;
+  return (std::size_t(n) + 1) * sizeof(std::int64_t) + nnz * (sizeof(int) + scalar) + nnz * entry +
+         std::size_t(n) * 24;
 }
 }  // namespace
 
@@ -102,14 +102,16 @@ StoragePlan planStorage(const PatchMesh& mesh, const FormFactorSettings& setting
 
   std::string msg = "form factors for " + std::to_string(n) + " patches do not fit the memory " +
                     "budget of " + formatBytes(double(plan.budget)) + ": dense needs " +
-                    formatBytes(double(plan.denseBytes)) + ", sparse " + (estimated ? "at least " : "up to ") +
-                    formatBytes(double(plan.sparseBytes)) + " (" + (estimated ? "at least " : "") +
-                    std::to_string(plan.facingPairs) + " facing pairs" +
-                    (estimated ? ", estimated from 200000 sampled pairs" : "") + "). Fix: raise --memory-budget, " +
+                    formatBytes(double(plan.denseBytes)) + ", sparse " +
+                    (estimated ? "at least " : "up to ") + formatBytes(double(plan.sparseBytes)) +
+                    " (" + (estimated ? "at least " : "") + std::to_string(plan.facingPairs) +
+                    " facing pairs" + (estimated ? ", estimated from 200000 sampled pairs" : "") +
+                    "). Fix: raise --memory-budget, " +
                     "use fewer patches (--max-area larger or --patches smaller)";
   if (settings.precision == FormFactorPrecision::Double)
     msg += ", or store F in single precision (--ff-storage float: dense " +
-           formatBytes(double(plan.denseBytes / 2)) + ", sparse " + (estimated ? "at least " : "up to ") +
+           formatBytes(double(plan.denseBytes / 2)) + ", sparse " +
+           (estimated ? "at least " : "up to ") +
            formatBytes(double(sparseBytes(n, plan.facingPairs, 4))) + ")";
   throw MemoryBudgetError(msg);
 }

@@ -25,10 +25,10 @@ struct StoragePlan {
   bool dense = true;
   FormFactorPrecision precision = FormFactorPrecision::Double;
   int patches = 0;
-  std::size_t denseBytes = 0;     ///< n² · sizeof(scalar)
-  long long facingPairs = -1;     ///< unordered pairs that can be non-zero (-1: not counted)
-  std::size_t sparseBytes = 0;    ///< CSR bound incl. assembly buffers (0: not computed)
-  std::size_t bytes = 0;          ///< peak bytes of the chosen storage
+  std::size_t denseBytes = 0;   ///< n² · sizeof(scalar)
+  long long facingPairs = -1;   ///< unordered pairs that can be non-zero (-1: not counted)
+  std::size_t sparseBytes = 0;  ///< CSR bound incl. assembly buffers (0: not computed)
+  std::size_t bytes = 0;        ///< peak bytes of the chosen storage
   std::size_t budget = 0;
   /// "dense-double", "dense-float", "csr-double" or "csr-float" (solvers/matrix.h names).
   std::string storageName() const;
@@ -60,7 +60,8 @@ void forEachNonZero(const FormFactorMatrix& f, Fn&& fn) {
           }
         } else {
           for (int i = 0; i < m.rows(); ++i)
-            for (auto k = m.rowBegin(i); k < m.rowEnd(i); ++k) fn(i, m.column(k), double(m.value(k)));
+            for (auto k = m.rowBegin(i); k < m.rowEnd(i); ++k)
+              fn(i, m.column(k), double(m.value(k)));
         }
       },
       f);

@@ -113,7 +113,6 @@ void writeFormFactorBinary(const std::string& path, const FormFactorMatrix& f) {
   });
 }
 
-
 void writeSurfaceFormFactors(const std::string& path, const PatchMesh& mesh,
                              const std::vector<std::string>& names, const FormFactorMatrix& f) {
   DenseMatrix<double> s = surfaceFormFactors(mesh, f);

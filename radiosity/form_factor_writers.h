@@ -41,5 +41,4 @@ void writeSurfaceFormFactors(const std::string& path, const PatchMesh& mesh,
 /// \brief The names of a scene's surfaces, in order.
 std::vector<std::string> surfaceNames(const Scene& scene);
 
-
 }  // namespace radkit

@@ -51,7 +51,9 @@ struct Totals {
 class RowProgress {
  public:
   RowProgress(const FormFactorProgress& report, int n, bool upper)
-      : m_report(report), m_n(n), m_upper(upper),
+      : m_report(report),
+        m_n(n),
+        m_upper(upper),
         m_total(upper ? double(n) * (n + 1) / 2 : double(n) * n) {}
   void rowDone(int i) {
     if (!m_report) return;
@@ -124,8 +126,10 @@ void symmetrizeRows(SparseRows& rows, const PatchMesh& mesh) {
     std::sort(r.begin(), r.end());
     std::size_t w = 0;
     for (std::size_t k = 0; k < r.size(); ++k) {
-      if (w > 0 && r[w - 1].first == r[k].first) r[w - 1].second += r[k].second;
-      else r[w++] = r[k];
+      if (w > 0 && r[w - 1].first == r[k].first)
+        r[w - 1].second += r[k].second;
+      else
+        r[w++] = r[k];
     }
     r.resize(w);
   }
@@ -161,8 +165,8 @@ FormFactorMatrix assembleCsr(SparseRows& rows, bool upper, const PatchMesh& mesh
 }
 
 template <typename T>
-FormFactorMatrix computeSparse(const FormFactorMethod& method, const PatchMesh& mesh,
-                               bool enforce, RowProgress& progress, Totals& totals) {
+FormFactorMatrix computeSparse(const FormFactorMethod& method, const PatchMesh& mesh, bool enforce,
+                               RowProgress& progress, Totals& totals) {
   SparseRows rows(mesh.size());
   totals = computeRows(method, mesh.size(), progress, [&](int i, const RowResult& row) {
     rows[i].reserve(row.entries.size());
@@ -196,8 +200,10 @@ FormFactorResult computeFormFactors(const PatchMesh& mesh, const Visibility& vis
   std::unique_ptr<FormFactorMethod> method = makeFormFactorMethod(mesh, visibility, settings);
   const double scalar = settings.precision == FormFactorPrecision::Double ? 8 : 4;
   if (log && double(mesh.size()) * mesh.size() * scalar > double(settings.memoryBudget))
-    log("form factors: dense F does not fit --memory-budget; sizing sparse storage from the pairs that face "
-        "each other (up to " + std::to_string((long long)mesh.size() * (mesh.size() - 1) / 2) + " tests)");
+    log("form factors: dense F does not fit --memory-budget; sizing sparse storage from the pairs "
+        "that face "
+        "each other (up to " +
+        std::to_string((long long)mesh.size() * (mesh.size() - 1) / 2) + " tests)");
   result.plan = planStorage(mesh, settings);
   if (log) log("form factors: " + result.plan.describe());
   d.phaseSeconds.push_back({"setup", secondsSince(t)});
@@ -211,8 +217,9 @@ FormFactorResult computeFormFactors(const PatchMesh& mesh, const Visibility& vis
     result.matrix = dbl ? computeDense<double>(*method, mesh, progress, totals)
                         : computeDense<float>(*method, mesh, progress, totals);
   else
-    result.matrix = dbl ? computeSparse<double>(*method, mesh, settings.enforceReciprocity, progress, totals)
-                        : computeSparse<float>(*method, mesh, settings.enforceReciprocity, progress, totals);
+    result.matrix =
+        dbl ? computeSparse<double>(*method, mesh, settings.enforceReciprocity, progress, totals)
+            : computeSparse<float>(*method, mesh, settings.enforceReciprocity, progress, totals);
   if (report) report(1.0);
   d.phaseSeconds.push_back({"compute", secondsSince(t)});
 
@@ -220,11 +227,14 @@ FormFactorResult computeFormFactors(const PatchMesh& mesh, const Visibility& vis
   if (settings.enforceReciprocity && result.plan.dense) {
     d.maxRelativeReciprocityErrorBeforeEnforcement =
         maxRelativeReciprocityError(result.matrix, mesh);
-    std::visit([&](auto& m) {
-      using M = std::decay_t<decltype(m)>;
-      if constexpr (std::is_same_v<M, DenseMatrix<double>> || std::is_same_v<M, DenseMatrix<float>>)
-        enforceReciprocity(m, mesh);
-    }, result.matrix);
+    std::visit(
+        [&](auto& m) {
+          using M = std::decay_t<decltype(m)>;
+          if constexpr (std::is_same_v<M, DenseMatrix<double>> ||
+                        std::is_same_v<M, DenseMatrix<float>>)
+            enforceReciprocity(m, mesh);
+        },
+        result.matrix);
   }
   d.phaseSeconds.push_back({"reciprocity", secondsSince(t)});
 

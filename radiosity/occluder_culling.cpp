@@ -5,8 +5,7 @@
 
 namespace radkit {
 
-OccluderCulling::OccluderCulling(const PatchMesh& mesh, const PatchTable& table)
-    : m_table(table) {
+OccluderCulling::OccluderCulling(const PatchMesh& mesh, const PatchTable& table) : m_table(table) {
   double tol = table.planeTolerance();
   for (std::size_t s = 0; s + 1 < mesh.surfaceBegin.size(); ++s) {
     SurfaceRecord r;

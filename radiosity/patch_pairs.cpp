@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "radiosity/contour.h"
 #include "geometry/sampling.h"
+#include "radiosity/contour.h"
 
 namespace radkit {
 

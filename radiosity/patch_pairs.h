@@ -17,9 +17,9 @@ struct PatchInfo {
   double area = 0;
   double planeOffset = 0;  ///< n·p for points p in the plane
   Bounds3 bounds;
-  Vec3 sphereCentre;        ///< bounding sphere (centroid, farthest vertex)
+  Vec3 sphereCentre;  ///< bounding sphere (centroid, farthest vertex)
   double sphereRadius = 0;
-  double split = 1;         ///< patchSplit(): area share of triangle (0,1,2)
+  double split = 1;  ///< patchSplit(): area share of triangle (0,1,2)
   int surface = -1;
 
   /// Signed distance of p from the patch plane (positive on the front side).

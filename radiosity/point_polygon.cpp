@@ -9,11 +9,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "geometry/sampling.h"
 #include "radiosity/contour.h"
 #include "radiosity/form_factor_method.h"
 #include "radiosity/occluder_culling.h"
 #include "radiosity/patch_pairs.h"
-#include "geometry/sampling.h"
 #include "util/format.h"
 
 namespace radkit {
@@ -23,7 +23,10 @@ namespace {
 class PointPolygon final : public FormFactorMethod {
  public:
   PointPolygon(const PatchMesh& mesh, const Visibility& visibility, const FormFactorSettings& s)
-      : m_table(mesh), m_culling(mesh, m_table), m_visibility(visibility), m_settings(s),
+      : m_table(mesh),
+        m_culling(mesh, m_table),
+        m_visibility(visibility),
+        m_settings(s),
         m_cubature(s.quadrature) {}
 
   std::string name() const override { return "point-polygon"; }
@@ -33,8 +36,8 @@ class PointPolygon final : public FormFactorMethod {
       << "adaptive " << m_settings.quadrature.order << "x" << m_settings.quadrature.order
       << " Gauss-Legendre cubature (tolerance " << m_settings.quadrature.tolerance
       << ", depth <= " << m_settings.quadrature.maxDepth << ", far ratio "
-      << m_settings.quadrature.farRatio << "), visibility from K="
-      << m_settings.samples << " stratified rays per pair"
+      << m_settings.quadrature.farRatio << "), visibility from K=" << m_settings.samples
+      << " stratified rays per pair"
       << (m_settings.cullUnblockable ? " (none for unblockable pairs)" : "")
       << ", F_ji by reciprocity, seed " << m_settings.seed;
     return d.str();

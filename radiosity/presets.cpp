@@ -21,7 +21,8 @@ struct Preset {
 constexpr Preset kPresets[] = {
     {"draft", 1000, 16, 1e-4, "Cornell box: ~2.4 s, surface error 1.4e-2, patch error 4.5e-3"},
     {"balanced", 4000, 16, 1e-6, "Cornell box: ~19 s, surface error 4.1e-3, patch error 1.5e-3"},
-    {"reference", 16000, 16, 1e-9, "Cornell box: ~280 s and 2 GiB (dense F), the study's reference"},
+    {"reference", 16000, 16, 1e-9,
+     "Cornell box: ~280 s and 2 GiB (dense F), the study's reference"},
 };
 
 const Preset& findPreset(const std::string& name) {
@@ -57,8 +58,9 @@ void applyPreset(const std::string& name, PipelineSettings& settings) {
 
 std::string describePreset(const std::string& name) {
   const Preset& p = findPreset(name);
-  return std::string(p.name) + ": about " + std::to_string(p.patches) + " patches, point-polygon K = " +
-         std::to_string(p.samples) + ", tolerance " + format("%.0e", p.tolerance) + "; " + p.measured;
+  return std::string(p.name) + ": about " + std::to_string(p.patches) +
+         " patches, point-polygon K = " + std::to_string(p.samples) + ", tolerance " +
+         format("%.0e", p.tolerance) + "; " + p.measured;
 }
 
 }  // namespace radkit

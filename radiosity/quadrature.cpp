@@ -66,7 +66,8 @@ bool AdaptiveCubature::isFar(const PatchChart& c, double s0, double s1, double t
 }
 
 AdaptiveCubature::AdaptiveCubature(const QuadratureSettings& settings)
-    : m_settings(settings), m_high(gaussLegendre(std::max(1, settings.order))),
+    : m_settings(settings),
+      m_high(gaussLegendre(std::max(1, settings.order))),
       m_low(gaussLegendre(std::max(1, settings.order - 1))) {}
 
 }  // namespace radkit

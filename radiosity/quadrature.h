@@ -36,9 +36,9 @@ class PatchChart {
 
 /// How finely point-polygon integrates over patch i.
 struct QuadratureSettings {
-  int order = 2;             ///< Gauss–Legendre points per axis per cell (1: midpoint, no refinement)
-  double tolerance = 1e-6;   ///< accept a cell when |Q_order − Q_order−1| <= its share (in F)
-  int maxDepth = 10;         ///< quadtree depth limit per cell
+  int order = 2;  ///< Gauss–Legendre points per axis per cell (1: midpoint, no refinement)
+  double tolerance = 1e-6;  ///< accept a cell when |Q_order − Q_order−1| <= its share (in F)
+  int maxDepth = 10;        ///< quadtree depth limit per cell
   /// A cell farther than farRatio × its diameter from the target's bounding sphere takes the
   /// order-n rule without an error estimate: there the integrand is smooth on the cell's
   /// scale and the rule's error falls as (diameter/distance)^(2n) (~1e-4 relative at 2, n=2).
@@ -87,8 +87,8 @@ class AdaptiveCubature {
 // ---- template definitions ----
 
 template <typename F>
-double AdaptiveCubature::rule(const PatchChart& c, const GaussLegendreRule& r, double s0,
-                              double s1, double t0, double t1, F& f, QuadratureStats& st) const {
+double AdaptiveCubature::rule(const PatchChart& c, const GaussLegendreRule& r, double s0, double s1,
+                              double t0, double t1, F& f, QuadratureStats& st) const {
   double ds = s1 - s0, dt = t1 - t0, sum = 0;
   for (std::size_t a = 0; a < r.nodes.size(); ++a) {
     double s = s0 + ds * r.nodes[a];

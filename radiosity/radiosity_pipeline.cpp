@@ -15,7 +15,9 @@ namespace radkit {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 std::string sci(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2g", v);
@@ -31,8 +33,9 @@ std::vector<std::string> numericalWarnings(const Scene& scene, const PipelineRes
   int tiny = 0;
   for (const Patch& p : r.mesh.patches) tiny += std::sqrt(p.area) < 100 * offset;
   if (tiny > 0)
-    out.push_back(std::to_string(tiny) + " patches are smaller than 100× the ray offset (" + sci(offset) + " " +
-                  scene.units + "): occlusion by and of them is not resolved (single-precision ray tests). "
+    out.push_back(std::to_string(tiny) + " patches are smaller than 100× the ray offset (" +
+                  sci(offset) + " " + scene.units +
+                  "): occlusion by and of them is not resolved (single-precision ray tests). "
                   "Fix: model features at least 1e-4 of the scene's size, or split the scene");
   // A row sum above 1 (visibility noise) creates light; reflection amplifies it by up to
   // ρ/(1 − ρ) in the solution.
@@ -51,18 +54,22 @@ std::vector<std::string> numericalWarnings(const Scene& scene, const PipelineRes
     forEachNonZero(r.formFactors->matrix, [&](int row, int col, double v) {
       if (row == i && v > fMax) fMax = v, j = col;
     });
-    const std::string head = "form-factor rows sum to up to 1 + " + sci(excess) + "; with reflectance up to " +
-                             sci(rhoMax) + " this can add up to " + sci(amplified) + " relative energy";
+    const std::string head = "form-factor rows sum to up to 1 + " + sci(excess) +
+                             "; with reflectance up to " + sci(rhoMax) + " this can add up to " +
+                             sci(amplified) + " relative energy";
     const Patch* from = &r.mesh.patches[i];
     const Patch* to = j >= 0 ? &r.mesh.patches[j] : nullptr;
     const double distance = to ? length(to->centroid - from->centroid) : 0;
     if (to && std::sqrt(to->area) > distance) {
-      out.push_back(head + ": patch " + std::to_string(i) + " of \"" + scene.surfaces[from->surface].name +
-                    "\" sees patch " + std::to_string(j) + " of \"" + scene.surfaces[to->surface].name + "\", " +
-                    sci(std::sqrt(to->area)) + " " + scene.units + " across but only " + sci(distance) + " " +
-                    scene.units + " away, too large for its form factor to be estimated (the mesh, not visibility "
-                    "noise). Fix: split \"" + scene.surfaces[to->surface].name + "\" finer: --max-area " +
-                    sci(distance * distance) + " or more --patches");
+      out.push_back(
+          head + ": patch " + std::to_string(i) + " of \"" + scene.surfaces[from->surface].name +
+          "\" sees patch " + std::to_string(j) + " of \"" + scene.surfaces[to->surface].name +
+          "\", " + sci(std::sqrt(to->area)) + " " + scene.units + " across but only " +
+          sci(distance) + " " + scene.units +
+          " away, too large for its form factor to be estimated (the mesh, not visibility "
+          "noise). Fix: split \"" +
+          scene.surfaces[to->surface].name + "\" finer: --max-area " + sci(distance * distance) +
+          " or more --patches");
     } else {
       out.push_back(head + " (visibility noise). Fix: raise --ff-samples or refine the mesh");
     }
@@ -93,15 +100,16 @@ std::vector<SolverChoice> parseSolverList(const std::string& text) {
   return out;
 }
 
-SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system, const SolverSettings& stopping,
-                      const PipelineLog& log) {
+SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system,
+                      const SolverSettings& stopping, const PipelineLog& log) {
   std::unique_ptr<Solver> solver = makeSolver(choice.name, SolverParams::parse(choice.parameters));
   SolveResult result = solve(*solver, system, stopping);
   if (log.progress) log.progress("solve " + choice.name, 1.0);
   return result;
 }
 
-PipelineResult runPipeline(const Scene& scene, const PipelineSettings& settings, const PipelineLog& log) {
+PipelineResult runPipeline(const Scene& scene, const PipelineSettings& settings,
+                           const PipelineLog& log) {
   auto t = Clock::now();
   std::vector<std::string> meshWarnings;
   PatchMesh mesh = subdivide(scene, settings.mesh, &meshWarnings);
@@ -128,11 +136,11 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
   r.seconds.rayScene = since(t);
 
   t = Clock::now();
-  r.formFactors = std::make_unique<FormFactorResult>(
-      computeFormFactors(r.mesh, *r.rays, settings.formFactors, [&](const std::string& m) { say(m); },
-                         [&](double f) {
-                           if (log.progress) log.progress("form factors", f);
-                         }));
+  r.formFactors = std::make_unique<FormFactorResult>(computeFormFactors(
+      r.mesh, *r.rays, settings.formFactors, [&](const std::string& m) { say(m); },
+      [&](double f) {
+        if (log.progress) log.progress("form factors", f);
+      }));
   r.seconds.formFactors = since(t);
 
   r.system = makeRadiositySystem(scene, r.mesh, r.formFactors->matrix);

@@ -53,12 +53,14 @@ struct PipelineResult {
   std::vector<SurfaceResult> surfaces;
   EnergyBalance energy;
   StageSeconds seconds;
-  std::vector<std::string> warnings;  ///< numerical limits met by this run (also sent to log.message)
+  std::vector<std::string>
+      warnings;  ///< numerical limits met by this run (also sent to log.message)
 };
 
 /// \brief Runs every stage on an already loaded scene. Throws std::invalid_argument for bad
 /// settings (unknown solver, K = 0), MemoryBudgetError when F fits no storage.
-PipelineResult runPipeline(const Scene& scene, const PipelineSettings& settings, const PipelineLog& log = {});
+PipelineResult runPipeline(const Scene& scene, const PipelineSettings& settings,
+                           const PipelineLog& log = {});
 
 /// \brief The same on a mesh made elsewhere (adaptive refinement, a lab's own mesher);
 /// settings.mesh is not used.
@@ -66,8 +68,8 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
                            const PipelineLog& log = {});
 
 /// \brief Solves one system with one solver from B = E, reporting progress after each step.
-SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system, const SolverSettings& stopping,
-                      const PipelineLog& log = {});
+SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system,
+                      const SolverSettings& stopping, const PipelineLog& log = {});
 
 /// \brief Parses "jacobi,sor:omega=1.2,southwell" (parameters after ':', ';'-separated
 /// key=value pairs) into choices; names are checked against the solver registry.

@@ -16,7 +16,8 @@ const Material& materialOf(const Scene& scene, const Patch& p) {
 }
 }  // namespace
 
-RadiositySystem makeRadiositySystem(const Scene& scene, const PatchMesh& mesh, const FormFactorMatrix& f) {
+RadiositySystem makeRadiositySystem(const Scene& scene, const PatchMesh& mesh,
+                                    const FormFactorMatrix& f) {
   RadiositySystem s;
   s.formFactors = &f;
   const double m2 = scene.metresPerUnit() * scene.metresPerUnit();
@@ -74,14 +75,15 @@ std::vector<SurfaceResult> surfaceResults(const Scene& scene, const PatchMesh& m
   return out;
 }
 
-void writeSurfacesCsv(const std::string& path, const Scene& scene, const std::vector<SurfaceResult>& results,
-                      bool photometric) {
+void writeSurfacesCsv(const std::string& path, const Scene& scene,
+                      const std::vector<SurfaceResult>& results, bool photometric) {
   const double m2 = scene.metresPerUnit() * scene.metresPerUnit();
   std::ostringstream o;
-  o << std::setprecision(17) << "surface,area,b_r,b_g,b_b" << (photometric ? ",luminance_cd_m2,illuminance_lux" : "")
-    << '\n';
+  o << std::setprecision(17) << "surface,area,b_r,b_g,b_b"
+    << (photometric ? ",luminance_cd_m2,illuminance_lux" : "") << '\n';
   for (const SurfaceResult& r : results) {
-    o << csvField(r.name) << ',' << r.area / m2 << ',' << r.radiosity.x << ',' << r.radiosity.y << ',' << r.radiosity.z;
+    o << csvField(r.name) << ',' << r.area / m2 << ',' << r.radiosity.x << ',' << r.radiosity.y
+      << ',' << r.radiosity.z;
     if (photometric) o << ',' << r.luminance << ',' << r.illuminance;
     o << '\n';
   }
@@ -103,8 +105,9 @@ EnergyBalance energyBalance(const Scene& scene, const PatchMesh& mesh, const For
   }
   for (int c = 0; c < 3; ++c)
     if (e.emitted[c] > 0)
-      e.relativeImbalance = std::max(e.relativeImbalance,
-                                     std::fabs(e.emitted[c] - e.absorbed[c] - e.escaped[c]) / e.emitted[c]);
+      e.relativeImbalance =
+          std::max(e.relativeImbalance,
+                   std::fabs(e.emitted[c] - e.absorbed[c] - e.escaped[c]) / e.emitted[c]);
   return e;
 }
 

@@ -13,7 +13,8 @@ namespace radkit {
 
 /// \brief B = E + ρFB for the patches: areas in m² (scene units converted), ρ and E per
 /// channel from each patch's surface material. `f` must outlive the system.
-RadiositySystem makeRadiositySystem(const Scene& scene, const PatchMesh& mesh, const FormFactorMatrix& f);
+RadiositySystem makeRadiositySystem(const Scene& scene, const PatchMesh& mesh,
+                                    const FormFactorMatrix& f);
 
 std::vector<Vec3> toVec3(const Channels& c);
 
@@ -26,9 +27,9 @@ constexpr double kLumensPerWatt = 683.0;
 /// Area-weighted means over one named surface.
 struct SurfaceResult {
   std::string name;
-  double area = 0;     ///< m²
-  Vec3 radiosity;      ///< W/m²
-  Vec3 irradiance;     ///< W/m²
+  double area = 0;         ///< m²
+  Vec3 radiosity;          ///< W/m²
+  Vec3 irradiance;         ///< W/m²
   double luminance = 0;    ///< cd/m²: 683 · Y(B) / π (Lambertian, L = B/π)
   double illuminance = 0;  ///< lux: 683 · Y(H)
 };
@@ -40,8 +41,8 @@ std::vector<SurfaceResult> surfaceResults(const Scene& scene, const PatchMesh& m
 
 /// \brief Writes `surface,area,b_r,b_g,b_b` (+ `luminance_cd_m2,illuminance_lux` when
 /// photometric); area in scene units² as in patches.csv.
-void writeSurfacesCsv(const std::string& path, const Scene& scene, const std::vector<SurfaceResult>& results,
-                      bool photometric);
+void writeSurfacesCsv(const std::string& path, const Scene& scene,
+                      const std::vector<SurfaceResult>& results, bool photometric);
 
 /// Power bookkeeping of a solution, in W per channel. Emitted light is either absorbed
 /// (A_i(1-ρ_i)H_i) or leaves the scene (A_i B_i (1 − Σ_j F_ij)); the relative imbalance
@@ -52,6 +53,7 @@ struct EnergyBalance {
 };
 
 EnergyBalance energyBalance(const Scene& scene, const PatchMesh& mesh, const FormFactorMatrix& f,
-                            const std::vector<Vec3>& radiosity, const std::vector<Vec3>& irradiance);
+                            const std::vector<Vec3>& radiosity,
+                            const std::vector<Vec3>& irradiance);
 
 }  // namespace radkit

@@ -14,7 +14,9 @@ namespace radkit {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 std::string format(const char* f, double v) {
   char buf[64];
@@ -22,7 +24,9 @@ std::string format(const char* f, double v) {
   return buf;
 }
 
-double total(const StageSeconds& s) { return s.mesh + s.rayScene + s.formFactors + s.solve + s.results; }
+double total(const StageSeconds& s) {
+  return s.mesh + s.rayScene + s.formFactors + s.solve + s.results;
+}
 
 StudyConfig makeConfig(StudyKnob knob, const PipelineSettings& base, int patches) {
   StudyConfig c;
@@ -51,7 +55,8 @@ double estimateSeconds(const StudyConfig& c, const std::vector<StudyRow>& done) 
     if (r.ran && (r.config.knob == StudyKnob::Mesh || r.config.knob == StudyKnob::FormFactors) &&
         r.config.settings.formFactors.method == ff.method)
       same.push_back(&r);
-  std::stable_sort(same.begin(), same.end(), [](auto* a, auto* b) { return a->patches < b->patches; });
+  std::stable_sort(same.begin(), same.end(),
+                   [](auto* a, auto* b) { return a->patches < b->patches; });
   double sec = formFactorWork(ff, n) / (ff.method == "point-polygon" ? 2.4e7 : 5e6);
   if (!same.empty()) {
     const StudyRow& m = *same.back();
@@ -65,15 +70,17 @@ double estimateSeconds(const StudyConfig& c, const std::vector<StudyRow>& done) 
         break;
       }
     double ratio = n / m.patches;
-    sec = m.seconds.formFactors * formFactorWork(ff, m.patches) / formFactorWork(m.config.settings.formFactors, m.patches) *
-              std::pow(ratio, p) +
-          m.seconds.solve * ratio * ratio + (m.seconds.mesh + m.seconds.rayScene + m.seconds.results) * ratio;
+    sec = m.seconds.formFactors * formFactorWork(ff, m.patches) /
+              formFactorWork(m.config.settings.formFactors, m.patches) * std::pow(ratio, p) +
+          m.seconds.solve * ratio * ratio +
+          (m.seconds.mesh + m.seconds.rayScene + m.seconds.results) * ratio;
   }
   return c.knob == StudyKnob::Adaptive ? 2.5 * sec : sec;  // adaptive: Σ of its rounds
 }
 
 /// Runs one pipeline configuration and keeps its solution (not its F).
-StudySolution runConfig(const Scene& scene, const StudyConfig& c, StudyRow& row, const PipelineLog& log,
+StudySolution runConfig(const Scene& scene, const StudyConfig& c, StudyRow& row,
+                        const PipelineLog& log,
                         const std::function<void(const PipelineResult&)>& alsoWithF) {
   StudySolution s;
   resetPeakMemory();
@@ -81,11 +88,13 @@ StudySolution runConfig(const Scene& scene, const StudyConfig& c, StudyRow& row,
     AdaptiveResult a = solveAdaptive(scene, c.settings, c.adaptive);
     for (const AdaptiveRound& round : a.rounds) {
       row.seconds.mesh += round.seconds.mesh, row.seconds.rayScene += round.seconds.rayScene;
-      row.seconds.formFactors += round.seconds.formFactors, row.seconds.solve += round.seconds.solve;
+      row.seconds.formFactors += round.seconds.formFactors,
+          row.seconds.solve += round.seconds.solve;
       row.seconds.results += round.seconds.results;
     }
     row.formFactorBytes = a.final.formFactors->diagnostics.matrixBytes;
-    row.iterations = a.final.solves.front().iterations, row.converged = a.final.solves.front().converged;
+    row.iterations = a.final.solves.front().iterations,
+    row.converged = a.final.solves.front().converged;
     row.note = a.stopReason + ", " + std::to_string(a.rounds.size()) + " rounds";
     s = {std::move(a.final.mesh), std::move(a.final.radiosity), std::move(a.final.surfaces)};
   } else {
@@ -105,18 +114,22 @@ StudySolution runConfig(const Scene& scene, const StudyConfig& c, StudyRow& row,
 }
 
 /// The solver knob: every solver and tolerance on one already computed system.
-void runSolverKnob(const Scene& scene, const StudySettings& st, const PipelineResult& r, const StudyRow& rung,
-                   std::vector<StudyRow>& rows, std::vector<StudySolution>& solutions) {
+void runSolverKnob(const Scene& scene, const StudySettings& st, const PipelineResult& r,
+                   const StudyRow& rung, std::vector<StudyRow>& rows,
+                   std::vector<StudySolution>& solutions) {
   for (const std::string& name : st.solvers)
     for (double tol : st.tolerances) {
       StudyRow row;
-      row.config = makeConfig(StudyKnob::Solver, st.baseline, rung.config.settings.mesh.targetPatches);
+      row.config =
+          makeConfig(StudyKnob::Solver, st.baseline, rung.config.settings.mesh.targetPatches);
       row.config.settings.solvers = {SolverChoice{name, ""}};
       row.config.settings.stopping.tolerance = tol;
-      SolveResult s = runSolver(row.config.settings.solvers.front(), r.system, row.config.settings.stopping);
+      SolveResult s =
+          runSolver(row.config.settings.solvers.front(), r.system, row.config.settings.stopping);
       auto t = Clock::now();
       std::vector<Vec3> b = toVec3(s.radiosity);
-      std::vector<SurfaceResult> surf = surfaceResults(scene, r.mesh, b, irradiance(r.formFactors->matrix, s.radiosity));
+      std::vector<SurfaceResult> surf =
+          surfaceResults(scene, r.mesh, b, irradiance(r.formFactors->matrix, s.radiosity));
       row.seconds = rung.seconds;
       row.seconds.solve = s.seconds;
       row.seconds.results = since(t);
@@ -138,7 +151,8 @@ std::vector<StudyConfig> candidates(const StudySettings& st) {
       c.settings.formFactors.method = method;
       c.settings.formFactors.samples = k;
       const FormFactorSettings& b = st.baseline.formFactors;
-      if (method != b.method || k != b.samples) out.push_back(c);  // the baseline is the rung's copy
+      if (method != b.method || k != b.samples)
+        out.push_back(c);  // the baseline is the rung's copy
     }
   for (int budget : st.adaptiveBudgets) {
     StudyConfig c = makeConfig(StudyKnob::Adaptive, st.baseline, st.adaptiveStartPatches);
@@ -149,12 +163,13 @@ std::vector<StudyConfig> candidates(const StudySettings& st) {
 }
 
 /// Relative difference of the two finest rungs' errors, extrapolated (see study.h).
-void estimateReferenceError(const std::vector<StudyRow>& rows, const std::vector<StudySolution>& sols,
-                            StudyReference& ref) {
+void estimateReferenceError(const std::vector<StudyRow>& rows,
+                            const std::vector<StudySolution>& sols, StudyReference& ref) {
   std::vector<int> rungs;
   for (std::size_t k = 0; k < rows.size(); ++k)
     if (rows[k].ran && rows[k].config.knob == StudyKnob::Mesh) rungs.push_back(int(k));
-  std::sort(rungs.begin(), rungs.end(), [&](int a, int b) { return rows[a].patches < rows[b].patches; });
+  std::sort(rungs.begin(), rungs.end(),
+            [&](int a, int b) { return rows[a].patches < rows[b].patches; });
   if (rungs.size() < 2) {
     ref.errorMethod = "no estimate: fewer than two mesh rungs ran";
     return;
@@ -170,13 +185,20 @@ void estimateReferenceError(const std::vector<StudyRow>& rows, const std::vector
   ref.surfaceErrorEstimate = extrapolate(coarse.surfaceError, fine.surfaceError, a1);
   ref.patchErrorEstimate = extrapolate(coarse.patchError, fine.patchError, a2);
   ref.errorMethod =
-      "Richardson-style, from the mesh ladder (each rung twice the patches of the one before): d1 = difference "
-      "between the two finest rungs (" + std::to_string(rows[rungs[rungs.size() - 2]].patches) + " and " +
-      std::to_string(rows[rungs.back()].patches) + " patches), d2 = difference between the finest rung and the "
-      "reference (" + std::to_string(ref.row.patches) + "); if the differences shrink geometrically by r = d1/d2 "
-      "per doubling, the reference's own error is d2/(r - 1). Surface level: d1 = " + format("%.3g", coarse.surfaceError) +
-      ", d2 = " + format("%.3g", fine.surfaceError) + (a1 ? "" : " (not shrinking: the estimate is d2 itself)") +
-      "; patch level: d1 = " + format("%.3g", coarse.patchError) + ", d2 = " + format("%.3g", fine.patchError) +
+      "Richardson-style, from the mesh ladder (each rung twice the patches of the one before): d1 "
+      "= difference "
+      "between the two finest rungs (" +
+      std::to_string(rows[rungs[rungs.size() - 2]].patches) + " and " +
+      std::to_string(rows[rungs.back()].patches) +
+      " patches), d2 = difference between the finest rung and the "
+      "reference (" +
+      std::to_string(ref.row.patches) +
+      "); if the differences shrink geometrically by r = d1/d2 "
+      "per doubling, the reference's own error is d2/(r - 1). Surface level: d1 = " +
+      format("%.3g", coarse.surfaceError) + ", d2 = " + format("%.3g", fine.surfaceError) +
+      (a1 ? "" : " (not shrinking: the estimate is d2 itself)") +
+      "; patch level: d1 = " + format("%.3g", coarse.patchError) +
+      ", d2 = " + format("%.3g", fine.patchError) +
       (a2 ? "" : " (not shrinking: the estimate is d2 itself)") + ".";
 }
 
@@ -186,7 +208,8 @@ namespace {
 
 /// The patch of `onto` (same surface) containing point x of a surface with normal n: a ray from
 /// just in front of x back along −n, or the nearest centroid of that surface when it misses.
-int mapPoint(const Vec3& x, const Vec3& n, int surface, const PatchMesh& onto, const Visibility& rays) {
+int mapPoint(const Vec3& x, const Vec3& n, int surface, const PatchMesh& onto,
+             const Visibility& rays) {
   double lift = 10 * rays.epsilon();
   auto hit = rays.closestHit(x + n * lift, -n, 0.0, 2 * lift);
   if (hit && onto.patches[hit->patch].surface == surface) return hit->patch;
@@ -206,10 +229,13 @@ void forEachPiece(const PatchMesh& mesh, const Patch& p, int m, Fn&& fn) {
   Vec3 v0 = mesh.vertex(p, 0), v1 = mesh.vertex(p, 1), v2 = mesh.vertex(p, 2);
   if (p.isQuad()) {
     Vec3 v3 = mesh.vertex(p, 3);
-    auto at = [&](double s, double t) { return (v0 * (1 - s) + v1 * s) * (1 - t) + (v3 * (1 - s) + v2 * s) * t; };
+    auto at = [&](double s, double t) {
+      return (v0 * (1 - s) + v1 * s) * (1 - t) + (v3 * (1 - s) + v2 * s) * t;
+    };
     for (int a = 0; a < m; ++a)
       for (int b = 0; b < m; ++b) {
-        double s0 = double(a) / m, s1 = double(a + 1) / m, t0 = double(b) / m, t1 = double(b + 1) / m;
+        double s0 = double(a) / m, s1 = double(a + 1) / m, t0 = double(b) / m,
+               t1 = double(b + 1) / m;
         Vec3 c00 = at(s0, t0), c11 = at(s1, t1), c10 = at(s1, t0), c01 = at(s0, t1);
         fn((c00 + c10 + c11 + c01) * 0.25, 0.5 * length(cross(c11 - c00, c01 - c10)));
       }
@@ -218,7 +244,9 @@ void forEachPiece(const PatchMesh& mesh, const Patch& p, int m, Fn&& fn) {
   double piece = p.area / (m * m);  // m² similar triangles: barycentric lattice centroids
   for (int i = 0; i < m; ++i)
     for (int j = 0; i + j < m; ++j) {
-      auto bary = [&](double u, double w) { return v0 + (v1 - v0) * (u / m) + (v2 - v0) * (w / m); };
+      auto bary = [&](double u, double w) {
+        return v0 + (v1 - v0) * (u / m) + (v2 - v0) * (w / m);
+      };
       fn(bary(i + 1.0 / 3, j + 1.0 / 3), piece);
       if (i + j < m - 1) fn(bary(i + 2.0 / 3, j + 2.0 / 3), piece);
     }
@@ -226,10 +254,12 @@ void forEachPiece(const PatchMesh& mesh, const Patch& p, int m, Fn&& fn) {
 
 }  // namespace
 
-std::vector<int> mapPatches(const PatchMesh& from, const PatchMesh& onto, const Visibility& ontoRays) {
+std::vector<int> mapPatches(const PatchMesh& from, const PatchMesh& onto,
+                            const Visibility& ontoRays) {
   std::vector<int> map(from.patches.size(), -1);
   for (int r = 0; r < from.size(); ++r)
-    map[r] = mapPoint(from.patches[r].centroid, from.patches[r].normal, from.patches[r].surface, onto, ontoRays);
+    map[r] = mapPoint(from.patches[r].centroid, from.patches[r].normal, from.patches[r].surface,
+                      onto, ontoRays);
   return map;
 }
 
@@ -238,8 +268,9 @@ void measureErrors(const StudySolution& s, const StudySolution& ref, StudyRow& r
   for (std::size_t k = 0; k < ref.surfaces.size() && k < s.surfaces.size(); ++k)
     for (int c = 0; c < 3; ++c)
       if (ref.surfaces[k].radiosity[c] > 0)
-        row.surfaceError = std::max(row.surfaceError, std::fabs(s.surfaces[k].radiosity[c] - ref.surfaces[k].radiosity[c]) /
-                                                          ref.surfaces[k].radiosity[c]);
+        row.surfaceError = std::max(
+            row.surfaceError, std::fabs(s.surfaces[k].radiosity[c] - ref.surfaces[k].radiosity[c]) /
+                                  ref.surfaces[k].radiosity[c]);
   // Each reference patch is cut into 4×4 pieces, each mapped onto s's mesh on its own, so a
   // reference patch straddling two of s's patches is shared between them by area.
   RayScene rays(s.mesh);
@@ -271,10 +302,12 @@ void measureErrors(const StudySolution& s, const StudySolution& ref, StudyRow& r
 
 std::vector<bool> paretoFront(const std::vector<double>& cost, const std::vector<double>& error) {
   std::vector<bool> front(cost.size());
-  for (std::size_t a = 0; a < cost.size(); ++a) front[a] = std::isfinite(cost[a]) && std::isfinite(error[a]);
+  for (std::size_t a = 0; a < cost.size(); ++a)
+    front[a] = std::isfinite(cost[a]) && std::isfinite(error[a]);
   for (std::size_t a = 0; a < cost.size(); ++a)
     for (std::size_t b = 0; b < cost.size() && front[a]; ++b)
-      if (b != a && cost[b] <= cost[a] && error[b] <= error[a] && (cost[b] < cost[a] || error[b] < error[a]))
+      if (b != a && cost[b] <= cost[a] && error[b] <= error[a] &&
+          (cost[b] < cost[a] || error[b] < error[a]))
         front[a] = false;
   return front;
 }
@@ -293,25 +326,33 @@ double fitExponent(const std::vector<double>& x, const std::vector<double>& y) {
 
 const char* studyKnobName(StudyKnob knob) {
   switch (knob) {
-    case StudyKnob::Mesh: return "mesh";
-    case StudyKnob::FormFactors: return "formfactors";
-    case StudyKnob::Solver: return "solver";
-    case StudyKnob::Adaptive: return "adaptive";
-    case StudyKnob::Hierarchical: return "hierarchical";
+    case StudyKnob::Mesh:
+      return "mesh";
+    case StudyKnob::FormFactors:
+      return "formfactors";
+    case StudyKnob::Solver:
+      return "solver";
+    case StudyKnob::Adaptive:
+      return "adaptive";
+    case StudyKnob::Hierarchical:
+      return "hierarchical";
   }
   return "?";
 }
 
 std::string StudyConfig::label() const {
   switch (knob) {
-    case StudyKnob::Mesh: return "N=" + std::to_string(settings.mesh.targetPatches);
+    case StudyKnob::Mesh:
+      return "N=" + std::to_string(settings.mesh.targetPatches);
     case StudyKnob::FormFactors:
       return settings.formFactors.method + " K=" + std::to_string(settings.formFactors.samples);
     case StudyKnob::Solver:
       return settings.solvers.front().name + " tol=" + format("%.0e", settings.stopping.tolerance);
     case StudyKnob::Adaptive:
-      return "adaptive " + std::to_string(settings.mesh.targetPatches) + " to <=" + std::to_string(adaptive.maxPatches);
-    case StudyKnob::Hierarchical: return "eps=" + format("%.0e", epsilon);
+      return "adaptive " + std::to_string(settings.mesh.targetPatches) +
+             " to <=" + std::to_string(adaptive.maxPatches);
+    case StudyKnob::Hierarchical:
+      return "eps=" + format("%.0e", epsilon);
   }
   return "?";
 }
@@ -352,12 +393,14 @@ StudyResult runStudy(const Scene& scene, const StudySettings& st, const Pipeline
     row.estimatedSeconds = est[k];
     if (need > left) {
       row.note = "skipped: estimated " + format("%.0f s", est[k]) + " plus the reference " +
-                 format("%.0f s", need - est[k]) + ", " + format("%.0f s", std::max(0.0, left)) + " left";
+                 format("%.0f s", need - est[k]) + ", " + format("%.0f s", std::max(0.0, left)) +
+                 " left";
       say(c.label() + ": " + row.note);
       skipped.push_back(row);
       continue;
     }
-    say(std::string(studyKnobName(c.knob)) + " " + c.label() + " (estimated " + format("%.1f s", est[k]) + ")");
+    say(std::string(studyKnobName(c.knob)) + " " + c.label() + " (estimated " +
+        format("%.1f s", est[k]) + ")");
     bool knobRung = rung && c.settings.mesh.targetPatches == st.knobPatches;
     std::vector<StudyRow> solverRows;
     std::vector<StudySolution> solverSols;

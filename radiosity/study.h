@@ -16,14 +16,16 @@ namespace radkit {
 /// Hierarchical rows are run by the caller (hierarchy/ sits above radiosity/) and measured with
 /// measureErrors against the same reference.
 enum class StudyKnob { Mesh, FormFactors, Solver, Adaptive, Hierarchical };
-const char* studyKnobName(StudyKnob knob);  ///< "mesh", "formfactors", "solver", "adaptive", "hierarchical"
+const char* studyKnobName(
+    StudyKnob knob);  ///< "mesh", "formfactors", "solver", "adaptive", "hierarchical"
 
 struct StudyConfig {
   StudyKnob knob = StudyKnob::Mesh;
   PipelineSettings settings;  ///< one solver; mesh.targetPatches set
   AdaptiveSettings adaptive;  ///< Adaptive knob only: settings.mesh is the starting mesh
   double epsilon = 0;         ///< Hierarchical knob only: the link error threshold
-  std::string label() const;  ///< "N=1000", "monte-carlo K=64", "sor tol=1e-03", "adaptive <=2000", "eps=1e-04"
+  std::string label()
+      const;  ///< "N=1000", "monte-carlo K=64", "sor tol=1e-03", "adaptive <=2000", "eps=1e-04"
 };
 
 /// One configuration's measurements. Errors are relative, against the study's reference:
@@ -38,13 +40,13 @@ struct StudyConfig {
 struct StudyRow {
   StudyConfig config;
   bool ran = false;
-  std::string note;               ///< why it was skipped, or the solver's stop reason
-  double estimatedSeconds = 0;    ///< the planner's estimate before running
+  std::string note;             ///< why it was skipped, or the solver's stop reason
+  double estimatedSeconds = 0;  ///< the planner's estimate before running
   int patches = 0;
   StageSeconds seconds;
-  double totalSeconds = 0;        ///< what this configuration would cost run alone
+  double totalSeconds = 0;  ///< what this configuration would cost run alone
   std::size_t formFactorBytes = 0;
-  std::size_t peakBytes = 0;      ///< process peak resident memory during this configuration
+  std::size_t peakBytes = 0;  ///< process peak resident memory during this configuration
   long iterations = 0;
   bool converged = false;
   double surfaceError = 0, patchError = 0, fieldError = 0;
@@ -61,18 +63,20 @@ struct StudySolution {
 /// The reference and its own error estimate (Richardson, from the two finest mesh rungs).
 struct StudyReference {
   StudySolution solution;
-  StudyRow row;                   ///< its cost, with zero errors
+  StudyRow row;  ///< its cost, with zero errors
   double surfaceErrorEstimate = 0, patchErrorEstimate = 0;
-  std::string errorMethod;        ///< how the estimates were made, one paragraph
+  std::string errorMethod;  ///< how the estimates were made, one paragraph
 };
 
 struct StudySettings {
-  double maxSeconds = 600;        ///< wall-clock budget for the whole study
-  PipelineSettings baseline;      ///< every knob's other settings (one solver)
+  double maxSeconds = 600;    ///< wall-clock budget for the whole study
+  PipelineSettings baseline;  ///< every knob's other settings (one solver)
   std::vector<int> meshLadder{250, 500, 1000, 2000, 4000, 8000, 16000, 32000};
-  int knobPatches = 1000;         ///< the mesh the form-factor and solver knobs run on
+  int knobPatches = 1000;  ///< the mesh the form-factor and solver knobs run on
   std::vector<std::pair<std::string, std::vector<int>>> formFactorSamples{
-      {"point-polygon", {1, 4, 16, 64}}, {"monte-carlo", {4, 16, 64, 256}}, {"hemisphere", {256, 1024, 4096, 16384}}};
+      {"point-polygon", {1, 4, 16, 64}},
+      {"monte-carlo", {4, 16, 64, 256}},
+      {"hemisphere", {256, 1024, 4096, 16384}}};
   std::vector<std::string> solvers{"jacobi", "gauss-seidel", "sor", "southwell", "cg"};
   std::vector<double> tolerances{1e-1, 1e-2, 1e-3, 1e-4, 1e-6};
   std::vector<int> adaptiveBudgets{1000, 2000, 4000};
@@ -81,7 +85,7 @@ struct StudySettings {
 };
 
 struct StudyResult {
-  std::vector<StudyRow> rows;     ///< in the order run, skipped ones last
+  std::vector<StudyRow> rows;  ///< in the order run, skipped ones last
   StudyReference reference;
   double seconds = 0;
 };
@@ -90,7 +94,8 @@ struct StudyResult {
 /// reference's still fit the remaining budget (estimates scale measured runs by n² per stage);
 /// then the reference at twice the finest mesh rung run (settings.baseline, tolerance
 /// referenceTolerance); then every error and both Pareto fronts.
-StudyResult runStudy(const Scene& scene, const StudySettings& settings, const PipelineLog& log = {});
+StudyResult runStudy(const Scene& scene, const StudySettings& settings,
+                     const PipelineLog& log = {});
 
 /// \brief Seconds the smallest reference (2 × knobPatches) is estimated to take before anything
 ///        is measured: the study runs its reference whatever the budget says.
@@ -98,9 +103,11 @@ double estimateReferenceSeconds(const StudySettings& settings);
 
 /// \brief For each patch of `from`, the patch of `onto` that contains its centroid (a ray from
 /// just in front of the centroid back along −n), or −1 when none of the same surface is hit.
-std::vector<int> mapPatches(const PatchMesh& from, const PatchMesh& onto, const Visibility& ontoRays);
+std::vector<int> mapPatches(const PatchMesh& from, const PatchMesh& onto,
+                            const Visibility& ontoRays);
 
-/// \brief Fills surfaceError, patchError and fieldError of `row` for `solution` against `reference`.
+/// \brief Fills surfaceError, patchError and fieldError of `row` for `solution` against
+/// `reference`.
 void measureErrors(const StudySolution& solution, const StudySolution& reference, StudyRow& row);
 
 /// \brief Flags the points not dominated by another (lower-or-equal cost and lower error).

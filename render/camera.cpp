@@ -14,7 +14,8 @@ PinholeCamera::PinholeCamera(const Camera& c, int width, int height)
   if (width <= 0 || height <= 0) throw std::invalid_argument("camera: image size must be positive");
   m_forward = normalize(c.lookAt - c.position);
   Vec3 right = cross(m_forward, c.up);
-  if (length(right) == 0) throw std::invalid_argument("camera: 'up' is parallel to the view direction");
+  if (length(right) == 0)
+    throw std::invalid_argument("camera: 'up' is parallel to the view direction");
   // Right-handed: image right = forward × up. Looking along +z with +y up, +x is on the
   // viewer's left, as the Cornell box data says.
   m_right = normalize(right);
@@ -59,17 +60,20 @@ namespace {
 constexpr int kGrid = 64;
 
 /// Cells where the nearest surface, seen orthographically from `side`, shows its front.
-long long frontCells(const std::vector<Triangle>& triangles, const Bounds3& b, int axis, double sign) {
+long long frontCells(const std::vector<Triangle>& triangles, const Bounds3& b, int axis,
+                     double sign) {
   const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
   const double u0 = b.lo[ua], v0 = b.lo[va];
-  const double du = std::max(b.hi[ua] - u0, 1e-300) / kGrid, dv = std::max(b.hi[va] - v0, 1e-300) / kGrid;
+  const double du = std::max(b.hi[ua] - u0, 1e-300) / kGrid,
+               dv = std::max(b.hi[va] - v0, 1e-300) / kGrid;
   std::vector<double> depth(kGrid * kGrid, -INFINITY);
   std::vector<char> front(kGrid * kGrid, 0);
   for (const Triangle& t : triangles) {
     const double facing = cross(t[1] - t[0], t[2] - t[0])[axis] * sign;
     if (facing == 0) continue;  // edge-on: covers no cell
     double pu[3], pv[3], pd[3];
-    for (int k = 0; k < 3; ++k) pu[k] = (t[k][ua] - u0) / du, pv[k] = (t[k][va] - v0) / dv, pd[k] = t[k][axis] * sign;
+    for (int k = 0; k < 3; ++k)
+      pu[k] = (t[k][ua] - u0) / du, pv[k] = (t[k][va] - v0) / dv, pd[k] = t[k][axis] * sign;
     const double area = (pu[1] - pu[0]) * (pv[2] - pv[0]) - (pu[2] - pu[0]) * (pv[1] - pv[0]);
     if (area == 0) continue;
     const int i0 = std::max(0, int(std::floor(std::min({pu[0], pu[1], pu[2]}) - 0.5)));
@@ -92,8 +96,10 @@ long long frontCells(const std::vector<Triangle>& triangles, const Bounds3& b, i
   return std::count(front.begin(), front.end(), char(1));
 }
 
-void addPolygon(std::vector<Triangle>& out, const std::vector<Vec3>& points, const int* index, int count) {
-  for (int k = 1; k + 1 < count; ++k) out.push_back({points[index[0]], points[index[k]], points[index[k + 1]]});
+void addPolygon(std::vector<Triangle>& out, const std::vector<Vec3>& points, const int* index,
+                int count) {
+  for (int k = 1; k + 1 < count; ++k)
+    out.push_back({points[index[0]], points[index[k]], points[index[k + 1]]});
 }
 
 }  // namespace
@@ -120,13 +126,15 @@ Camera automaticCamera(const std::vector<Triangle>& triangles) {
 Camera automaticCamera(const Scene& scene) {
   std::vector<Triangle> triangles;
   for (const Surface& s : scene.surfaces)
-    for (const Face& f : s.faces) addPolygon(triangles, s.vertices, f.vertices.data(), int(f.vertices.size()));
+    for (const Face& f : s.faces)
+      addPolygon(triangles, s.vertices, f.vertices.data(), int(f.vertices.size()));
   return automaticCamera(triangles);
 }
 
 Camera automaticCamera(const PatchMesh& mesh) {
   std::vector<Triangle> triangles;
-  for (const Patch& p : mesh.patches) addPolygon(triangles, mesh.vertices, p.vertex.data(), p.vertexCount);
+  for (const Patch& p : mesh.patches)
+    addPolygon(triangles, mesh.vertices, p.vertex.data(), p.vertexCount);
   return automaticCamera(triangles);
 }
 
@@ -135,8 +143,9 @@ Camera sceneCamera(const Scene& scene, const PatchMesh& mesh) {
 }
 
 Camera parseCamera(const std::string& option, const std::string& text) {
-  const std::string fix = ". Fix: give px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]] (position, look-at, up, vertical field "
-                          "of view in degrees), e.g. 0,1,4,0,1,0";
+  const std::string fix =
+      ". Fix: give px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]] (position, look-at, up, vertical field "
+      "of view in degrees), e.g. 0,1,4,0,1,0";
   std::vector<double> v;
   std::size_t at = 0;
   while (at <= text.size()) {
@@ -150,17 +159,21 @@ Camera parseCamera(const std::string& option, const std::string& text) {
     at = comma + 1;
   }
   if (v.size() != 6 && v.size() != 9 && v.size() != 10)
-    throw InputError(option + " '" + text + "' has " + std::to_string(v.size()) + " numbers, not 6, 9 or 10" + fix);
+    throw InputError(option + " '" + text + "' has " + std::to_string(v.size()) +
+                     " numbers, not 6, 9 or 10" + fix);
   Camera c;
   c.position = {v[0], v[1], v[2]};
   c.lookAt = {v[3], v[4], v[5]};
   c.up = v.size() >= 9 ? Vec3{v[6], v[7], v[8]} : Vec3{0, 1, 0};
   c.fovDeg = v.size() == 10 ? v[9] : 40;
-  if (length(c.lookAt - c.position) == 0) throw InputError(option + " '" + text + "': the look-at is the position" + fix);
+  if (length(c.lookAt - c.position) == 0)
+    throw InputError(option + " '" + text + "': the look-at is the position" + fix);
   if (length(cross(c.lookAt - c.position, c.up)) == 0)
-    throw InputError(option + " '" + text + "': up is parallel to the view direction. Fix: give another up, e.g. 0,0,1");
+    throw InputError(option + " '" + text +
+                     "': up is parallel to the view direction. Fix: give another up, e.g. 0,0,1");
   if (!(c.fovDeg > 0 && c.fovDeg < 180))
-    throw InputError(option + " '" + text + "': the field of view must lie in (0, 180) degrees" + fix);
+    throw InputError(option + " '" + text + "': the field of view must lie in (0, 180) degrees" +
+                     fix);
   return c;
 }
 

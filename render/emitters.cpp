@@ -9,7 +9,10 @@
 namespace radkit {
 
 EmitterSampler::EmitterSampler(const Scene& scene, const PatchMesh& mesh)
-    : m_mesh(mesh), m_probability(mesh.size(), 0.0), m_emission(mesh.size()), m_slot(mesh.size(), -1) {
+    : m_mesh(mesh),
+      m_probability(mesh.size(), 0.0),
+      m_emission(mesh.size()),
+      m_slot(mesh.size(), -1) {
   double total = 0;
   std::vector<double> weight;
   for (int i = 0; i < mesh.size(); ++i) {

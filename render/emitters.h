@@ -13,7 +13,7 @@ namespace radkit {
 struct EmitterSample {
   int patch = -1;
   Vec3 point, normal;
-  Vec3 emission;     ///< exitance E of the patch, W/m² per channel
+  Vec3 emission;       ///< exitance E of the patch, W/m² per channel
   double pdfArea = 0;  ///< density per unit area (scene units⁻²) over all emitters
 };
 
@@ -42,10 +42,10 @@ class EmitterSampler {
 
  private:
   const PatchMesh& m_mesh;
-  std::vector<int> m_patches;       ///< emitting patch ids
-  std::vector<double> m_cdf;        ///< cumulative power fraction, m_cdf.back() == 1
+  std::vector<int> m_patches;         ///< emitting patch ids
+  std::vector<double> m_cdf;          ///< cumulative power fraction, m_cdf.back() == 1
   std::vector<double> m_probability;  ///< per mesh patch: chance of being chosen (0 if dark)
-  std::vector<Vec3> m_emission;     ///< per mesh patch
+  std::vector<Vec3> m_emission;       ///< per mesh patch
   struct Rectangle {
     bool valid = false;
     Vec3 corner, ex, ey;

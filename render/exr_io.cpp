@@ -58,8 +58,9 @@ RadianceImage readExr(const std::string& path) {
     // The slice base is shifted so the data window's corner lands on pixels[0].
     const std::ptrdiff_t origin = std::ptrdiff_t(window.min.y) * img.width + window.min.x;
     for (int c = 0; c < 3; ++c)
-      frame.insert(kChannels[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(pixels.data() + c - 3 * origin),
-                                            3 * sizeof(float), 3 * sizeof(float) * img.width));
+      frame.insert(kChannels[c],
+                   Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(pixels.data() + c - 3 * origin),
+                              3 * sizeof(float), 3 * sizeof(float) * img.width));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
     img.radiance.resize(std::size_t(img.width) * img.height);

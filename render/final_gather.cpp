@@ -7,7 +7,8 @@
 
 namespace radkit {
 
-GatherGuide::GatherGuide(const FormFactorMatrix& f, const RadiosityLighting& l) : m_start(matrixSize(f) + 1, 0) {
+GatherGuide::GatherGuide(const FormFactorMatrix& f, const RadiosityLighting& l)
+    : m_start(matrixSize(f) + 1, 0) {
   std::vector<double> weight;
   int row = -1;
   auto closeRow = [&] {
@@ -33,14 +34,16 @@ GatherGuide::GatherGuide(const FormFactorMatrix& f, const RadiosityLighting& l) 
 }
 
 int GatherGuide::pick(int receiver, double u, double& probability) const {
-  const auto begin = m_cdf.begin() + std::ptrdiff_t(m_start[receiver]), end = m_cdf.begin() + std::ptrdiff_t(m_start[receiver + 1]);
+  const auto begin = m_cdf.begin() + std::ptrdiff_t(m_start[receiver]),
+             end = m_cdf.begin() + std::ptrdiff_t(m_start[receiver + 1]);
   const auto k = std::min(std::upper_bound(begin, end, float(u)), end - 1);
   probability = *k - (k == begin ? 0.0f : *(k - 1));
   return m_source[std::size_t(k - m_cdf.begin())];
 }
 
 double GatherGuide::probability(int receiver, int source) const {
-  const auto begin = m_source.begin() + std::ptrdiff_t(m_start[receiver]), end = m_source.begin() + std::ptrdiff_t(m_start[receiver + 1]);
+  const auto begin = m_source.begin() + std::ptrdiff_t(m_start[receiver]),
+             end = m_source.begin() + std::ptrdiff_t(m_start[receiver + 1]);
   const auto k = std::lower_bound(begin, end, source);
   if (k == end || *k != source) return 0;
   const std::size_t c = std::size_t(k - m_source.begin());
@@ -63,14 +66,17 @@ struct Gather {
     const Vec3 r = (b - lighting.emission[j]) / M_PI;
     return {std::max(0.0, r.x), std::max(0.0, r.y), std::max(0.0, r.z)};
   }
-  Vec3 reflected(const SurfaceHit& y) const { return y.bsdf ? reflected(y.patch, y.point) : Vec3{}; }
+  Vec3 reflected(const SurfaceHit& y) const {
+    return y.bsdf ? reflected(y.patch, y.point) : Vec3{};
+  }
 
   /// Solid-angle density of the guide choosing the front-side point `y` seen from `x`'s patch.
   double guidePdf(int receiver, const SurfaceHit& y) const {
     if (!guide || !y.front || guide->empty(receiver)) return 0;
     const double cosY = std::fabs(y.wo.z);
     if (cosY <= 0) return 0;
-    return guide->probability(receiver, y.patch) / scene.mesh().patches[y.patch].area * y.distance * y.distance / cosY;
+    return guide->probability(receiver, y.patch) / scene.mesh().patches[y.patch].area * y.distance *
+           y.distance / cosY;
   }
 
   /// The guided sample: a source patch by the guide, a point on it, a shadow ray.
@@ -99,7 +105,8 @@ struct Gather {
     ++rays;
     if (scene.rays().occluded(x.point, mesh.patches[x.patch].normal, y, p.normal)) return {};
     const double pdf = probability / p.area * dist2 / cosY;
-    return mul(f, l) * (std::fabs(wiLocal.z) * powerHeuristic(pdf, x.bsdf->pdf(x.wo, wiLocal)) / pdf);
+    return mul(f, l) *
+           (std::fabs(wiLocal.z) * powerHeuristic(pdf, x.bsdf->pdf(x.wo, wiLocal)) / pdf);
   }
 
   Vec3 radiance(Vec3 o, Vec3 d, Sampler& sampler, long long& rays) const {
@@ -129,7 +136,8 @@ struct Gather {
       if (std::optional<SurfaceHit> next = scene.intersect(scene.spawn(*hit, wi), wi)) {
         const Vec3 le = scene.emitted(*next);
         if (maxComponent(le) > 0)
-          radiance += mul(beta, mul(bs->weight, le)) * powerHeuristic(bs->pdf, scene.lightPdf(*next, hit->point));
+          radiance += mul(beta, mul(bs->weight, le)) *
+                      powerHeuristic(bs->pdf, scene.lightPdf(*next, hit->point));
         const double w = guide ? powerHeuristic(bs->pdf, guidePdf(hit->patch, *next)) : 1.0;
         radiance += mul(beta, mul(bs->weight, reflected(*next))) * w;
       }
@@ -141,16 +149,18 @@ struct Gather {
 
 }  // namespace
 
-MonteCarloImage renderFinalGather(const ShadingScene& scene, const Camera& camera, const RadiosityLighting& lighting,
-                                  const FinalGatherSettings& s, const GatherGuide* guide) {
+MonteCarloImage renderFinalGather(const ShadingScene& scene, const Camera& camera,
+                                  const RadiosityLighting& lighting, const FinalGatherSettings& s,
+                                  const GatherGuide* guide) {
   std::optional<SmoothRadiosity> smooth;
   if (s.smooth) smooth.emplace(scene.mesh(), lighting.radiosity, s.smoothing);
   const Gather gather{scene, lighting, smooth, s, guide};
   PixelSampling sampling{s.width, s.height, s.samplesPerPixel, s.seed, 2, s.sampler};
-  return renderCameraSamples(scene, camera, sampling,
-                             [&](const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays) {
-                               return gather.radiance(origin, direction, sampler, rays);
-                             });
+  return renderCameraSamples(
+      scene, camera, sampling,
+      [&](const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays) {
+        return gather.radiance(origin, direction, sampler, rays);
+      });
 }
 
 }  // namespace radkit

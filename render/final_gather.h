@@ -43,7 +43,9 @@ struct FinalGatherSettings {
 /// \brief The final-gather image. `scene` must be built on the mesh the lighting was solved on.
 /// With a guide, each gather adds a guided sample to the BSDF-sampled one, the two weighted
 /// by the power heuristic (one more shadow ray, much less noise where few patches are bright).
-MonteCarloImage renderFinalGather(const ShadingScene& scene, const Camera& camera, const RadiosityLighting& lighting,
-                                  const FinalGatherSettings& settings, const GatherGuide* guide = nullptr);
+MonteCarloImage renderFinalGather(const ShadingScene& scene, const Camera& camera,
+                                  const RadiosityLighting& lighting,
+                                  const FinalGatherSettings& settings,
+                                  const GatherGuide* guide = nullptr);
 
 }  // namespace radkit

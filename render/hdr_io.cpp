@@ -48,13 +48,14 @@ RadianceImage readPfm(const std::string& path) {
   const std::streamoff left = in.tellg() - at;
   in.seekg(at);
   if (left < 0 || double(img.width) * img.height * 12 > double(left))
-    throw std::runtime_error(path + ": PFM header says " + std::to_string(img.width) + "x" +
-                             std::to_string(img.height) + " pixels (" +
-                             std::to_string(std::uint64_t(img.width) * std::uint64_t(img.height) * 12) +
-                             " bytes) but " + std::to_string(left) + " bytes follow it. Fix: give a whole PFM file");
+    throw std::runtime_error(
+        path + ": PFM header says " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+        " pixels (" + std::to_string(std::uint64_t(img.width) * std::uint64_t(img.height) * 12) +
+        " bytes) but " + std::to_string(left) + " bytes follow it. Fix: give a whole PFM file");
   std::string body(std::size_t(img.width) * img.height * 12, '\0');
   if (!in.read(body.data(), std::streamsize(body.size())))
-    throw std::runtime_error(path + ": PFM data shorter than " + std::to_string(body.size()) + " bytes");
+    throw std::runtime_error(path + ": PFM data shorter than " + std::to_string(body.size()) +
+                             " bytes");
   const bool little = scale < 0;
   img.radiance.resize(std::size_t(img.width) * img.height);
   img.patch.assign(img.radiance.size(), -1);

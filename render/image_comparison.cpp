@@ -6,15 +6,19 @@
 
 namespace radkit {
 
-std::vector<RegionError> compareToReference(const RadianceImage& image, const std::vector<RadianceImage>& refs,
-                                            const std::vector<int>& region, const std::vector<std::string>& names) {
+std::vector<RegionError> compareToReference(const RadianceImage& image,
+                                            const std::vector<RadianceImage>& refs,
+                                            const std::vector<int>& region,
+                                            const std::vector<std::string>& names) {
   const std::size_t n = image.radiance.size();
   if (refs.empty()) throw std::invalid_argument("compareToReference: no reference image");
   for (const RadianceImage& r : refs)
     if (r.width != image.width || r.height != image.height)
-      throw std::invalid_argument("reference is " + std::to_string(r.width) + "x" + std::to_string(r.height) +
-                                  ", the image " + std::to_string(image.width) + "x" + std::to_string(image.height));
-  if (region.size() != n) throw std::invalid_argument("compareToReference: one region per pixel needed");
+      throw std::invalid_argument("reference is " + std::to_string(r.width) + "x" +
+                                  std::to_string(r.height) + ", the image " +
+                                  std::to_string(image.width) + "x" + std::to_string(image.height));
+  if (region.size() != n)
+    throw std::invalid_argument("compareToReference: one region per pixel needed");
   struct Sums {
     double sq = 0, var = 0, ref = 0;
     int pixels = 0;
@@ -27,14 +31,17 @@ std::vector<RegionError> compareToReference(const RadianceImage& image, const st
       double mean = 0, spread = 0;
       for (const RadianceImage& r : refs) mean += r.radiance[k][c];
       mean /= K;
-      for (const RadianceImage& r : refs) spread += (r.radiance[k][c] - mean) * (r.radiance[k][c] - mean);
+      for (const RadianceImage& r : refs)
+        spread += (r.radiance[k][c] - mean) * (r.radiance[k][c] - mean);
       // Unbiased variance of the K-render mean: Σ(r − r̄)² / (K(K − 1)).
       if (K > 1) pixel.var += spread / (K * (K - 1));
       const double e = image.radiance[k][c] - mean;
       pixel.sq += e * e;
       pixel.ref += mean;
     }
-    auto add = [&](Sums& s) { s.sq += pixel.sq, s.var += pixel.var, s.ref += pixel.ref, ++s.pixels; };
+    auto add = [&](Sums& s) {
+      s.sq += pixel.sq, s.var += pixel.var, s.ref += pixel.ref, ++s.pixels;
+    };
     add(sums[0]);
     if (region[k] >= 0) add(sums[std::size_t(region[k]) + 1]);
   }
@@ -56,7 +63,8 @@ std::vector<RegionError> compareToReference(const RadianceImage& image, const st
   return out;
 }
 
-std::vector<int> surfaceRegions(const std::vector<int>& surface, int width, int height, int edgeRegion) {
+std::vector<int> surfaceRegions(const std::vector<int>& surface, int width, int height,
+                                int edgeRegion) {
   std::vector<int> out(surface.size(), -1);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -66,7 +74,9 @@ std::vector<int> surfaceRegions(const std::vector<int>& surface, int width, int 
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int xx = x + dx, yy = y + dy;
-          if (xx >= 0 && yy >= 0 && xx < width && yy < height && surface[std::size_t(yy) * width + xx] != s) alone = false;
+          if (xx >= 0 && yy >= 0 && xx < width && yy < height &&
+              surface[std::size_t(yy) * width + xx] != s)
+            alone = false;
         }
       out[std::size_t(y) * width + x] = alone ? s : edgeRegion;
     }

@@ -27,7 +27,8 @@ std::vector<Ray> referenceRays(const ShadingScene& scene, long long count, std::
   Rng rng(seed, 0, 0);
   for (Ray& r : rays) {
     const double u = rng.uniform() * total;
-    const std::size_t k = std::min(cdf.size() - 1, std::size_t(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()));
+    const std::size_t k = std::min(
+        cdf.size() - 1, std::size_t(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()));
     const Patch& p = mesh.patches[k];
     Vec3 v[4];
     for (int c = 0; c < p.vertexCount; ++c) v[c] = mesh.vertex(p, c);
@@ -65,7 +66,8 @@ PathTraceBenchmark benchmarkPathTracer(const ShadingScene& scene, const Camera& 
         return n;
       },
       [](long long a, long long c) { return a + c; });
-  b.referenceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  b.referenceSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   b.referenceRays = (long long)rays.size();
   b.referenceRaysPerSecond = b.referenceRays / b.referenceSeconds;
   b.referenceHitFraction = b.referenceRays > 0 ? double(hits) / b.referenceRays : 0;
@@ -76,7 +78,8 @@ PathTraceBenchmark benchmarkPathTracer(const ShadingScene& scene, const Camera& 
 nlohmann::json toJson(const PathTraceBenchmark& b) {
   return {{"benchmark", "path tracing"},
           {"threads", b.threads},
-          {"image", {{"width", b.width}, {"height", b.height}, {"samples_per_pixel", b.samplesPerPixel}}},
+          {"image",
+           {{"width", b.width}, {"height", b.height}, {"samples_per_pixel", b.samplesPerPixel}}},
           {"figure",
            {{"paths_per_second", b.pathsPerSecond},
             {"rays_per_second", b.raysPerSecond},

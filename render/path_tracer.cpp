@@ -1,8 +1,6 @@
 #include "render/path_tracer.h"
 
-
 #include <algorithm>
-
 
 namespace radkit {
 
@@ -10,9 +8,9 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
                   const PathTraceSettings& settings, long long& rays) {
   Vec3 radiance, beta{1, 1, 1};
   Vec3 o = origin, d = dir;
-  double bsdfPdf = 0;      // density of the direction that led to the current vertex
-  Vec3 from;               // the previous vertex (light sampling's pdf depends on it)
-  bool specular = true;    // the camera ray, or a delta lobe: no light sampling competed
+  double bsdfPdf = 0;    // density of the direction that led to the current vertex
+  Vec3 from;             // the previous vertex (light sampling's pdf depends on it)
+  bool specular = true;  // the camera ray, or a delta lobe: no light sampling competed
   for (int depth = 0; depth < settings.maxDepth; ++depth) {
     ++rays;
     std::optional<SurfaceHit> hit = scene.intersect(o, d);
@@ -48,12 +46,14 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
   return radiance;
 }
 
-MonteCarloImage renderPathTraced(const ShadingScene& scene, const Camera& camera, const PathTraceSettings& s) {
+MonteCarloImage renderPathTraced(const ShadingScene& scene, const Camera& camera,
+                                 const PathTraceSettings& s) {
   PixelSampling sampling{s.width, s.height, s.samplesPerPixel, s.seed, 0, s.sampler};
-  return renderCameraSamples(scene, camera, sampling,
-                             [&](const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays) {
-                               return pathRadiance(scene, origin, direction, sampler, s, rays);
-                             });
+  return renderCameraSamples(
+      scene, camera, sampling,
+      [&](const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays) {
+        return pathRadiance(scene, origin, direction, sampler, s, rays);
+      });
 }
 
 }  // namespace radkit

@@ -16,8 +16,8 @@ struct PathTraceSettings {
   int samplesPerPixel = 16;  ///< camera paths per pixel, jittered over the pixel
   std::uint64_t seed = 1;    ///< keys every pixel's numbers (stream 0)
   SamplerType sampler = SamplerType::Sobol;
-  int rouletteDepth = 3;     ///< bounces before Russian roulette may end a path
-  int maxDepth = 1000;       ///< hard stop (a safety net; roulette ends paths long before)
+  int rouletteDepth = 3;  ///< bounces before Russian roulette may end a path
+  int maxDepth = 1000;    ///< hard stop (a safety net; roulette ends paths long before)
 };
 
 /// \brief Radiance along one camera ray (W/m²/sr per channel): emission seen directly or
@@ -29,6 +29,7 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
 
 /// \brief Renders the camera view, rows in parallel (TBB). Deterministic for a seed,
 /// whatever the thread count: each pixel's numbers depend on (seed, pixel, sample) only.
-MonteCarloImage renderPathTraced(const ShadingScene& scene, const Camera& camera, const PathTraceSettings& settings);
+MonteCarloImage renderPathTraced(const ShadingScene& scene, const Camera& camera,
+                                 const PathTraceSettings& settings);
 
 }  // namespace radkit

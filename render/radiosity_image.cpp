@@ -54,11 +54,13 @@ double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEm
   return lum[q] > 0 ? 0.8 / lum[q] : 1;
 }
 
-std::vector<bool> emitterPixels(const RadianceImage& image, const Scene& scene, const PatchMesh& mesh) {
+std::vector<bool> emitterPixels(const RadianceImage& image, const Scene& scene,
+                                const PatchMesh& mesh) {
   std::vector<bool> emits(image.patch.size(), false);
   for (std::size_t k = 0; k < emits.size(); ++k)
-    emits[k] = image.patch[k] >= 0 &&
-               scene.materials[scene.surfaces[mesh.patches[image.patch[k]].surface].material].emits();
+    emits[k] =
+        image.patch[k] >= 0 &&
+        scene.materials[scene.surfaces[mesh.patches[image.patch[k]].surface].material].emits();
   return emits;
 }
 
@@ -85,12 +87,14 @@ Canvas toneMap(const RadianceImage& image, double exposure) {
 std::optional<int> pickPatch(const Visibility& rays, const Camera& camera, int width, int height,
                              int x, int y) {
   PinholeCamera cam(camera, width, height);
-  if (auto hit = rays.closestHit(cam.origin(), cam.direction(x + 0.5, y + 0.5), 0.0)) return hit->patch;
+  if (auto hit = rays.closestHit(cam.origin(), cam.direction(x + 0.5, y + 0.5), 0.0))
+    return hit->patch;
   return std::nullopt;
 }
 
-void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
-                       const std::vector<Vec3>& radiosity, const ImageSettings& settings) {
+void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+                       const Visibility& rays, const std::vector<Vec3>& radiosity,
+                       const ImageSettings& settings) {
   const std::vector<bool> twoSided = scene.twoSidedSurfaces();
   Camera camera = sceneCamera(scene, mesh);
   RadianceImage img = renderRadiosity(mesh, rays, camera, radiosity, twoSided, settings);

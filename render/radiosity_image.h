@@ -18,10 +18,10 @@ namespace radkit {
 struct ImageSettings {
   int width = 512;
   int height = 512;
-  int samplesPerAxis = 2;  ///< stratified samples per pixel: samplesPerAxis² (deterministic)
-  bool smooth = false;     ///< interpolate radiosity between patches (SmoothRadiosity)
+  int samplesPerAxis = 2;    ///< stratified samples per pixel: samplesPerAxis² (deterministic)
+  bool smooth = false;       ///< interpolate radiosity between patches (SmoothRadiosity)
   SmoothSettings smoothing;  ///< crease angle and jump test of the smooth reconstruction
-  double exposure = 0;     ///< multiplier on radiance; 0 picks one automatically
+  double exposure = 0;       ///< multiplier on radiance; 0 picks one automatically
 };
 
 /// Linear radiance image (W/m²/sr per channel) and the patch seen at each pixel centre.
@@ -40,8 +40,9 @@ RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, con
 
 /// \brief render.png of a run: the scene's camera (or one framing the mesh), each surface's
 /// two-sidedness from its material, automatic exposure and sRGB, written as PNG.
-void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
-                       const std::vector<Vec3>& radiosity, const ImageSettings& settings);
+void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+                       const Visibility& rays, const std::vector<Vec3>& radiosity,
+                       const ImageSettings& settings);
 
 /// Automatic exposure: maps the 95th percentile of non-emitting pixel luminance to 0.8.
 double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEmits);
@@ -49,7 +50,8 @@ double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEm
 double autoExposure(const RadianceImage& image, const Scene& scene, const PatchMesh& mesh);
 
 /// Which pixels show an emitting patch (left out of automatic exposure).
-std::vector<bool> emitterPixels(const RadianceImage& image, const Scene& scene, const PatchMesh& mesh);
+std::vector<bool> emitterPixels(const RadianceImage& image, const Scene& scene,
+                                const PatchMesh& mesh);
 
 /// Exposure, clamp and the sRGB transfer curve (IEC 61966-2-1).
 Canvas toneMap(const RadianceImage& image, double exposure);
@@ -58,6 +60,5 @@ double srgbEncode(double linear);
 /// \brief The patch seen through pixel (x, y) (pixel centre), or nothing.
 std::optional<int> pickPatch(const Visibility& rays, const Camera& camera, int width, int height,
                              int x, int y);
-
 
 }  // namespace radkit

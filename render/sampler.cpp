@@ -36,7 +36,8 @@ double toUnit64(std::uint64_t x) { return (x >> 11) * 0x1p-53; }
 /// Today's streams: one Rng per pixel, consumed in order across its samples.
 class IndependentSampler : public Sampler {
  public:
-  IndependentSampler(std::uint64_t seed, std::uint64_t stream) : m_seed(seed), m_stream(stream), m_rng(0, 0, 0) {}
+  IndependentSampler(std::uint64_t seed, std::uint64_t stream)
+      : m_seed(seed), m_stream(stream), m_rng(0, 0, 0) {}
   void start(std::uint64_t pixel, int index) override {
     if (index == 0 || pixel != m_pixel) m_rng = Rng(m_seed, pixel, m_stream);
     m_pixel = pixel;
@@ -63,7 +64,9 @@ class PaddedSampler : public Sampler {
   }
 
  protected:
-  std::uint64_t nextDimensionKey() { return splitMix64(m_pixelKey + 0x9e3779b97f4a7c15ull * ++m_dimension); }
+  std::uint64_t nextDimensionKey() {
+    return splitMix64(m_pixelKey + 0x9e3779b97f4a7c15ull * ++m_dimension);
+  }
   std::uint64_t m_key = 0, m_pixelKey = 0, m_dimension = 0;
   std::uint32_t m_index = 0;
 };
@@ -75,7 +78,8 @@ class PaddedSampler : public Sampler {
 class StratifiedSampler : public PaddedSampler {
  public:
   StratifiedSampler(std::uint64_t seed, std::uint64_t stream, int samples)
-      : PaddedSampler(seed, stream), m_n(std::uint32_t(std::max(1, samples))),
+      : PaddedSampler(seed, stream),
+        m_n(std::uint32_t(std::max(1, samples))),
         m_side(std::uint32_t(std::floor(std::sqrt(double(m_n))))) {}
   double get1D() override {
     const std::uint64_t key = nextDimensionKey();
@@ -104,7 +108,8 @@ class StratifiedSampler : public PaddedSampler {
 /// instead of five, for the same numbers.
 class SobolSampler : public PaddedSampler {
  public:
-  SobolSampler(std::uint64_t seed, std::uint64_t stream, int samples) : PaddedSampler(seed, stream) {
+  SobolSampler(std::uint64_t seed, std::uint64_t stream, int samples)
+      : PaddedSampler(seed, stream) {
     while (m_mask < std::uint32_t(std::max(1, samples) - 1)) m_mask = (m_mask << 1) | 1;
     m_reversedMask = reverseBits(m_mask);
   }
@@ -141,23 +146,31 @@ SamplerType parseSamplerType(const std::string& name) {
   if (name == "independent") return SamplerType::Independent;
   if (name == "stratified") return SamplerType::Stratified;
   if (name == "sobol") return SamplerType::Sobol;
-  throw std::invalid_argument("unknown sampler \"" + name + "\" (independent, stratified or sobol)");
+  throw std::invalid_argument("unknown sampler \"" + name +
+                              "\" (independent, stratified or sobol)");
 }
 
 std::string samplerName(SamplerType type) {
   switch (type) {
-    case SamplerType::Independent: return "independent";
-    case SamplerType::Stratified: return "stratified";
-    case SamplerType::Sobol: return "sobol";
+    case SamplerType::Independent:
+      return "independent";
+    case SamplerType::Stratified:
+      return "stratified";
+    case SamplerType::Sobol:
+      return "sobol";
   }
   return "?";
 }
 
-std::unique_ptr<Sampler> makeSampler(SamplerType type, std::uint64_t seed, std::uint64_t stream, int samplesPerPixel) {
+std::unique_ptr<Sampler> makeSampler(SamplerType type, std::uint64_t seed, std::uint64_t stream,
+                                     int samplesPerPixel) {
   switch (type) {
-    case SamplerType::Independent: return std::make_unique<IndependentSampler>(seed, stream);
-    case SamplerType::Stratified: return std::make_unique<StratifiedSampler>(seed, stream, samplesPerPixel);
-    case SamplerType::Sobol: return std::make_unique<SobolSampler>(seed, stream, samplesPerPixel);
+    case SamplerType::Independent:
+      return std::make_unique<IndependentSampler>(seed, stream);
+    case SamplerType::Stratified:
+      return std::make_unique<StratifiedSampler>(seed, stream, samplesPerPixel);
+    case SamplerType::Sobol:
+      return std::make_unique<SobolSampler>(seed, stream, samplesPerPixel);
   }
   throw std::invalid_argument("makeSampler: unknown sampler type");
 }
@@ -177,7 +190,8 @@ Sobol1Table makeSobol1Table(bool reversed) {
   for (int b = 0; b < 4; ++b)
     for (int byte = 0; byte < 256; ++byte)
       for (int j = 0; j < 8; ++j)
-        if (byte >> j & 1) t[b][byte] ^= reversed ? reverseBits(column[8 * b + j]) : column[8 * b + j];
+        if (byte >> j & 1)
+          t[b][byte] ^= reversed ? reverseBits(column[8 * b + j]) : column[8 * b + j];
   return t;
 }
 std::uint32_t applySobol1(const Sobol1Table& t, std::uint32_t index) {

@@ -34,7 +34,8 @@ class Sampler {
 };
 
 /// \param samplesPerPixel strata count (stratified), power-of-two block of indices (Sobol)
-std::unique_ptr<Sampler> makeSampler(SamplerType type, std::uint64_t seed, std::uint64_t stream, int samplesPerPixel);
+std::unique_ptr<Sampler> makeSampler(SamplerType type, std::uint64_t seed, std::uint64_t stream,
+                                     int samplesPerPixel);
 
 /// \name Building blocks (exposed for tests)
 /// \{

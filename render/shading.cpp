@@ -1,6 +1,5 @@
 #include "render/shading.h"
 
-
 #include <algorithm>
 
 #include "radiosity/radiosity_solution.h"
@@ -32,8 +31,8 @@ Vec3 reflectedRadiosity(const SurfaceHit& hit, const RadiosityLighting& l) {
 /// One camera sample: follow delta lobes, then at the first glossy or diffuse vertex add
 /// direct light (MIS), the BSDF-sampled ray's emission (MIS) and glossy radiosity, and
 /// the diffuse lobe's indirect light ρ_d/π · H_indirect.
-Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lighting, Vec3 o, Vec3 d, Sampler& sampler,
-                     const TwoPassSettings& s, long long& rays) {
+Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lighting, Vec3 o, Vec3 d,
+                     Sampler& sampler, const TwoPassSettings& s, long long& rays) {
   Vec3 radiance, beta{1, 1, 1};
   for (int depth = 0; depth <= s.maxSpecularDepth; ++depth) {
     ++rays;
@@ -60,11 +59,13 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
       if (std::optional<SurfaceHit> next = scene.intersect(scene.spawn(*hit, wi), wi)) {
         const Vec3 le = scene.emitted(*next);
         if (maxComponent(le) > 0)
-          radiance += mul(beta, mul(bs->weight, le)) * powerHeuristic(bs->pdf, scene.lightPdf(*next, hit->point));
+          radiance += mul(beta, mul(bs->weight, le)) *
+                      powerHeuristic(bs->pdf, scene.lightPdf(*next, hit->point));
         // Only the non-diffuse lobes gather the solution; the diffuse lobe has H_indirect.
         const Vec3 glossy = hit->bsdf->eval(hit->wo, bs->wi) - diffuse / M_PI;
         if (maxComponent(glossy) > 0)
-          radiance += mul(beta, mul(glossy, reflectedRadiosity(*next, lighting))) * (bs->wi.z / bs->pdf);
+          radiance +=
+              mul(beta, mul(glossy, reflectedRadiosity(*next, lighting))) * (bs->wi.z / bs->pdf);
       }
     }
     break;
@@ -74,13 +75,14 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
 
 }  // namespace
 
-MonteCarloImage renderTwoPass(const ShadingScene& scene, const Camera& camera, const RadiosityLighting& lighting,
-                              const TwoPassSettings& s) {
+MonteCarloImage renderTwoPass(const ShadingScene& scene, const Camera& camera,
+                              const RadiosityLighting& lighting, const TwoPassSettings& s) {
   PixelSampling sampling{s.width, s.height, s.samplesPerPixel, s.seed, 1, s.sampler};
-  return renderCameraSamples(scene, camera, sampling,
-                             [&](const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays) {
-                               return twoPassRadiance(scene, lighting, origin, direction, sampler, s, rays);
-                             });
+  return renderCameraSamples(
+      scene, camera, sampling,
+      [&](const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays) {
+        return twoPassRadiance(scene, lighting, origin, direction, sampler, s, rays);
+      });
 }
 
 }  // namespace radkit

@@ -34,7 +34,7 @@ struct RadiosityLighting {
 RadiosityLighting radiosityLighting(const PipelineResult& result);
 
 /// \brief The two-pass image. `scene` must be built on the mesh the lighting was solved on.
-MonteCarloImage renderTwoPass(const ShadingScene& scene, const Camera& camera, const RadiosityLighting& lighting,
-                              const TwoPassSettings& settings);
+MonteCarloImage renderTwoPass(const ShadingScene& scene, const Camera& camera,
+                              const RadiosityLighting& lighting, const TwoPassSettings& settings);
 
 }  // namespace radkit

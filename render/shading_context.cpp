@@ -18,7 +18,8 @@ LightSampling parseLightSampling(const std::string& name) {
   throw std::invalid_argument("unknown light sampling \"" + name + "\" (area or solid-angle)");
 }
 
-std::unique_ptr<Bsdf> makeShadingBsdf(const Material& m, const BsdfSettings& settings, GlossyModel glossy) {
+std::unique_ptr<Bsdf> makeShadingBsdf(const Material& m, const BsdfSettings& settings,
+                                      GlossyModel glossy) {
   std::unique_ptr<Bsdf> bsdf = makeBsdf(m.bsdf, m.params, settings);
   std::unique_ptr<Bsdf> substitute;
   if (glossy == GlossyModel::Phong) substitute = bsdf->asPhong();
@@ -38,7 +39,8 @@ ShadingScene::ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visi
   for (const Surface& s : scene.surfaces) m_material.push_back(s.material);
 }
 
-std::optional<SurfaceHit> ShadingScene::intersect(const Vec3& origin, const Vec3& dir, double tMin) const {
+std::optional<SurfaceHit> ShadingScene::intersect(const Vec3& origin, const Vec3& dir,
+                                                  double tMin) const {
   std::optional<RayHit> ray = m_rays.closestHit(origin, dir, tMin);
   if (!ray) return std::nullopt;
   const Patch& p = m_mesh.patches[ray->patch];
@@ -111,16 +113,18 @@ double ShadingScene::lightPdf(const SurfaceHit& light, const Vec3& from) const {
   return m_emitters.pdfArea(light.patch) * light.distance * light.distance / cosLight;
 }
 
-std::optional<SphericalRectangle> ShadingScene::solidAngleSampling(int patch, const Vec3& from) const {
+std::optional<SphericalRectangle> ShadingScene::solidAngleSampling(int patch,
+                                                                   const Vec3& from) const {
   Vec3 corner, ex, ey;
-  if (m_lightSampling != LightSampling::SolidAngle || !m_emitters.rectangle(patch, corner, ex, ey)) return std::nullopt;
+  if (m_lightSampling != LightSampling::SolidAngle || !m_emitters.rectangle(patch, corner, ex, ey))
+    return std::nullopt;
   SphericalRectangle rect(from, corner, ex, ey);
   if (!(rect.solidAngle() >= kMinSolidAngle)) return std::nullopt;
   return rect;
 }
 
-MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& camera, const PixelSampling& s,
-                                    const CameraSampleRadiance& radiance) {
+MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& camera,
+                                    const PixelSampling& s, const CameraSampleRadiance& radiance) {
   const auto start = std::chrono::steady_clock::now();
   const PinholeCamera cam(camera, s.width, s.height);
   const int n = std::max(1, s.samplesPerPixel);
@@ -156,7 +160,7 @@ MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& cam
         img.patch[k] = hit->patch;
     }
   });
-  out.paths = (long long)(n) * s.width * s.height;
+  out.paths = (long long)(n)*s.width * s.height;
   for (long long r : rowRays) out.rays += r;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

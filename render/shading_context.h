@@ -11,11 +11,11 @@
 #include <optional>
 #include <vector>
 
+#include "bsdf/bsdf.h"
 #include "geometry/patch_mesh.h"
 #include "geometry/ray_scene.h"
 #include "geometry/sampling.h"
 #include "geometry/visibility.h"
-#include "bsdf/bsdf.h"
 #include "render/emitters.h"
 #include "render/radiosity_image.h"
 #include "render/sampler.h"
@@ -25,8 +25,8 @@ namespace radkit {
 
 /// Which model glossy materials are shaded with. Lambert, mirror and glass are unaffected.
 enum class GlossyModel {
-  AsDeclared,    ///< each material's own "brdf"
-  Phong,         ///< Cook-Torrance materials as Phong: n = 2/α² − 2, ks = F0 (Walter et al. 2007, eq. 35)
+  AsDeclared,  ///< each material's own "brdf"
+  Phong,  ///< Cook-Torrance materials as Phong: n = 2/α² − 2, ks = F0 (Walter et al. 2007, eq. 35)
   CookTorrance,  ///< Phong materials as Cook-Torrance: α = √(2/(n + 2)), f0 = ks, metallic 0
 };
 
@@ -43,10 +43,10 @@ struct SurfaceHit {
   int patch = -1;
   double distance = 0;
   Vec3 point;
-  Vec3 normal;        ///< the patch's front normal, flipped toward wo for two-sided materials
+  Vec3 normal;  ///< the patch's front normal, flipped toward wo for two-sided materials
   Frame frame{Vec3{0, 0, 1}};
-  Vec3 wo;            ///< toward the ray origin, local to `frame`
-  bool front = false; ///< wo on the side of the patch's front normal
+  Vec3 wo;                     ///< toward the ray origin, local to `frame`
+  bool front = false;          ///< wo on the side of the patch's front normal
   const Bsdf* bsdf = nullptr;  ///< null on the back of a one-sided surface (it absorbs)
 };
 
@@ -57,9 +57,9 @@ struct MonteCarloImage {
   /// stratified and Sobol samples usually do better than it, so for them it is a
   /// conservative bar (render with several seeds for an honest one).
   std::vector<Vec3> varianceOfMean;
-  long long paths = 0;               ///< camera samples traced
-  long long rays = 0;                ///< closest-hit and shadow rays cast
-  double seconds = 0;                ///< wall time of the render
+  long long paths = 0;  ///< camera samples traced
+  long long rays = 0;   ///< closest-hit and shadow rays cast
+  double seconds = 0;   ///< wall time of the render
 };
 
 /// The camera-sample loop shared by the Monte Carlo image modes.
@@ -72,21 +72,24 @@ struct PixelSampling {
 };
 
 /// Estimates the radiance along one camera ray; adds the rays it casts to `rays`.
-using CameraSampleRadiance =
-    std::function<Vec3(const Vec3& origin, const Vec3& direction, Sampler& sampler, long long& rays)>;
+using CameraSampleRadiance = std::function<Vec3(const Vec3& origin, const Vec3& direction,
+                                                Sampler& sampler, long long& rays)>;
 
 class ShadingScene;
 
 /// \brief Averages samplesPerPixel camera samples per pixel, jittered by the sampler's first
-/// 2-D dimension (parallel over rows, deterministic), with the variance of each pixel mean and the patch seen at the pixel centre.
-MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& camera, const PixelSampling& sampling,
+/// 2-D dimension (parallel over rows, deterministic), with the variance of each pixel mean and the
+/// patch seen at the pixel centre.
+MonteCarloImage renderCameraSamples(const ShadingScene& scene, const Camera& camera,
+                                    const PixelSampling& sampling,
                                     const CameraSampleRadiance& radiance);
 
 class ShadingScene {
  public:
   /// \brief The scene and mesh must outlive this object; `rays` answers for `mesh`.
-  ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visibility& rays, const BsdfSettings& bsdf,
-               GlossyModel glossy = GlossyModel::AsDeclared, LightSampling light = LightSampling::Area);
+  ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
+               const BsdfSettings& bsdf, GlossyModel glossy = GlossyModel::AsDeclared,
+               LightSampling light = LightSampling::Area);
 
   const PatchMesh& mesh() const { return m_mesh; }
   const Visibility& rays() const { return m_rays; }
@@ -131,6 +134,7 @@ class ShadingScene {
 };
 
 /// \brief The BSDF a material is shaded with under `glossy` (the table of substitutions).
-std::unique_ptr<Bsdf> makeShadingBsdf(const Material& material, const BsdfSettings& settings, GlossyModel glossy);
+std::unique_ptr<Bsdf> makeShadingBsdf(const Material& material, const BsdfSettings& settings,
+                                      GlossyModel glossy);
 
 }  // namespace radkit

@@ -31,8 +31,8 @@ std::array<double, 4> meanValueCoordinates(const Vec3* poly, int n, const Vec3& 
   return w;
 }
 
-SmoothRadiosity::SmoothRadiosity(const PatchMesh& mesh, const std::vector<Vec3>& radiosity, const SmoothSettings& s,
-                                 const std::vector<double>& error)
+SmoothRadiosity::SmoothRadiosity(const PatchMesh& mesh, const std::vector<Vec3>& radiosity,
+                                 const SmoothSettings& s, const std::vector<double>& error)
     : m_mesh(mesh), m_patch(radiosity), m_corner(mesh.size()) {
   // Patches around each vertex, compressed rows.
   std::vector<int> start(mesh.vertices.size() + 1, 0), around;
@@ -42,10 +42,13 @@ SmoothRadiosity::SmoothRadiosity(const PatchMesh& mesh, const std::vector<Vec3>&
   around.resize(start.back());
   std::vector<int> fill(start.begin(), start.end() - 1);
   for (int i = 0; i < mesh.size(); ++i)
-    for (int k = 0; k < mesh.patches[i].vertexCount; ++k) around[fill[mesh.patches[i].vertex[k]]++] = i;
+    for (int k = 0; k < mesh.patches[i].vertexCount; ++k)
+      around[fill[mesh.patches[i].vertex[k]]++] = i;
 
   const double cosCrease = std::cos(s.creaseAngleDeg * M_PI / 180);
-  auto sigma = [&](int i) { return error.empty() ? s.relativeError * luminance(radiosity[i]) : error[i]; };
+  auto sigma = [&](int i) {
+    return error.empty() ? s.relativeError * luminance(radiosity[i]) : error[i];
+  };
   // Symmetric, so two patches that average with each other see the same shared corner value.
   auto agree = [&](int i, int j) {
     const Patch &a = mesh.patches[i], &b = mesh.patches[j];
@@ -81,8 +84,10 @@ Vec3 SmoothRadiosity::at(int patch, const Vec3& point) const {
   return b;
 }
 
-std::vector<Vec3> smoothCornerValues(const std::vector<Vec3>& points, const std::vector<std::vector<int>>& polygons,
-                                     const std::vector<int>& surface, const std::vector<Vec3>& perPatch,
+std::vector<Vec3> smoothCornerValues(const std::vector<Vec3>& points,
+                                     const std::vector<std::vector<int>>& polygons,
+                                     const std::vector<int>& surface,
+                                     const std::vector<Vec3>& perPatch,
                                      const SmoothSettings& settings) {
   PatchMesh mesh;
   mesh.vertices = points;
@@ -104,13 +109,16 @@ std::vector<Vec3> smoothCornerValues(const std::vector<Vec3>& points, const std:
   return out;
 }
 
-std::vector<double> smoothCornerValues(const std::vector<Vec3>& points, const std::vector<std::vector<int>>& polygons,
-                                       const std::vector<int>& surface, const std::vector<double>& perPatch,
+std::vector<double> smoothCornerValues(const std::vector<Vec3>& points,
+                                       const std::vector<std::vector<int>>& polygons,
+                                       const std::vector<int>& surface,
+                                       const std::vector<double>& perPatch,
                                        const SmoothSettings& settings) {
   std::vector<Vec3> grey;
   for (double v : perPatch) grey.push_back({v, v, v});
   std::vector<double> out;
-  for (const Vec3& v : smoothCornerValues(points, polygons, surface, grey, settings)) out.push_back(v.x);
+  for (const Vec3& v : smoothCornerValues(points, polygons, surface, grey, settings))
+    out.push_back(v.x);
   return out;
 }
 

@@ -26,8 +26,8 @@ class SmoothRadiosity {
  public:
   /// \param error per-patch standard error of B (luminance units), or empty for
   ///        settings.relativeError × Y(B).
-  SmoothRadiosity(const PatchMesh& mesh, const std::vector<Vec3>& radiosity, const SmoothSettings& settings = {},
-                  const std::vector<double>& error = {});
+  SmoothRadiosity(const PatchMesh& mesh, const std::vector<Vec3>& radiosity,
+                  const SmoothSettings& settings = {}, const std::vector<double>& error = {});
 
   /// \brief B at a point of patch p: the patch value plus the mean-value interpolation of the
   /// corners' departures from it, so a patch whose corners all equal it returns it exactly.
@@ -44,13 +44,17 @@ class SmoothRadiosity {
 /// patches.vtp): one value per polygon corner, polygon by polygon, so a display that
 /// interpolates between corners gets the same crease, surface and jump rule as render.png.
 /// Polygons need not share points; ones with more than 4 corners stay flat.
-std::vector<Vec3> smoothCornerValues(const std::vector<Vec3>& points, const std::vector<std::vector<int>>& polygons,
-                                     const std::vector<int>& surface, const std::vector<Vec3>& perPatch,
+std::vector<Vec3> smoothCornerValues(const std::vector<Vec3>& points,
+                                     const std::vector<std::vector<int>>& polygons,
+                                     const std::vector<int>& surface,
+                                     const std::vector<Vec3>& perPatch,
                                      const SmoothSettings& settings = {});
 /// \brief The same for a scalar per patch (false colour, a row of F): it is smoothed as the
 /// grey Vec3{v, v, v}, whose luminance is v.
-std::vector<double> smoothCornerValues(const std::vector<Vec3>& points, const std::vector<std::vector<int>>& polygons,
-                                       const std::vector<int>& surface, const std::vector<double>& perPatch,
+std::vector<double> smoothCornerValues(const std::vector<Vec3>& points,
+                                       const std::vector<std::vector<int>>& polygons,
+                                       const std::vector<int>& surface,
+                                       const std::vector<double>& perPatch,
                                        const SmoothSettings& settings = {});
 
 /// \brief Mean value coordinates of x in a convex planar polygon (Floater 2003): smooth inside,

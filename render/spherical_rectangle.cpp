@@ -5,7 +5,8 @@
 
 namespace radkit {
 
-SphericalRectangle::SphericalRectangle(const Vec3& origin, const Vec3& corner, const Vec3& ex, const Vec3& ey)
+SphericalRectangle::SphericalRectangle(const Vec3& origin, const Vec3& corner, const Vec3& ex,
+                                       const Vec3& ey)
     : m_origin(origin) {
   const double ex_len = length(ex), ey_len = length(ey);
   if (!(ex_len > 0) || !(ey_len > 0)) return;
@@ -28,7 +29,9 @@ SphericalRectangle::SphericalRectangle(const Vec3& origin, const Vec3& corner, c
   const Vec3 n1 = Vec3{-m_z0, 0, m_x1} / std::sqrt(m_z0 * m_z0 + m_x1 * m_x1);
   const Vec3 n2 = Vec3{0, -m_z0, m_y1} / std::sqrt(m_z0 * m_z0 + m_y1 * m_y1);
   const Vec3 n3 = Vec3{m_z0, 0, -m_x0} / std::sqrt(m_z0 * m_z0 + m_x0 * m_x0);
-  auto angle = [](const Vec3& a, const Vec3& b) { return std::acos(std::clamp(-dot(a, b), -1.0, 1.0)); };
+  auto angle = [](const Vec3& a, const Vec3& b) {
+    return std::acos(std::clamp(-dot(a, b), -1.0, 1.0));
+  };
   const double g0 = angle(n0, n1), g1 = angle(n1, n2), g2 = angle(n2, n3), g3 = angle(n3, n0);
   m_b0 = n0.z, m_b1 = n2.z;
   m_k = 2 * M_PI - g2 - g3;
@@ -46,7 +49,8 @@ Vec3 SphericalRectangle::sample(double u, double v) const {
   cu = std::clamp(cu, -1.0, 1.0);
   const double xu = std::clamp(-(cu * m_z0) / std::sqrt(std::max(1e-300, 1 - cu * cu)), m_x0, m_x1);
   const double dist = std::sqrt(xu * xu + m_z0 * m_z0);
-  const double h0 = m_y0 / std::sqrt(dist * dist + m_y0 * m_y0), h1 = m_y1 / std::sqrt(dist * dist + m_y1 * m_y1);
+  const double h0 = m_y0 / std::sqrt(dist * dist + m_y0 * m_y0),
+               h1 = m_y1 / std::sqrt(dist * dist + m_y1 * m_y1);
   const double hv = h0 + v * (h1 - h0), hv2 = hv * hv;
   const double yv = hv2 < 1 - 1e-12 ? std::clamp(hv * dist / std::sqrt(1 - hv2), m_y0, m_y1) : m_y1;
   return m_origin + m_x * xu + m_y * yv + m_z * m_z0;

@@ -11,8 +11,8 @@ void writeConvergenceHeader(std::ostream& out) {
 void writeConvergenceRows(std::ostream& out, const SolveResult& result) {
   const auto precision = out.precision(17);
   for (const HistoryRow& row : result.history)
-    out << result.solver << ',' << row.iteration << ',' << row.seconds << ',' << row.residual
-        << ',' << row.unshotPower << '\n';
+    out << result.solver << ',' << row.iteration << ',' << row.seconds << ',' << row.residual << ','
+        << row.unshotPower << '\n';
   out.precision(precision);
 }
 

@@ -19,7 +19,7 @@ void writeConvergenceRows(std::ostream& out, const SolveResult& result);
 struct Milestone {
   double level = 0.0;
   bool reached = false;
-  long iterations = 0;  ///< valid when reached
+  long iterations = 0;   ///< valid when reached
   double seconds = 0.0;  ///< valid when reached
   double sweeps = 0.0;   ///< sweep-equivalents, valid when reached
 };

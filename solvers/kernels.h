@@ -160,8 +160,10 @@ inline std::int64_t csrLowerBound(const CsrMatrix<T>& m, int i, int col) {
   std::int64_t lo = m.rowBegin(i), hi = m.rowEnd(i);
   while (lo < hi) {
     const std::int64_t mid = lo + (hi - lo) / 2;
-    if (m.column(mid) < col) lo = mid + 1;
-    else hi = mid;
+    if (m.column(mid) < col)
+      lo = mid + 1;
+    else
+      hi = mid;
   }
   return lo;
 }
@@ -218,7 +220,9 @@ inline void forEachInRow(const CsrMatrix<T>& m, int i, Fn&& fn) {
 
 /// Entries stored in row i (n for a dense row).
 template <typename T>
-inline std::size_t rowEntries(const DenseMatrix<T>& m, int) { return static_cast<std::size_t>(m.cols()); }
+inline std::size_t rowEntries(const DenseMatrix<T>& m, int) {
+  return static_cast<std::size_t>(m.cols());
+}
 template <typename T>
 inline std::size_t rowEntries(const CsrMatrix<T>& m, int i) {
   return static_cast<std::size_t>(m.rowEnd(i) - m.rowBegin(i));
@@ -230,7 +234,9 @@ inline std::size_t storedEntries(const DenseMatrix<T>& m) {
   return static_cast<std::size_t>(m.rows()) * static_cast<std::size_t>(m.cols());
 }
 template <typename T>
-inline std::size_t storedEntries(const CsrMatrix<T>& m) { return m.nonZeros(); }
+inline std::size_t storedEntries(const CsrMatrix<T>& m) {
+  return m.nonZeros();
+}
 
 /// Pointers to the three channels, for rowDots<3>.
 inline std::array<const double*, 3> channelPointers(const Channels& x) {

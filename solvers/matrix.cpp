@@ -4,10 +4,14 @@ namespace radkit {
 
 std::string storageName(const FormFactorMatrix& f) {
   switch (f.index()) {
-    case 0: return "dense-double";
-    case 1: return "dense-float";
-    case 2: return "csr-double";
-    default: return "csr-float";
+    case 0:
+      return "dense-double";
+    case 1:
+      return "dense-float";
+    case 2:
+      return "csr-double";
+    default:
+      return "csr-float";
   }
 }
 

@@ -60,7 +60,9 @@ class CsrMatrix {
   /// Takes ownership of CSR arrays; rowStart has n+1 entries.
   CsrMatrix(int n, std::vector<std::int64_t> rowStart, std::vector<int> column,
             std::vector<T> value)
-      : m_n(n), m_rowStart(std::move(rowStart)), m_column(std::move(column)),
+      : m_n(n),
+        m_rowStart(std::move(rowStart)),
+        m_column(std::move(column)),
         m_value(std::move(value)) {
     if (static_cast<int>(m_rowStart.size()) != n + 1 || m_column.size() != m_value.size())
       throw std::invalid_argument("CsrMatrix: inconsistent array sizes");
@@ -128,8 +130,10 @@ T CsrMatrix<T>::operator()(int i, int j) const {
   std::int64_t lo = m_rowStart[i], hi = m_rowStart[i + 1];
   while (lo < hi) {
     std::int64_t mid = (lo + hi) / 2;
-    if (m_column[mid] < j) lo = mid + 1;
-    else hi = mid;
+    if (m_column[mid] < j)
+      lo = mid + 1;
+    else
+      hi = mid;
   }
   return (lo < m_rowStart[i + 1] && m_column[lo] == j) ? m_value[lo] : T(0);
 }

@@ -43,7 +43,8 @@ std::unique_ptr<Solver> makeSolver(const std::string& name, SolverParams params)
       return solver;
     }
   std::string known;
-  for (const SolverEntry& entry : kSolvers) known += (known.empty() ? "" : ", ") + std::string(entry.name);
+  for (const SolverEntry& entry : kSolvers)
+    known += (known.empty() ? "" : ", ") + std::string(entry.name);
   throw std::invalid_argument("unknown solver '" + name + "'; known solvers: " + known);
 }
 
@@ -55,7 +56,8 @@ std::vector<std::string> solverNames() {
 
 std::vector<std::string> solverHelp() {
   std::vector<std::string> help;
-  for (const SolverEntry& entry : kSolvers) help.push_back(std::string(entry.name) + ": " + entry.help);
+  for (const SolverEntry& entry : kSolvers)
+    help.push_back(std::string(entry.name) + ": " + entry.help);
   return help;
 }
 

@@ -58,7 +58,8 @@ std::string rateText(double rate) {
 
 /// Empty when the run goes on; otherwise why it stops (and result.exit, result.converged).
 std::string stopReason(const Solver& solver, const SolverSettings& settings, long iteration,
-                       double seconds, double emissionNorm, const ConvergenceMonitor& p, SolveResult& result) {
+                       double seconds, double emissionNorm, const ConvergenceMonitor& p,
+                       SolveResult& result) {
   const double r = solver.residual();
   const std::string tail = " after " + std::to_string(iteration) + " iterations";
   result.converged = false;
@@ -81,13 +82,14 @@ std::string stopReason(const Solver& solver, const SolverSettings& settings, lon
   if (iteration >= settings.maxIterations) {
     result.exit = "max_iterations";
     return "not converged: maximum iterations (" + std::to_string(settings.maxIterations) +
-           ") reached with residual " + number(r) + " > tolerance " +
-           number(settings.tolerance) + rateText(p.rate);
+           ") reached with residual " + number(r) + " > tolerance " + number(settings.tolerance) +
+           rateText(p.rate);
   }
   if (seconds >= settings.maxSeconds) {
     result.exit = "time_limit";
     return "not converged: time limit " + number(settings.maxSeconds) + " s reached" + tail +
-           " with residual " + number(r) + " > tolerance " + number(settings.tolerance) + rateText(p.rate);
+           " with residual " + number(r) + " > tolerance " + number(settings.tolerance) +
+           rateText(p.rate);
   }
   // A residual stuck at the rounding floor above the tolerance would run to the iteration
   // limit. Only at the floor: far above it, a residual may rise for a long while and still
@@ -151,10 +153,13 @@ SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSet
   progress.windowResidual = solver.residual();
   for (;;) {
     const double seconds = secondsSince(t0);
-    const HistoryRow row{iteration, seconds, solver.residual(), solver.unshotPower(), solver.sweeps()};
+    const HistoryRow row{iteration, seconds, solver.residual(), solver.unshotPower(),
+                         solver.sweeps()};
     progress.update(row.residual, row.sweeps);
-    result.reason = stopReason(solver, settings, iteration, seconds, emissionNorm, progress, result);
-    if (progress.keep(iteration, row.residual) || !result.reason.empty()) result.history.push_back(row);
+    result.reason =
+        stopReason(solver, settings, iteration, seconds, emissionNorm, progress, result);
+    if (progress.keep(iteration, row.residual) || !result.reason.empty())
+      result.history.push_back(row);
     if (!result.reason.empty()) break;
     solver.step();
     ++iteration;

@@ -17,7 +17,7 @@ namespace radkit {
 
 /// Run-wide stopping rules, shared by every solver of a run.
 struct SolverSettings {
-  double tolerance = 1e-6;  ///< stop when residual() <= tolerance
+  double tolerance = 1e-6;         ///< stop when residual() <= tolerance
   long maxIterations = 100000000;  ///< steps (sweeps, or shots for Southwell)
   double maxSeconds = std::numeric_limits<double>::infinity();  ///< wall clock, start included
   ResidualNorm norm = ResidualNorm::Relative;
@@ -82,13 +82,13 @@ struct HistoryRow {
 
 /// What solve() returns.
 struct SolveResult {
-  std::string solver;        ///< registry name
-  std::string description;   ///< describe()
+  std::string solver;       ///< registry name
+  std::string description;  ///< describe()
   bool converged = false;
-  std::string reason;        ///< why it stopped, one sentence for the console
+  std::string reason;  ///< why it stopped, one sentence for the console
   long iterations = 0;
   double seconds = 0.0;
-  double residual = 0.0;      ///< solver's residual() at the end
+  double residual = 0.0;         ///< solver's residual() at the end
   double checkedResidual = 0.0;  ///< recomputed from F by the driver, same norm
   Channels radiosity;
   Rgb ambient{};
@@ -115,11 +115,12 @@ constexpr double kRateWindowSweeps = 50;
 /// (hierarchy/hierarchical.cpp) uses it too, so both stop, estimate ρ and keep history alike.
 struct ConvergenceMonitor {
   double startResidual = 0.0;
-  double best = std::numeric_limits<double>::infinity();  ///< lowest residual so far
+  double best = std::numeric_limits<double>::infinity();   ///< lowest residual so far
   double bestSweeps = 0.0;                                 ///< sweeps when it was reached
   double windowSweeps = 0.0, windowResidual = 0.0;         ///< start of the rate window
   double rate = std::numeric_limits<double>::quiet_NaN();  ///< see SolveResult::spectralRadius
-  int decade = std::numeric_limits<int>::max();            ///< floor(log10) of the last kept residual's decade
+  int decade =
+      std::numeric_limits<int>::max();  ///< floor(log10) of the last kept residual's decade
 
   /// Records residual r after `sweeps` sweep-equivalents: the lowest so far and the rate.
   void update(double r, double sweeps);

@@ -81,8 +81,7 @@ std::unique_ptr<Solver> makeSorSolver(SolverParams& params) {
   if (!(omega == 0.0 || (omega > 0.0 && omega < 2.0)))
     throw std::invalid_argument("sor: omega = " + std::to_string(omega) +
                                 " must be in (0, 2), or 0 to estimate it");
-  if (!(powerIterations >= 1))
-    throw std::invalid_argument("sor: power_iterations must be >= 1");
+  if (!(powerIterations >= 1)) throw std::invalid_argument("sor: power_iterations must be >= 1");
   return std::make_unique<SorSolver>(omega, static_cast<int>(powerIterations));
 }
 

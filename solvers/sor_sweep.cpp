@@ -42,7 +42,7 @@ void sweep(const Matrix& m, const RadiositySystem& s, const Rgb& omega, const Ch
       const auto high = rowDots<3>(m, i, i, i1, oldp);
       for (int c = 0; c < 3; ++c) {
         const double rho = s.reflectance[c][i], e = s.emission[c][i], b = old[c][i];
-        const double upper = sums.high[c][i - i0] + high[c];  // Σ_{j>=i} F_ij B^k_j
+        const double upper = sums.high[c][i - i0] + high[c];    // Σ_{j>=i} F_ij B^k_j
         const double lowerNext = sums.low[c][i - i0] + low[c];  // Σ_{j<i} F_ij B^{k+1}_j
         r[c][i] = e + rho * (lower[c][i] + upper) - b;
         next[c][i] = b + omega[c] * (e + rho * (lowerNext + upper) - b);
@@ -69,15 +69,14 @@ void lowerProduct(const Matrix& m, const Channels& x, Channels& lower) {
 
 }  // namespace
 
-void sorSweep(const RadiositySystem& system, const Rgb& omega, const Channels& old,
-              Channels& next, Channels& lower, Channels& r) {
+void sorSweep(const RadiositySystem& system, const Rgb& omega, const Channels& old, Channels& next,
+              Channels& lower, Channels& r) {
   const int n = system.size();
   for (int c = 0; c < 3; ++c) {
     next[c].resize(static_cast<std::size_t>(n));
     r[c].resize(static_cast<std::size_t>(n));
   }
-  std::visit([&](const auto& m) { sweep(m, system, omega, old, next, lower, r); },
-             system.matrix());
+  std::visit([&](const auto& m) { sweep(m, system, omega, old, next, lower, r); }, system.matrix());
 }
 
 void lowerTriangleProduct(const RadiositySystem& system, const Channels& x, Channels& lower) {

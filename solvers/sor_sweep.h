@@ -23,8 +23,8 @@ namespace radkit {
 /// \param next  receives B^{k+1}; resized to n
 /// \param lower on entry Σ_{j<i} F_ij B^k_j, on return Σ_{j<i} F_ij B^{k+1}_j
 /// \param r     receives r(B^k); resized to n
-void sorSweep(const RadiositySystem& system, const Rgb& omega, const Channels& old,
-              Channels& next, Channels& lower, Channels& r);
+void sorSweep(const RadiositySystem& system, const Rgb& omega, const Channels& old, Channels& next,
+              Channels& lower, Channels& r);
 
 /// \brief lower_i = Σ_{j<i} F_ij x_j, the `lower` a first sorSweep from x needs.
 void lowerTriangleProduct(const RadiositySystem& system, const Channels& x, Channels& lower);

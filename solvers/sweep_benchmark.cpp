@@ -33,19 +33,25 @@ class Triad {
  public:
   explicit Triad(std::size_t n)
       : m_a(new double[n]), m_b(new double[n]), m_c(new double[n]), m_all(0, n, 1 << 16) {
-    tbb::parallel_for(m_all, [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i < r.end(); ++i) {
-        m_a[i] = 0.0;
-        m_b[i] = 1.0;
-        m_c[i] = 2.0;
-      }
-    }, tbb::static_partitioner());
+    tbb::parallel_for(
+        m_all,
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            m_a[i] = 0.0;
+            m_b[i] = 1.0;
+            m_c[i] = 2.0;
+          }
+        },
+        tbb::static_partitioner());
   }
   void operator()() {
     const double s = 3.0;
-    tbb::parallel_for(m_all, [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i < r.end(); ++i) m_a[i] = m_b[i] + s * m_c[i];
-    }, tbb::static_partitioner());
+    tbb::parallel_for(
+        m_all,
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t i = r.begin(); i < r.end(); ++i) m_a[i] = m_b[i] + s * m_c[i];
+        },
+        tbb::static_partitioner());
   }
 
  private:
@@ -88,7 +94,8 @@ SweepBenchmarkResult runSweepBenchmark(const SweepBenchmarkSettings& settings) {
     for (int k = 0; k < settings.repetitions; ++k) {
       out.triadSeconds = std::min(out.triadSeconds, seconds(triad));
       out.jacobiSeconds = std::min(out.jacobiSeconds, seconds([&] { jacobi->step(); }));
-      out.gaussSeidelSeconds = std::min(out.gaussSeidelSeconds, seconds([&] { gaussSeidel->step(); }));
+      out.gaussSeidelSeconds =
+          std::min(out.gaussSeidelSeconds, seconds([&] { gaussSeidel->step(); }));
     }
   });
   out.triadBytes = 3.0 * sizeof(double) * static_cast<double>(settings.triadElements);

@@ -8,25 +8,25 @@
 namespace radkit {
 
 struct SweepBenchmarkSettings {
-  int n = 8192;                              ///< dense n x n matrix of doubles (8192: 512 MiB)
-  int repetitions = 10;                      ///< timed rounds of the three kernels; best counts
+  int n = 8192;          ///< dense n x n matrix of doubles (8192: 512 MiB)
+  int repetitions = 10;  ///< timed rounds of the three kernels; best counts
   std::size_t triadElements = std::size_t(1) << 24;  ///< per array; 3 x 128 MiB >> any cache
-  int threads = 0;                           ///< 0: TBB's default (all cores)
+  int threads = 0;                                   ///< 0: TBB's default (all cores)
 };
 
 struct SweepBenchmarkResult {
   int n = 0;
   int threads = 0;
   int repetitions = 0;
-  double matrixBytes = 0.0;             ///< bytes of F streamed per sweep, n² · 8
-  double jacobiSeconds = 0.0;           ///< best sweep (one solver step, three channels)
-  double gaussSeidelSeconds = 0.0;      ///< best sweep
-  double triadSeconds = 0.0;            ///< best triad pass
-  double triadBytes = 0.0;              ///< 3 · 8 · elements per pass (STREAM's count)
-  double jacobiBytesPerSecond = 0.0;    ///< matrixBytes / jacobiSeconds
+  double matrixBytes = 0.0;           ///< bytes of F streamed per sweep, n² · 8
+  double jacobiSeconds = 0.0;         ///< best sweep (one solver step, three channels)
+  double gaussSeidelSeconds = 0.0;    ///< best sweep
+  double triadSeconds = 0.0;          ///< best triad pass
+  double triadBytes = 0.0;            ///< 3 · 8 · elements per pass (STREAM's count)
+  double jacobiBytesPerSecond = 0.0;  ///< matrixBytes / jacobiSeconds
   double gaussSeidelBytesPerSecond = 0.0;
   double triadBytesPerSecond = 0.0;
-  double jacobiRatio = 0.0;             ///< jacobi / triad bytes per second; target >= 0.7
+  double jacobiRatio = 0.0;  ///< jacobi / triad bytes per second; target >= 0.7
   double gaussSeidelRatio = 0.0;
 };
 

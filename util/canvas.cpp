@@ -54,9 +54,14 @@ std::vector<char> fontChars(const std::string& s) {
   std::vector<char> out;
   for (std::size_t k = 0; k < s.size();) {
     const unsigned char b = static_cast<unsigned char>(s[k]);
-    const int length = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xE ? 3 : (b >> 3) == 0x1E ? 4 : 1;
+    const int length = b < 0x80           ? 1
+                       : (b >> 5) == 0x6  ? 2
+                       : (b >> 4) == 0xE  ? 3
+                       : (b >> 3) == 0x1E ? 4
+                                          : 1;
     int taken = 1;  // a lead byte with missing continuation bytes counts alone
-    while (taken < length && k + taken < s.size() && (static_cast<unsigned char>(s[k + taken]) >> 6) == 0x2)
+    while (taken < length && k + taken < s.size() &&
+           (static_cast<unsigned char>(s[k + taken]) >> 6) == 0x2)
       ++taken;
     out.push_back((b >= 32 && b <= 126) || b == '\n' ? char(b) : '?');
     k += taken;
@@ -91,14 +96,15 @@ int Canvas::textWidth(const std::string& s, int scale) {
 
 Rgb8 viridis(double t) {
   // Nine evenly spaced samples of matplotlib's viridis; linear in between.
-  static constexpr std::uint8_t kViridis[9][3] = {
-      {68, 1, 84},    {71, 44, 122},  {59, 81, 139},  {44, 113, 142}, {33, 144, 141},
-      {39, 173, 129}, {92, 200, 99},  {170, 220, 50}, {253, 231, 37}};
+  static constexpr std::uint8_t kViridis[9][3] = {{68, 1, 84},    {71, 44, 122},  {59, 81, 139},
+                                                  {44, 113, 142}, {33, 144, 141}, {39, 173, 129},
+                                                  {92, 200, 99},  {170, 220, 50}, {253, 231, 37}};
   t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 8;
   int k = std::min(7, int(t));
   double w = t - k;
   auto mix = [&](int ch) {
-    return static_cast<std::uint8_t>(std::lround(kViridis[k][ch] * (1 - w) + kViridis[k + 1][ch] * w));
+    return static_cast<std::uint8_t>(
+        std::lround(kViridis[k][ch] * (1 - w) + kViridis[k + 1][ch] * w));
   };
   return {mix(0), mix(1), mix(2)};
 }

@@ -29,7 +29,8 @@ class Canvas {
   /// Text with its top-left corner at (x, y), `scale` pixels per font unit; vertical text
   /// runs downwards (rotated 90° clockwise). Any UTF-8 works: characters the font lacks are
   /// drawn as '?'.
-  void text(int x, int y, const std::string& s, int scale, Rgb8 c = {0, 0, 0}, bool vertical = false);
+  void text(int x, int y, const std::string& s, int scale, Rgb8 c = {0, 0, 0},
+            bool vertical = false);
   static int textWidth(const std::string& s, int scale);
   static int textHeight(int scale) { return 7 * scale; }
 

@@ -17,8 +17,8 @@ namespace radkit::detail {
 }  // namespace radkit::detail
 
 #ifndef NDEBUG
-#define RADKIT_DCHECK(condition)                                               \
-  ((condition) ? static_cast<void>(0)                                          \
+#define RADKIT_DCHECK(condition)      \
+  ((condition) ? static_cast<void>(0) \
                : ::radkit::detail::dcheckFailed(__FILE__, __LINE__, #condition))
 #else
 // The condition stays compiled (its names are still checked) but is never evaluated.

@@ -13,7 +13,7 @@ namespace radkit {
 namespace {
 
 // Colour-blind-safe palette (Okabe & Ito 2008), indices 2.. of PLplot's colour map 0.
-constexpr int kPalette[][3] = {{0, 114, 178}, {213, 94, 0},  {0, 158, 115}, {204, 121, 167},
+constexpr int kPalette[][3] = {{0, 114, 178}, {213, 94, 0},   {0, 158, 115}, {204, 121, 167},
                                {230, 159, 0}, {86, 180, 233}, {0, 0, 0},     {240, 228, 66}};
 constexpr int kPaletteSize = sizeof kPalette / sizeof kPalette[0];
 
@@ -32,10 +32,12 @@ const char* const kMarkers[] = {"●", "■", "▲", "◆", "▼", "✚", "✖",
 constexpr int kMarkerCount = sizeof kMarkers / sizeof kMarkers[0];
 
 /// Data in axis space: log10 for logarithmic axes, dropping what cannot be shown.
-void axisData(const ChartSeries& s, const ChartPanel& p, std::vector<PLFLT>& x, std::vector<PLFLT>& y) {
+void axisData(const ChartSeries& s, const ChartPanel& p, std::vector<PLFLT>& x,
+              std::vector<PLFLT>& y) {
   for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k) {
     double a = s.x[k], b = s.y[k];
-    if ((p.logX && !(a > 0)) || (p.logY && !(b > 0)) || !std::isfinite(a) || !std::isfinite(b)) continue;
+    if ((p.logX && !(a > 0)) || (p.logY && !(b > 0)) || !std::isfinite(a) || !std::isfinite(b))
+      continue;
     x.push_back(p.logX ? std::log10(a) : a);
     y.push_back(p.logY ? std::log10(b) : b);
   }
@@ -45,8 +47,10 @@ void axisData(const ChartSeries& s, const ChartPanel& p, std::vector<PLFLT>& x, 
 void labelAxis(PLINT axis, PLFLT value, char* label, PLINT length, PLPointer data) {
   const auto* p = static_cast<const ChartPanel*>(data);
   bool log = (axis == PL_X_AXIS && p->logX) || (axis == PL_Y_AXIS && p->logY);
-  if (log) std::snprintf(label, std::size_t(length), "1e%d", int(std::lround(value)));
-  else std::snprintf(label, std::size_t(length), "%g", value);
+  if (log)
+    std::snprintf(label, std::size_t(length), "1e%d", int(std::lround(value)));
+  else
+    std::snprintf(label, std::size_t(length), "%g", value);
 }
 
 void drawPanel(const ChartPanel& given) {
@@ -93,9 +97,12 @@ void drawPanel(const ChartPanel& given) {
     // Evenly spaced markers, shifted per series so coinciding curves still show each one.
     const std::size_t n = xs[i].size();
     std::vector<PLFLT> mx, my;
-    const std::size_t step = std::max<std::size_t>(1, (n + kMarkersPerSeries - 1) / kMarkersPerSeries);
-    for (std::size_t k = (i * step / 3) % step; k < n; k += step) mx.push_back(xs[i][k]), my.push_back(ys[i][k]);
-    if (n > 0 && (n - 1) % step != (i * step / 3) % step) mx.push_back(xs[i][n - 1]), my.push_back(ys[i][n - 1]);
+    const std::size_t step =
+        std::max<std::size_t>(1, (n + kMarkersPerSeries - 1) / kMarkersPerSeries);
+    for (std::size_t k = (i * step / 3) % step; k < n; k += step)
+      mx.push_back(xs[i][k]), my.push_back(ys[i][k]);
+    if (n > 0 && (n - 1) % step != (i * step / 3) % step)
+      mx.push_back(xs[i][n - 1]), my.push_back(ys[i][n - 1]);
     plschr(0, 0.7);
     if (!mx.empty()) plstring(PLINT(mx.size()), mx.data(), my.data(), marker);
     plschr(0, 0.85);
@@ -112,13 +119,15 @@ void drawPanel(const ChartPanel& given) {
   } else {
     PLFLT legendW = 0, legendH = 0;
     std::vector<PLINT> zeros(names.size(), 0), styles(names.size(), 1);
-    std::vector<PLFLT> scales(names.size(), 1.0), zeroWidths(names.size(), 0.0), symbolScales(names.size(), 0.7);
+    std::vector<PLFLT> scales(names.size(), 1.0), zeroWidths(names.size(), 0.0),
+        symbolScales(names.size(), 0.7);
     std::vector<PLINT> ones(names.size(), 1);
     pllegend(&legendW, &legendH, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
              PL_POSITION_RIGHT | PL_POSITION_OUTSIDE, 0.02, 0.0, 0.06, 0, 1, 1, 0, 0,
-             PLINT(names.size()), opts.data(), 1.0, 0.8, 2.0, 0, colours.data(), names.data(), zeros.data(),
-             zeros.data(), scales.data(), zeroWidths.data(), colours.data(), styles.data(), widths.data(),
-             colours.data(), symbolScales.data(), ones.data(), symbols.data());
+             PLINT(names.size()), opts.data(), 1.0, 0.8, 2.0, 0, colours.data(), names.data(),
+             zeros.data(), zeros.data(), scales.data(), zeroWidths.data(), colours.data(),
+             styles.data(), widths.data(), colours.data(), symbolScales.data(), ones.data(),
+             symbols.data());
   }
 }
 
@@ -141,7 +150,8 @@ std::size_t chartPoints(const std::vector<ChartPanel>& panels) {
   return n;
 }
 
-void writeLineChartPng(const std::string& path, const std::vector<ChartPanel>& panels, int width, int height) {
+void writeLineChartPng(const std::string& path, const std::vector<ChartPanel>& panels, int width,
+                       int height) {
   if (panels.empty()) throw std::invalid_argument("writeLineChartPng: no panels");
   // PLplot's driver finds the file by name: draw into a temporary and rename when complete.
   std::string tmp = path + ".tmp.png";
@@ -152,7 +162,8 @@ void writeLineChartPng(const std::string& path, const std::vector<ChartPanel>& p
   plspage(0, 0, width, height, 0, 0);
   plscolbg(255, 255, 255);
   plscol0(1, 40, 40, 40);
-  for (int i = 0; i < kPaletteSize; ++i) plscol0(2 + i, kPalette[i][0], kPalette[i][1], kPalette[i][2]);
+  for (int i = 0; i < kPaletteSize; ++i)
+    plscol0(2 + i, kPalette[i][0], kPalette[i][1], kPalette[i][2]);
   plssub(PLINT(panels.size()), 1);
   plinit();
   for (const ChartPanel& p : panels) drawPanel(p);

@@ -35,7 +35,7 @@ std::size_t chartPoints(const std::vector<ChartPanel>& panels);
 /// the legend sits outside the plot, on its right, where it hides no curve.
 /// A linear axis whose data are all positive and span more than kAutoLogSpan (one outlier
 /// would squash the rest to the axis) is drawn logarithmic.
-void writeLineChartPng(const std::string& path, const std::vector<ChartPanel>& panels, int width = 1400,
-                       int height = 560);
+void writeLineChartPng(const std::string& path, const std::vector<ChartPanel>& panels,
+                       int width = 1400, int height = 560);
 
 }  // namespace radkit

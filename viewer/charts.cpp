@@ -71,7 +71,8 @@ ConvergenceChart::ConvergenceChart(const RunFolder& run) : m_run(run) {
   m_message->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   m_message->SetPosition(0.5, 0.5);
   m_message->SetVisibility(run.convergence.empty());
-  m_message->SetInput(run.convergenceMissing.empty() ? "convergence.csv has no rows" : run.convergenceMissing.c_str());
+  m_message->SetInput(run.convergenceMissing.empty() ? "convergence.csv has no rows"
+                                                     : run.convergenceMissing.c_str());
   m_renderer->AddActor2D(m_message);
   setFontSize(15);
   setTimeAxis(false);

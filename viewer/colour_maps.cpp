@@ -26,8 +26,8 @@ std::array<double, 3> inferno(double t) {
 
 }  // namespace
 
-void fillLookupTable(vtkLookupTable* lut, ColourMap map, double lo, double hi, bool logScale, const double belowRgb[3],
-                     const double aboveRgb[3]) {
+void fillLookupTable(vtkLookupTable* lut, ColourMap map, double lo, double hi, bool logScale,
+                     const double belowRgb[3], const double aboveRgb[3]) {
   constexpr int kColours = 256;
   lut->SetNumberOfTableValues(kColours);
   for (int k = 0; k < kColours; ++k) {
@@ -66,8 +66,8 @@ void styleText(vtkTextProperty* text, int pixels, bool panel) {
 }
 
 void styleScalarBar(vtkScalarBarActor* bar, int pixels) {
-  for (vtkTextProperty* t :
-       {bar->GetTitleTextProperty(), bar->GetLabelTextProperty(), bar->GetAnnotationTextProperty()}) {
+  for (vtkTextProperty* t : {bar->GetTitleTextProperty(), bar->GetLabelTextProperty(),
+                             bar->GetAnnotationTextProperty()}) {
     styleText(t, pixels, false);
     t->ShadowOff();
     t->ItalicOff();

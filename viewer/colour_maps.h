@@ -16,8 +16,8 @@ enum class ColourMap { Inferno, Viridis };
 
 /// \brief Fills `lut` with 256 colours of `map` over [lo, hi], log10-scaled when `logScale`;
 /// values below the range and NaN show `belowRgb`, values above it `aboveRgb`.
-void fillLookupTable(vtkLookupTable* lut, ColourMap map, double lo, double hi, bool logScale, const double belowRgb[3],
-                     const double aboveRgb[3]);
+void fillLookupTable(vtkLookupTable* lut, ColourMap map, double lo, double hi, bool logScale,
+                     const double belowRgb[3], const double aboveRgb[3]);
 
 /// \brief Light text on a translucent dark panel, `pixels` high, readable on any scene.
 void styleText(vtkTextProperty* text, int pixels, bool panel = true);

@@ -29,7 +29,8 @@ constexpr double kPicked[3] = {0.2, 0.95, 1.0};
 constexpr double kBarPixels = 110;  // room right of the matrix for the colour bar
 
 /// Polyline segments as a mapper-ready actor input.
-void addSegment(vtkPoints* points, vtkCellArray* lines, double x0, double y0, double x1, double y1) {
+void addSegment(vtkPoints* points, vtkCellArray* lines, double x0, double y0, double x1,
+                double y1) {
   lines->InsertNextCell(2);
   lines->InsertCellPoint(points->InsertNextPoint(x0, y0, 0.01));
   lines->InsertCellPoint(points->InsertNextPoint(x1, y1, 0.01));
@@ -50,7 +51,8 @@ MatrixView::MatrixView(const RunFolder& run, int maxCells) : m_run(run) {
   if (!run.formFactors) {  // say why, centred, one clause a line
     std::string why = "form-factor matrix:\n" + run.formFactorsMissing;
     for (const char* at : {" (", ": "})
-      if (auto k = why.find(at, why.find('\n')); k != std::string::npos) why[k + (at[0] == ' ' ? 0 : 1)] = '\n';
+      if (auto k = why.find(at, why.find('\n')); k != std::string::npos)
+        why[k + (at[0] == ' ' ? 0 : 1)] = '\n';
     m_title->SetInput(why.c_str());
     m_title->SetPosition(0.5, 0.5);
     setFontSize(m_fontSize);
@@ -73,11 +75,13 @@ MatrixView::MatrixView(const RunFolder& run, int maxCells) : m_run(run) {
   m_scalarBar->DrawBelowRangeSwatchOn();
   m_scalarBar->SetBelowRangeAnnotation("0");
   m_renderer->AddActor2D(m_scalarBar);
-  const std::string how = m_cells.block > 1 ? ", cell = mean of " + std::to_string(m_cells.block) + "x" +
-                                                  std::to_string(m_cells.block) + " patch pairs"
-                                            : "";
-  m_title->SetInput(
-      ("form factors F_ij (row i to column j): " + std::to_string(run.formFactors->n) + " patches" + how).c_str());
+  const std::string how = m_cells.block > 1
+                              ? ", cell = mean of " + std::to_string(m_cells.block) + "x" +
+                                    std::to_string(m_cells.block) + " patch pairs"
+                              : "";
+  m_title->SetInput(("form factors F_ij (row i to column j): " +
+                     std::to_string(run.formFactors->n) + " patches" + how)
+                        .c_str());
   setFontSize(m_fontSize);
   m_renderer->AddObserver(vtkCommand::StartEvent, this, &MatrixView::fit);
 }
@@ -86,7 +90,8 @@ void MatrixView::showLinksImage() {
   vtkNew<vtkPNGReader> reader;
   // The reader itself gives a 1×1 image for a file that is not a PNG, without an error.
   if (!reader->CanReadFile(m_run.linksImage.c_str()))
-    throw InputError(m_run.linksImage + ": not a PNG image. Fix: rerun `radkit run --method hierarchical` into this "
+    throw InputError(m_run.linksImage +
+                     ": not a PNG image. Fix: rerun `radkit run --method hierarchical` into this "
                      "folder to write it again, or delete it");
   reader->SetFileName(m_run.linksImage.c_str());
   reader->Update();
@@ -97,7 +102,8 @@ void MatrixView::showLinksImage() {
   m_imageActor->InterpolateOff();
   m_renderer->AddActor(m_imageActor);
   // links.png carries its own title, labels and colour bar.
-  m_title->SetInput("links.png: each link r <- s of the hierarchy is a block over r's rows and s's columns");
+  m_title->SetInput(
+      "links.png: each link r <- s of the hierarchy is a block over r's rows and s's columns");
   setFontSize(m_fontSize);
   m_renderer->AddObserver(vtkCommand::StartEvent, this, &MatrixView::fit);
 }
@@ -192,7 +198,8 @@ void MatrixView::fit() {
   const double w = std::max(1, size[0]), h = std::max(1, size[1]);
   if (m_linksWidth > 0) {  // the whole PNG, centred below the title, aspect kept
     const double top = 2.6 * m_fontSize;
-    const double scale = std::min(w / m_linksWidth, (h - top) / m_linksHeight);  // pixels per image pixel
+    const double scale =
+        std::min(w / m_linksWidth, (h - top) / m_linksHeight);  // pixels per image pixel
     vtkCamera* cam = m_renderer->GetActiveCamera();
     const double cx = (m_linksWidth - 1) / 2.0, cy = (m_linksHeight - 1) / 2.0 + top / 2 / scale;
     cam->SetFocalPoint(cx, cy, 0);

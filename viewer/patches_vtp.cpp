@@ -28,12 +28,15 @@ class MessageCollector : public vtkCommand {
   std::string text;
 };
 
-vtkDataArray* cellArray(vtkPolyData* data, const char* name, int components, const std::string& path) {
+vtkDataArray* cellArray(vtkPolyData* data, const char* name, int components,
+                        const std::string& path) {
   vtkDataArray* a = data->GetCellData()->GetArray(name);
   if (!a)
-    throw InputError(path + ": no cell array '" + name +
-                     "' (radkit mesh writes patches.vtp without radiosity; view the folder of `radkit run`)");
-  if (a->GetNumberOfComponents() != components || a->GetNumberOfTuples() != data->GetNumberOfCells())
+    throw InputError(
+        path + ": no cell array '" + name +
+        "' (radkit mesh writes patches.vtp without radiosity; view the folder of `radkit run`)");
+  if (a->GetNumberOfComponents() != components ||
+      a->GetNumberOfTuples() != data->GetNumberOfCells())
     throw InputError(path + ": cell array '" + name + "' must have " + std::to_string(components) +
                      " component(s) per patch");
   return a;
@@ -59,8 +62,9 @@ PatchData readPatchesVtp(const std::string& path) {
   reader->Update();
   vtkPolyData* data = reader->GetOutput();
   if (!messages->text.empty() || !data || data->GetNumberOfPoints() == 0)
-    throw InputError(path + ": not a readable VTK XML PolyData file" +
-                     (messages->text.empty() ? std::string(" (no points)") : ": " + messages->text));
+    throw InputError(
+        path + ": not a readable VTK XML PolyData file" +
+        (messages->text.empty() ? std::string(" (no points)") : ": " + messages->text));
   if (data->GetNumberOfCells() != data->GetNumberOfPolys())
     throw InputError(path + ": holds vertices, lines or strips; radkit patches are polygons only");
 
@@ -76,7 +80,8 @@ PatchData readPatchesVtp(const std::string& path) {
   while (polys->GetNextCell(ids)) {
     if (ids->GetNumberOfIds() < 3 || ids->GetNumberOfIds() > 4)
       throw InputError(path + ": polygon " + std::to_string(p.polygons.size()) + " has " +
-                       std::to_string(ids->GetNumberOfIds()) + " corners; patches are triangles or quads");
+                       std::to_string(ids->GetNumberOfIds()) +
+                       " corners; patches are triangles or quads");
     std::vector<int>& poly = p.polygons.emplace_back();
     for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) poly.push_back(int(ids->GetId(k)));
   }

@@ -18,7 +18,9 @@ namespace radkit::viewer {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw InputError(path + ": " + what); }
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw InputError(path + ": " + what);
+}
 
 [[noreturn]] void failLine(const std::string& path, long long line, const std::string& what) {
   fail(path + ":" + std::to_string(line), what);
@@ -26,7 +28,8 @@ namespace {
 
 std::ifstream openOrFail(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot be opened (missing or unreadable); write it with `radkit run --out DIR`");
+  if (!in)
+    fail(path, "cannot be opened (missing or unreadable); write it with `radkit run --out DIR`");
   return in;
 }
 
@@ -50,7 +53,8 @@ std::vector<std::string> splitCsv(const std::string& line) {
   return fields;
 }
 
-double toNumber(const std::string& text, const std::string& path, long long line, const std::string& column) {
+double toNumber(const std::string& text, const std::string& path, long long line,
+                const std::string& column) {
   char* end = nullptr;
   errno = 0;
   double v = std::strtod(text.c_str(), &end);
@@ -82,7 +86,8 @@ CsvTable readCsv(const std::string& path) {
     t.rows.push_back(splitCsv(line));
     if (t.rows.back().size() != t.header.size())
       failLine(path, n,
-               std::to_string(t.rows.back().size()) + " fields, header has " + std::to_string(t.header.size()));
+               std::to_string(t.rows.back().size()) + " fields, header has " +
+                   std::to_string(t.header.size()));
   }
   return t;
 }
@@ -107,7 +112,9 @@ std::vector<double> FormFactorRows::row(int i) const {
   return r;
 }
 
-double FormFactorRows::maxValue() const { return value.empty() ? 0.0 : *std::max_element(value.begin(), value.end()); }
+double FormFactorRows::maxValue() const {
+  return value.empty() ? 0.0 : *std::max_element(value.begin(), value.end());
+}
 
 std::string RunFolder::surfaceName(int patch) const {
   int s = patches.surface[patch];
@@ -140,7 +147,8 @@ RunReport readRunReport(const std::string& path) {
     cam.lookAt = jsonVec3(c.value("look_at", nlohmann::json()), path, "look_at");
     cam.up = jsonVec3(c.value("up", nlohmann::json()), path, "up");
     if (c.contains("fov_deg") && c["fov_deg"].is_number()) cam.fovDeg = c["fov_deg"].get<double>();
-    if (!(cam.fovDeg > 0 && cam.fovDeg < 180)) fail(path, "scene.camera.fov_deg must be in (0, 180)");
+    if (!(cam.fovDeg > 0 && cam.fovDeg < 180))
+      fail(path, "scene.camera.fov_deg must be in (0, 180)");
     r.camera = cam;
   }
   return r;
@@ -150,33 +158,40 @@ FormFactorRows readFormFactorsMtx(const std::string& path) {
   std::ifstream in = openOrFail(path);
   std::string line;
   long long lineNo = 1;
-  if (!std::getline(in, line) || line.rfind("%%MatrixMarket matrix coordinate real general", 0) != 0)
+  if (!std::getline(in, line) ||
+      line.rfind("%%MatrixMarket matrix coordinate real general", 0) != 0)
     failLine(path, 1, "expected the header '%%MatrixMarket matrix coordinate real general'");
   while (std::getline(in, line) && (line.empty() || line[0] == '%')) ++lineNo;
   ++lineNo;
   long long rows = 0, cols = 0, entries = 0;
-  if (!(std::istringstream(line) >> rows >> cols >> entries) || rows != cols || rows <= 0 || entries < 0)
+  if (!(std::istringstream(line) >> rows >> cols >> entries) || rows != cols || rows <= 0 ||
+      entries < 0)
     failLine(path, lineNo, "expected the size line 'n n nonzeros' of a square matrix");
   // Counts are checked before allocating: "n n 4000000000" asked for 64 GB. An entry line has
   // at least 6 bytes ("1 1 0\n"); radkit meshes at most 10 000 000 patches.
   const std::uintmax_t bytes = std::filesystem::file_size(path);
-  if (rows > 10000000 || entries > (long long)(bytes / 6) || double(entries) > double(rows) * double(rows))
-    failLine(path, lineNo, "the size line says " + std::to_string(rows) + " rows and " + std::to_string(entries) +
-                               " entries, more than a " + std::to_string(bytes) + "-byte file of at most " +
-                               "10000000 patches holds. Fix: write the file again with `radkit run --write-matrix`");
+  if (rows > 10000000 || entries > (long long)(bytes / 6) ||
+      double(entries) > double(rows) * double(rows))
+    failLine(
+        path, lineNo,
+        "the size line says " + std::to_string(rows) + " rows and " + std::to_string(entries) +
+            " entries, more than a " + std::to_string(bytes) + "-byte file of at most " +
+            "10000000 patches holds. Fix: write the file again with `radkit run --write-matrix`");
   std::vector<int> row(entries), col(entries);
   std::vector<double> val(entries);
   for (long long k = 0; k < entries; ++k) {
     ++lineNo;
     if (!std::getline(in, line))
-      failLine(path, lineNo, "ends after " + std::to_string(k) + " of " + std::to_string(entries) + " entries");
+      failLine(path, lineNo,
+               "ends after " + std::to_string(k) + " of " + std::to_string(entries) + " entries");
     const char* p = line.c_str();
     char* end = nullptr;
     long i = std::strtol(p, &end, 10);
     long jj = std::strtol(end, &end, 10);
     val[k] = std::strtod(end, &end);
     if (i < 1 || i > rows || jj < 1 || jj > rows || !std::isfinite(val[k]))
-      failLine(path, lineNo, "expected 'row column value' with 1 <= row, column <= " + std::to_string(rows));
+      failLine(path, lineNo,
+               "expected 'row column value' with 1 <= row, column <= " + std::to_string(rows));
     row[k] = int(i - 1);
     col[k] = int(jj - 1);
   }
@@ -208,7 +223,8 @@ FormFactorRows readFormFactorsBin(const std::string& path) {
   };
   char magic[8];
   read(magic, 8, "its header");
-  if (std::string(magic, 8) != "RADKITF1") fail(path, "is not a radkit form-factor file (no 'RADKITF1' header)" + fix);
+  if (std::string(magic, 8) != "RADKITF1")
+    fail(path, "is not a radkit form-factor file (no 'RADKITF1' header)" + fix);
   std::int64_t n = 0, nonZeros = 0;
   read(&n, 8, "its header");
   read(&nonZeros, 8, "its header");
@@ -216,8 +232,8 @@ FormFactorRows readFormFactorsBin(const std::string& path) {
   // 4/n² of a dense row.
   if (n <= 0 || n > 10000000 || nonZeros < 0 || double(nonZeros) > double(n) * double(n) ||
       double(n) * 4 + 24 > double(bytes))
-    fail(path, "header says " + std::to_string(n) + " patches and " + std::to_string(nonZeros) + " non-zeros, more than a " +
-                   std::to_string(bytes) + "-byte file holds" + fix);
+    fail(path, "header says " + std::to_string(n) + " patches and " + std::to_string(nonZeros) +
+                   " non-zeros, more than a " + std::to_string(bytes) + "-byte file holds" + fix);
   FormFactorRows f;
   f.n = int(n);
   f.rowStart.assign(std::size_t(n) + 1, 0);
@@ -234,14 +250,16 @@ FormFactorRows readFormFactorsBin(const std::string& path) {
       for (std::int64_t j = 0; j < n; ++j)
         if (values[j] != 0) f.column.push_back(int(j)), f.value.push_back(values[j]);
     } else {
-      if (k < 0 || k > n) fail(path, "row " + std::to_string(i) + " says " + std::to_string(k) + " entries" + fix);
+      if (k < 0 || k > n)
+        fail(path, "row " + std::to_string(i) + " says " + std::to_string(k) + " entries" + fix);
       columns.resize(std::size_t(k));
       values.resize(std::size_t(k));
       read(columns.data(), columns.size() * 4, "a row's columns");
       read(values.data(), values.size() * 4, "a row's values");
       for (std::int32_t e = 0; e < k; ++e) {
         if (columns[e] >= std::uint64_t(n) || (e > 0 && columns[e] <= columns[e - 1]))
-          fail(path, "row " + std::to_string(i) + " has columns out of order or beyond " + std::to_string(n) + fix);
+          fail(path, "row " + std::to_string(i) + " has columns out of order or beyond " +
+                         std::to_string(n) + fix);
         f.column.push_back(int(columns[e]));
         f.value.push_back(values[e]);
       }
@@ -267,7 +285,8 @@ std::vector<SolverHistory> readConvergenceCsv(const std::string& path) {
       failLine(path, line, "column 'iteration': '" + r[cIter] + "' is not an iteration count >= 0");
     const int iteration = int(it);
     // A new block when the solver changes or its iteration count starts again.
-    if (runs.empty() || runs.back().solver != r[cSolver] || iteration <= runs.back().iteration.back())
+    if (runs.empty() || runs.back().solver != r[cSolver] ||
+        iteration <= runs.back().iteration.back())
       runs.push_back(SolverHistory{r[cSolver], {}, {}, {}, {}});
     SolverHistory& h = runs.back();
     h.iteration.push_back(iteration);
@@ -306,7 +325,8 @@ std::vector<SurfaceSummary> readSurfacesCsv(const std::string& path) {
 RunFolder readRunFolder(const std::string& folder) {
   namespace fs = std::filesystem;
   if (!fs::is_directory(folder))
-    throw InputError(folder + ": no such run folder; create one with `radkit run --out " + folder + "`");
+    throw InputError(folder + ": no such run folder; create one with `radkit run --out " + folder +
+                     "`");
   auto file = [&](const char* name) { return (fs::path(folder) / name).string(); };
   RunFolder run;
   run.path = folder;
@@ -315,22 +335,26 @@ RunFolder readRunFolder(const std::string& folder) {
   for (int i = 0; i < run.patches.size(); ++i)
     if (run.patches.surface[i] < 0 || run.patches.surface[i] >= int(run.report.surfaces.size()))
       fail(file("radiosity.vtp"), "patch " + std::to_string(i) + " has surface index " +
-                                      std::to_string(run.patches.surface[i]) + ", but report.json lists " +
+                                      std::to_string(run.patches.surface[i]) +
+                                      ", but report.json lists " +
                                       std::to_string(run.report.surfaces.size()) + " surfaces");
   // The binary first: written by every run, smaller and faster to read than the text.
-  const std::string matrixFile = fs::exists(file("formfactors.bin")) ? file("formfactors.bin") : file("formfactors.mtx");
+  const std::string matrixFile =
+      fs::exists(file("formfactors.bin")) ? file("formfactors.bin") : file("formfactors.mtx");
   if (fs::exists(matrixFile)) {
-    run.formFactors =
-        matrixFile == file("formfactors.bin") ? readFormFactorsBin(matrixFile) : readFormFactorsMtx(matrixFile);
+    run.formFactors = matrixFile == file("formfactors.bin") ? readFormFactorsBin(matrixFile)
+                                                            : readFormFactorsMtx(matrixFile);
     if (run.formFactors->n != run.patches.size())
       fail(matrixFile, "is " + std::to_string(run.formFactors->n) + "×" +
-                                        std::to_string(run.formFactors->n) + " but radiosity.vtp has " +
-                                        std::to_string(run.patches.size()) + " patches (files of different runs?)");
+                           std::to_string(run.formFactors->n) + " but radiosity.vtp has " +
+                           std::to_string(run.patches.size()) +
+                           " patches (files of different runs?)");
   } else {
-    run.formFactorsMissing = fs::exists(file("links.png"))
-                                 ? "a hierarchical run has no F matrix: links.png draws its links as blocks of F"
-                                 : "no formfactors.bin or formfactors.mtx (written by `radkit run` and "
-                                   "`radkit formfactors`; `radkit solvers` writes neither: rerun with `radkit run`)";
+    run.formFactorsMissing =
+        fs::exists(file("links.png"))
+            ? "a hierarchical run has no F matrix: links.png draws its links as blocks of F"
+            : "no formfactors.bin or formfactors.mtx (written by `radkit run` and "
+              "`radkit formfactors`; `radkit solvers` writes neither: rerun with `radkit run`)";
     if (fs::exists(file("links.png"))) run.linksImage = file("links.png");
   }
   if (fs::exists(file("convergence.csv")))

@@ -82,7 +82,8 @@ SceneView::SceneView(const RunFolder& run) : m_run(run) {
   vtkNew<vtkCellArray> polys;
   for (const auto& poly : p.polygons) {
     polys->InsertNextCell(vtkIdType(poly.size()));
-    for (int v : poly) polys->InsertCellPoint(points->InsertNextPoint(p.points[v].x, p.points[v].y, p.points[v].z));
+    for (int v : poly)
+      polys->InsertCellPoint(points->InsertNextPoint(p.points[v].x, p.points[v].y, p.points[v].z));
   }
   m_surface->SetPoints(points);
   m_surface->SetPolys(polys);
@@ -168,14 +169,17 @@ void SceneView::showTrueColour(const ViewSettings& s) {
   m_surface->GetCellData()->AddArray(colourArray(b, m_exposureUsed));
   m_surface->GetPointData()->AddArray(colourArray(corners(m_run.patches, b), m_exposureUsed));
   m_mapper->SetColorModeToDirectScalars();
-  m_mapper->SetScalarMode(s.smooth ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
+  m_mapper->SetScalarMode(s.smooth ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA
+                                   : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
   m_mapper->SelectColorArray("colour");
   m_scalarBar->SetVisibility(false);
   std::string note;
   if (s.mode == ViewMode::FormFactorRow)
-    note = m_run.formFactors ? "  [click a patch to paint its row of F]" : "  [" + m_run.formFactorsMissing + "]";
-  m_title->SetInput((m_run.report.sceneName + ": radiosity, true colour (exposure " + formatShort(m_exposureUsed) +
-                     (s.exposure > 0 ? "" : ", auto") + ", " + (s.smooth ? "smooth" : "flat") + ")" + note)
+    note = m_run.formFactors ? "  [click a patch to paint its row of F]"
+                             : "  [" + m_run.formFactorsMissing + "]";
+  m_title->SetInput((m_run.report.sceneName + ": radiosity, true colour (exposure " +
+                     formatShort(m_exposureUsed) + (s.exposure > 0 ? "" : ", auto") + ", " +
+                     (s.smooth ? "smooth" : "flat") + ")" + note)
                         .c_str());
 }
 
@@ -192,7 +196,8 @@ void SceneView::showFalseColour(const ViewSettings& s) {
   m_scalarBar->SetLabelFormat("%-#6.3g");
   m_scalarBar->SetDrawAboveRangeSwatch(*std::max_element(v.begin(), v.end()) > hi);
   m_scalarBar->SetAboveRangeAnnotation("above,\nemitters");
-  m_title->SetInput((m_run.report.sceneName + ": false colour, " + channelLabel(s.channel, s.photometric) + " (" +
+  m_title->SetInput((m_run.report.sceneName + ": false colour, " +
+                     channelLabel(s.channel, s.photometric) + " (" +
                      (s.smooth ? "smooth" : "flat") + ")")
                         .c_str());
 }
@@ -201,7 +206,7 @@ void SceneView::showFormFactorRow(const ViewSettings& s) {
   std::vector<double> row = m_run.formFactors->row(s.picked);
   const double max = std::max(1e-300, *std::max_element(row.begin(), row.end()));
   const double hi = std::pow(10.0, std::ceil(std::log10(max) - 1e-9));
-  const double lo = hi * 1e-5;                      // five whole decades: the near field to the far corners
+  const double lo = hi * 1e-5;  // five whole decades: the near field to the far corners
   for (double& f : row) f = f > 0 ? f : lo * 1e-3;  // zeros (not seen) below the range
   fillLookupTable(m_lut, ColourMap::Viridis, lo, hi, true, kZeroColour, kAboveColour);
   setValues(row, s.smooth);
@@ -212,10 +217,11 @@ void SceneView::showFormFactorRow(const ViewSettings& s) {
   m_scalarBar->SetDrawBelowRangeSwatch(true);
   m_scalarBar->SetBelowRangeAnnotation("0");
   double sum = 0;
-  for (long long k = m_run.formFactors->rowStart[s.picked]; k < m_run.formFactors->rowStart[s.picked + 1]; ++k)
+  for (long long k = m_run.formFactors->rowStart[s.picked];
+       k < m_run.formFactors->rowStart[s.picked + 1]; ++k)
     sum += m_run.formFactors->value[k];
-  m_title->SetInput((m_run.report.sceneName + ": form factors F_ij from patch " + std::to_string(s.picked) +
-                     " (log scale; row sum " + formatShort(sum) + ")")
+  m_title->SetInput((m_run.report.sceneName + ": form factors F_ij from patch " +
+                     std::to_string(s.picked) + " (log scale; row sum " + formatShort(sum) + ")")
                         .c_str());
 }
 
@@ -223,7 +229,8 @@ void SceneView::setValues(const std::vector<double>& perPatch, bool smooth) {
   m_surface->GetCellData()->AddArray(valueArray(perPatch));
   m_surface->GetPointData()->AddArray(valueArray(corners(m_run.patches, perPatch)));
   m_mapper->SetColorModeToMapScalars();
-  m_mapper->SetScalarMode(smooth ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
+  m_mapper->SetScalarMode(smooth ? VTK_SCALAR_MODE_USE_POINT_FIELD_DATA
+                                 : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
   m_mapper->SelectColorArray("value");
   m_scalarBar->SetDrawBelowRangeSwatch(false);
 }
@@ -252,7 +259,7 @@ std::string SceneView::patchInfo(int i) const {
   const PatchData& p = m_run.patches;
   const std::string units = m_run.report.units.empty() ? "units" : m_run.report.units;
   return "patch " + std::to_string(i) + "  surface '" + m_run.surfaceName(i) + "'" +  //
-         "\narea " + formatShort(p.area[i]) + " " + units + "²" +                    //
+         "\narea " + formatShort(p.area[i]) + " " + units + "²" +                     //
          "\nrho  " + triple(p.reflectance[i]) +                                       //
          "\nE    " + triple(p.emission[i]) + " W/m²" +                                //
          "\nB    " + triple(p.radiosity[i]) + " W/m²" +                               //

@@ -23,8 +23,9 @@ ModeChoice parseMode(const std::string& text) {
                      ": the patch id after 'formfactors-row:' must be a number >= 0 "
                      "(patch ids are the id column of patches.csv)");
   }
-  throw InputError("--mode " + text +
-                   ": unknown mode; use radiosity, false-colour, formfactors-row:ID, matrix or convergence");
+  throw InputError(
+      "--mode " + text +
+      ": unknown mode; use radiosity, false-colour, formfactors-row:ID, matrix or convergence");
 }
 
 Channel parseChannel(const std::string& text) {
@@ -50,7 +51,6 @@ std::string modeName(ViewMode mode) {
   }
   return "?";
 }
-
 
 double autoExposure(const PatchData& patches) {
   // (luminance of L, area) of every non-emitting patch, sorted by luminance.
@@ -85,7 +85,8 @@ double falseColourTop(const PatchData& patches, const std::vector<double>& value
     top = value;
     if ((below += area) >= 0.99 * totalArea) break;
   }
-  if (!(top > 0)) top = values.empty() ? 1 : std::max(1e-300, *std::max_element(values.begin(), values.end()));
+  if (!(top > 0))
+    top = values.empty() ? 1 : std::max(1e-300, *std::max_element(values.begin(), values.end()));
   const double unit = std::pow(10.0, std::floor(std::log10(top)) - 1);  // two significant digits
   return std::ceil(top / unit - 1e-9) * unit;
 }

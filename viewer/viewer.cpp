@@ -23,13 +23,15 @@ class DisplayConnection {
   DisplayConnection() {
     const char* name = std::getenv("DISPLAY");
     for (int attempt = 0; attempt < 20 && name && *name && !m_display; ++attempt) {
-      if (attempt > 0) std::this_thread::sleep_for(std::chrono::milliseconds(50));  // a reset passes
+      if (attempt > 0)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));  // a reset passes
       m_display = XOpenDisplay(nullptr);
     }
     if (!m_display)
-      throw InputError(std::string("no X display") +
-                       (name && *name ? " (cannot open DISPLAY=" + std::string(name) + ")" : "") +
-                       ": the viewer renders through X; on a server run it as `xvfb-run -a radkit view ...`");
+      throw InputError(
+          std::string("no X display") +
+          (name && *name ? " (cannot open DISPLAY=" + std::string(name) + ")" : "") +
+          ": the viewer renders through X; on a server run it as `xvfb-run -a radkit view ...`");
   }
   ~DisplayConnection() { XCloseDisplay(m_display); }
   DisplayConnection(const DisplayConnection&) = delete;
@@ -61,14 +63,17 @@ ViewSettings settingsFor(const ViewerOptions& o, const ModeChoice& mode) {
 /// What a screenshot of `mode` needs from the run folder.
 void requireInputs(const RunFolder& run, const ModeChoice& mode) {
   const bool linksOnly = mode.mode == ViewMode::Matrix && !run.linksImage.empty();
-  if ((mode.mode == ViewMode::Matrix || mode.mode == ViewMode::FormFactorRow) && !run.formFactors && !linksOnly)
+  if ((mode.mode == ViewMode::Matrix || mode.mode == ViewMode::FormFactorRow) && !run.formFactors &&
+      !linksOnly)
     throw InputError(run.path + ": " + run.formFactorsMissing);
   if (mode.mode == ViewMode::FormFactorRow && mode.row >= run.patches.size())
-    throw InputError("--mode formfactors-row:" + std::to_string(mode.row) + ": no such patch; ids are 0.." +
-                     std::to_string(run.patches.size() - 1) + " (the id column of patches.csv)");
+    throw InputError("--mode formfactors-row:" + std::to_string(mode.row) +
+                     ": no such patch; ids are 0.." + std::to_string(run.patches.size() - 1) +
+                     " (the id column of patches.csv)");
   if (mode.mode == ViewMode::Convergence && run.convergence.empty())
-    throw InputError(run.path + ": " +
-                     (run.convergenceMissing.empty() ? "convergence.csv has no rows" : run.convergenceMissing));
+    throw InputError(
+        run.path + ": " +
+        (run.convergenceMissing.empty() ? "convergence.csv has no rows" : run.convergenceMissing));
 }
 
 }  // namespace
@@ -76,14 +81,16 @@ void requireInputs(const RunFolder& run, const ModeChoice& mode) {
 void parseSize(const std::string& text, int& width, int& height, int minSide, int maxSide) {
   const auto x = text.find_first_of("xX");
   auto number = [&](const std::string& part) {
-    if (part.empty() || part.size() > 5 || part.find_first_not_of("0123456789") != std::string::npos) return -1;
+    if (part.empty() || part.size() > 5 ||
+        part.find_first_not_of("0123456789") != std::string::npos)
+      return -1;
     return std::stoi(part);
   };
   const int w = x == std::string::npos ? -1 : number(text.substr(0, x));
   const int h = x == std::string::npos ? -1 : number(text.substr(x + 1));
   if (w < minSide || h < minSide || w > maxSide || h > maxSide)
-    throw InputError("--size " + text + ": expected WIDTHxHEIGHT in pixels, each " + std::to_string(minSide) + ".." +
-                     std::to_string(maxSide) + " (e.g. 1024x768)");
+    throw InputError("--size " + text + ": expected WIDTHxHEIGHT in pixels, each " +
+                     std::to_string(minSide) + ".." + std::to_string(maxSide) + " (e.g. 1024x768)");
   width = w;
   height = h;
 }

@@ -19,7 +19,7 @@ struct ViewerOptions {
   std::string channel = "luminance";  ///< r | g | b | luminance, for false colour
   /// False colour of luminance in cd/m² (683 lm/W, Rec. 709 weights, L = B/π) instead of W/m².
   bool photometric = false;
-  double exposure = 0;  ///< multiplier on L = B/π for true colour; 0: automatic
+  double exposure = 0;           ///< multiplier on L = B/π for true colour; 0: automatic
   std::optional<Camera> camera;  ///< replaces the run's camera (radkit view --camera)
 };
 
@@ -36,6 +36,7 @@ int runViewer(const ViewerOptions& options);
 int pickPatchAt(const std::string& runFolder, int width, int height, int x, int y);
 
 /// \brief Parses "WxH", each side in [minSide, maxSide]. \throws radkit::InputError naming the fix.
-void parseSize(const std::string& text, int& width, int& height, int minSide = 16, int maxSide = 8192);
+void parseSize(const std::string& text, int& width, int& height, int minSide = 16,
+               int maxSide = 8192);
 
 }  // namespace radkit::viewer

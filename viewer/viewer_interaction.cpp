@@ -33,14 +33,16 @@ class ViewerStyle : public vtkInteractorStyleTrackballCamera {
     m_down[1] = at[1];
     FindPokedRenderer(at[0], at[1]);
     // Only the scene rotates; the matrix and chart stay framed.
-    if (CurrentRenderer == m_window->sceneRenderer()) vtkInteractorStyleTrackballCamera::OnLeftButtonDown();
+    if (CurrentRenderer == m_window->sceneRenderer())
+      vtkInteractorStyleTrackballCamera::OnLeftButtonDown();
   }
 
   void OnLeftButtonUp() override {
     const int* at = GetInteractor()->GetEventPosition();
     vtkRenderer* poked = GetInteractor()->FindPokedRenderer(at[0], at[1]);
     vtkInteractorStyleTrackballCamera::OnLeftButtonUp();
-    if (std::abs(at[0] - m_down[0]) + std::abs(at[1] - m_down[1]) <= 3) m_window->onClick(poked, at[0], at[1]);
+    if (std::abs(at[0] - m_down[0]) + std::abs(at[1] - m_down[1]) <= 3)
+      m_window->onClick(poked, at[0], at[1]);
   }
 
   // Zooming and panning the framed matrix or chart makes no sense.

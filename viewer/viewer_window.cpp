@@ -31,8 +31,8 @@ constexpr const char* kKeyList =
 
 }  // namespace
 
-ViewerWindow::ViewerWindow(const RunFolder& run, const ViewSettings& settings, void* display, int width, int height,
-                           bool offscreen)
+ViewerWindow::ViewerWindow(const RunFolder& run, const ViewSettings& settings, void* display,
+                           int width, int height, bool offscreen)
     : m_run(run), m_settings(settings), m_scene(run), m_matrix(run), m_chart(run) {
   m_window->SetDisplayId(display);
   m_window->SetSize(width, height);
@@ -102,8 +102,9 @@ void ViewerWindow::writePng(const std::string& path) {
   int got[3];
   grab->GetOutput()->GetDimensions(got);
   if (got[0] != want[0] || got[1] != want[1])
-    throw std::runtime_error("screenshot: got " + std::to_string(got[0]) + "x" + std::to_string(got[1]) +
-                             " pixels instead of " + std::to_string(want[0]) + "x" + std::to_string(want[1]));
+    throw std::runtime_error("screenshot: got " + std::to_string(got[0]) + "x" +
+                             std::to_string(got[1]) + " pixels instead of " +
+                             std::to_string(want[0]) + "x" + std::to_string(want[1]));
   const std::string tmp = path + ".tmp";
   vtkNew<vtkPNGWriter> writer;
   writer->SetInputConnection(grab->GetOutputPort());
@@ -163,7 +164,8 @@ void ViewerWindow::cycleColourMode() {
 void ViewerWindow::select(int patch) {
   m_settings.picked = patch;
   if (patch >= 0 && m_run.formFactors) m_settings.mode = ViewMode::FormFactorRow;
-  if (patch < 0 && m_settings.mode == ViewMode::FormFactorRow) m_settings.mode = ViewMode::Radiosity;
+  if (patch < 0 && m_settings.mode == ViewMode::FormFactorRow)
+    m_settings.mode = ViewMode::Radiosity;
   refresh();
 }
 

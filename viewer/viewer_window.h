@@ -22,8 +22,8 @@ class ViewerWindow {
  public:
   /// \param display the X connection (a Display*) to render through; it must outlive the window.
   /// \param offscreen render into an off-screen buffer (screenshots, picking through the API).
-  ViewerWindow(const RunFolder& run, const ViewSettings& settings, void* display, int width, int height,
-               bool offscreen);
+  ViewerWindow(const RunFolder& run, const ViewSettings& settings, void* display, int width,
+               int height, bool offscreen);
   ViewerWindow(const ViewerWindow&) = delete;
   ViewerWindow& operator=(const ViewerWindow&) = delete;
 

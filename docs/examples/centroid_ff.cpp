@@ -14,7 +14,8 @@ namespace {
 
 class CentroidFormFactors final : public FormFactorMethod {
  public:
-  CentroidFormFactors(const PatchMesh& mesh, const Visibility& visibility) : m_mesh(mesh), m_rays(visibility) {}
+  CentroidFormFactors(const PatchMesh& mesh, const Visibility& visibility)
+      : m_mesh(mesh), m_rays(visibility) {}
 
   std::string name() const override { return "centroid"; }
   std::string describe() const override { return "centroid-to-polygon, one visibility ray"; }
@@ -32,7 +33,8 @@ class CentroidFormFactors final : public FormFactorMethod {
       for (int k = 0; k < q.vertexCount; ++k) polygon[k] = m_mesh.vertices[q.vertex[k]];
       const double f = pointToPolygonFormFactor(p.centroid, p.normal, polygon, q.vertexCount);
       ++out.raysCast;
-      if (f > 0 && !m_rays.occluded(p.centroid, p.normal, q.centroid, q.normal)) out.entries.push_back({j, f, 0.0});
+      if (f > 0 && !m_rays.occluded(p.centroid, p.normal, q.centroid, q.normal))
+        out.entries.push_back({j, f, 0.0});
     }
   }
 
@@ -43,7 +45,8 @@ class CentroidFormFactors final : public FormFactorMethod {
 
 }  // namespace
 
-std::unique_ptr<FormFactorMethod> createCentroid(const PatchMesh& mesh, const Visibility& visibility,
+std::unique_ptr<FormFactorMethod> createCentroid(const PatchMesh& mesh,
+                                                 const Visibility& visibility,
                                                  const FormFactorSettings&) {
   return std::make_unique<CentroidFormFactors>(mesh, visibility);
 }

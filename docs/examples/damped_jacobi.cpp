@@ -15,7 +15,9 @@ class DampedJacobiSolver final : public Solver {
   explicit DampedJacobiSolver(double omega) : m_omega(omega) {}
 
   std::string name() const override { return "damped-jacobi"; }
-  std::string describe() const override { return "damped Jacobi, omega=" + std::to_string(m_omega); }
+  std::string describe() const override {
+    return "damped Jacobi, omega=" + std::to_string(m_omega);
+  }
 
   void start(const RadiositySystem& system, const SolverSettings& settings) override {
     system.validate();
@@ -58,7 +60,8 @@ class DampedJacobiSolver final : public Solver {
 // The registry's factory: reads its parameters (the registry rejects unknown keys after it).
 std::unique_ptr<Solver> makeDampedJacobiSolver(SolverParams& params) {
   const double omega = params.get("omega", 0.8);
-  if (!(omega > 0 && omega <= 1)) throw std::invalid_argument("damped-jacobi: omega must lie in (0, 1]");
+  if (!(omega > 0 && omega <= 1))
+    throw std::invalid_argument("damped-jacobi: omega must lie in (0, 1]");
   return std::make_unique<DampedJacobiSolver>(omega);
 }
 

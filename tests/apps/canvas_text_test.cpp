@@ -21,12 +21,14 @@ bool samePixels(const Canvas& a, const Canvas& b) {
 
 TEST(CanvasText, ReplacesWhatTheFontLacks) {
   const std::pair<std::string, std::string> cases[] = {
-      {"caf\xC3\xA9", "caf?"},                     // é: two bytes, one code point
+      {"caf\xC3\xA9", "caf?"},  // é: two bytes, one code point
       {"Raum \xC3\xBC", "Raum ?"},
-      {"\xE2\x82\xAC 5", "? 5"},                   // €: three bytes
-      {"\xF0\x9F\x98\x80!", "?!"},                 // an emoji: four bytes
-      {"a\x7F\x01" "b", "a??b"},                   // DEL and a control character
-      {"\xA9x\xC3", "?x?"}};                       // stray continuation, truncated lead byte
+      {"\xE2\x82\xAC 5", "? 5"},    // €: three bytes
+      {"\xF0\x9F\x98\x80!", "?!"},  // an emoji: four bytes
+      {"a\x7F\x01"
+       "b",
+       "a??b"},               // DEL and a control character
+      {"\xA9x\xC3", "?x?"}};  // stray continuation, truncated lead byte
   for (const auto& [text, shown] : cases) {
     EXPECT_EQ(Canvas::textWidth(text, 2), Canvas::textWidth(shown, 2)) << shown;
     Canvas a(120, 20), b(120, 20);

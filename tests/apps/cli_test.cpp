@@ -27,7 +27,6 @@ json readJson(const std::string& path) {
   return json::parse(in);
 }
 
-
 double surfaceFactor(const std::string& csv, const std::string& from, const std::string& to) {
   for (auto& row : readCsv(csv))
     if (row["from"] == from && row["to"] == to) return std::stod(row["F"]);
@@ -38,16 +37,20 @@ double surfaceFactor(const std::string& csv, const std::string& from, const std:
 TEST(FormFactorsCli, HowellParallelAndPerpendicularSquares) {
   test::TempDir dir;
   // Howell C-11 (X = Y = 1) and C-14 (W = H = 1), docs/oracles.md.
-  auto r = runRadkit("formfactors '" + dataPath("parallel-squares.json") + "' --max-area 0.05 --out '" + dir.path("p") + "'");
+  auto r = runRadkit("formfactors '" + dataPath("parallel-squares.json") +
+                     "' --max-area 0.05 --out '" + dir.path("p") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NEAR(surfaceFactor(dir.path("p/surface_formfactors.csv"), "lower", "upper"), 0.19982489569838746, 1e-4);
+  EXPECT_NEAR(surfaceFactor(dir.path("p/surface_formfactors.csv"), "lower", "upper"),
+              0.19982489569838746, 1e-4);
   for (const char* f : {"formfactors.bin", "formfactors.png", "patches.csv", "report.json"})
     EXPECT_TRUE(fs::exists(dir.path(std::string("p/") + f))) << f;
-  EXPECT_FALSE(fs::exists(dir.path("p/formfactors.mtx"))) << "the text matrix is written only when asked";
-  r = runRadkit("formfactors '" + dataPath("perpendicular-squares.json") + "' --max-area 0.05 --write-matrix --out '" +
-                dir.path("q") + "'");
+  EXPECT_FALSE(fs::exists(dir.path("p/formfactors.mtx")))
+      << "the text matrix is written only when asked";
+  r = runRadkit("formfactors '" + dataPath("perpendicular-squares.json") +
+                "' --max-area 0.05 --write-matrix --out '" + dir.path("q") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NEAR(surfaceFactor(dir.path("q/surface_formfactors.csv"), "floor", "wall"), 0.20004377607540316, 1e-4);
+  EXPECT_NEAR(surfaceFactor(dir.path("q/surface_formfactors.csv"), "floor", "wall"),
+              0.20004377607540316, 1e-4);
   std::ifstream mtx(dir.path("q/formfactors.mtx"));
   std::string banner;
   std::getline(mtx, banner);
@@ -58,14 +61,16 @@ TEST(FormFactorsCli, CornellBoxReciprocityAndRowSums) {
   test::TempDir dir;
   // Without the blocks nothing inside the box can block a pair: F is the exact contour
   // integral, so rows sum to at most 1 up to quadrature error, and reciprocity is exact.
-  auto r = runRadkit("formfactors '" + dataPath("cornell-box-empty.json") + "' --patches 300 --out '" + dir.path("e") + "'");
+  auto r = runRadkit("formfactors '" + dataPath("cornell-box-empty.json") +
+                     "' --patches 300 --out '" + dir.path("e") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   json ff = readJson(dir.path("e/report.json"))["form_factors"];
   EXPECT_LE(ff["row_sum"]["max"].get<double>(), 1 + 1e-5);
   EXPECT_GT(ff["row_sum"]["min"].get<double>(), 0.5);  // the open front lets the rest escape
   EXPECT_LE(ff["reciprocity"]["max_relative_error"].get<double>(), 1e-12);
   // With the blocks, visibility is estimated from K rays: rows may exceed 1 by that noise only.
-  r = runRadkit("formfactors '" + dataPath("cornell-box.json") + "' --patches 300 --out '" + dir.path("b") + "'");
+  r = runRadkit("formfactors '" + dataPath("cornell-box.json") + "' --patches 300 --out '" +
+                dir.path("b") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   ff = readJson(dir.path("b/report.json"))["form_factors"];
   EXPECT_LE(ff["row_sum"]["max"].get<double>(), 1.01);
@@ -75,18 +80,22 @@ TEST(FormFactorsCli, CornellBoxReciprocityAndRowSums) {
 
 TEST(FormFactorsCli, BadInput) {
   test::TempDir dir;
-  auto r = runRadkit("formfactors '" + dataPath("furnace.json") + "' --ff-samples 0 --out '" + dir.path("a") + "'");
+  auto r = runRadkit("formfactors '" + dataPath("furnace.json") + "' --ff-samples 0 --out '" +
+                     dir.path("a") + "'");
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("--ff-samples"), std::string::npos) << r.output;
-  r = runRadkit("formfactors '" + dataPath("cornell-box.json") + "' --patches 5000 --memory-budget 1KiB --out '" + dir.path("b") + "'");
+  r = runRadkit("formfactors '" + dataPath("cornell-box.json") +
+                "' --patches 5000 --memory-budget 1KiB --out '" + dir.path("b") + "'");
   EXPECT_NE(r.exitCode, 0);
   for (const char* option : {"--memory-budget", "--ff-storage float"})
     EXPECT_NE(r.output.find(option), std::string::npos) << r.output;
-  r = runRadkit("formfactors '" + dataPath("furnace.json") + "' --ff nonsense --out '" + dir.path("c") + "'");
+  r = runRadkit("formfactors '" + dataPath("furnace.json") + "' --ff nonsense --out '" +
+                dir.path("c") + "'");
   EXPECT_NE(r.exitCode, 0);
   for (const char* name : {"a", "b", "c"}) EXPECT_FALSE(fs::exists(dir.path(name))) << name;
   // One patch: nothing to see, F = 0, and the run still completes.
-  std::string one = dir.file("one.json", R"({"materials": {"m": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
+  std::string one = dir.file(
+      "one.json", R"({"materials": {"m": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
     "surfaces": [{"name": "only", "material": "m", "polygon": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}]})");
   r = runRadkit("run '" + one + "' --max-area 10 --no-render --out '" + dir.path("d") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -96,7 +105,8 @@ TEST(FormFactorsCli, BadInput) {
 TEST(SolversCli, FurnaceEverySolver) {
   test::TempDir dir;
   // Furnace: B = E/(1 - rho) = 2 on every patch for every solver (docs/oracles.md).
-  auto r = runRadkit("solvers '" + dataPath("furnace.json") + "' --max-area 0.05 --out '" + dir.path("f") + "'");
+  auto r = runRadkit("solvers '" + dataPath("furnace.json") + "' --max-area 0.05 --out '" +
+                     dir.path("f") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   json report = readJson(dir.path("f/report.json"));
   ASSERT_EQ(report["solvers"].size(), 5u);
@@ -117,12 +127,14 @@ TEST(SolversCli, FurnaceEverySolver) {
 
 TEST(RunCli, CornellBoxEveryOutput) {
   test::TempDir dir;
-  auto r = runRadkit("run '" + dataPath("cornell-box.json") + "' --patches 400 --photometric --image-size 128 --out '" +
-                     dir.path("run") + "'");
+  auto r =
+      runRadkit("run '" + dataPath("cornell-box.json") +
+                "' --patches 400 --photometric --image-size 128 --out '" + dir.path("run") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("energy balance"), std::string::npos);
-  for (const char* f : {"patches.csv", "surfaces.csv", "surface_formfactors.csv", "radiosity.vtp", "convergence.csv",
-                        "convergence.png", "report.json", "render.png", "formfactors.png", "formfactors.bin"})
+  for (const char* f : {"patches.csv", "surfaces.csv", "surface_formfactors.csv", "radiosity.vtp",
+                        "convergence.csv", "convergence.png", "report.json", "render.png",
+                        "formfactors.png", "formfactors.bin"})
     EXPECT_TRUE(fs::exists(dir.path(std::string("run/") + f))) << f;
   EXPECT_FALSE(fs::exists(dir.path("run/formfactors.mtx")));
   for (auto& row : readCsv(dir.path("run/patches.csv")))
@@ -140,7 +152,8 @@ TEST(RunCli, CornellBoxEveryOutput) {
 
 TEST(RunCli, CornellBoxRenderLayout) {
   test::TempDir dir;
-  auto r = runRadkit("run '" + dataPath("cornell-box.json") + "' --patches 800 --image-size 128 --out '" + dir.path("run") + "'");
+  auto r = runRadkit("run '" + dataPath("cornell-box.json") +
+                     "' --patches 800 --image-size 128 --out '" + dir.path("run") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   Canvas img = readPng(dir.path("run/render.png"));
   ASSERT_EQ(img.width(), 128);
@@ -189,8 +202,10 @@ TEST(RunCli, PresetAndExplicitOptions) {
 
 TEST(RunCli, AdaptiveStaysInBudgetAndBalancesEnergy) {
   test::TempDir dir;
-  auto r = runRadkit("run '" + dataPath("cube-one-emitter.json") + "' --adaptive --patches 24 --adaptive-max-patches 150 "
-                     "--tol 1e-9 --no-render --out '" + dir.path("a") + "'");
+  auto r = runRadkit("run '" + dataPath("cube-one-emitter.json") +
+                     "' --adaptive --patches 24 --adaptive-max-patches 150 "
+                     "--tol 1e-9 --no-render --out '" +
+                     dir.path("a") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   json j = readJson(dir.path("a/report.json"));
   ASSERT_GE(j["adaptive"]["rounds"].size(), 2u);
@@ -199,7 +214,8 @@ TEST(RunCli, AdaptiveStaysInBudgetAndBalancesEnergy) {
   // Closed cube: nothing escapes and emitted = absorbed up to F's row-sum deviation
   // (docs/oracles.md), on a mesh with T-junctions.
   EXPECT_LT(j["energy_balance"]["relative_imbalance"].get<double>(), 1e-4);
-  EXPECT_LT(j["energy_balance"]["escaped_W"][1].get<double>(), 1e-4 * j["energy_balance"]["emitted_W"][1].get<double>());
+  EXPECT_LT(j["energy_balance"]["escaped_W"][1].get<double>(),
+            1e-4 * j["energy_balance"]["emitted_W"][1].get<double>());
 }
 
 TEST(BenchCli, SolverPrintsOneJsonObject) {

@@ -17,13 +17,16 @@ using test::runRadkit;
 TEST(EarlyChecks, OutThatIsAFileIsRefusedBeforeTheWork) {
   test::TempDir dir;
   const std::string taken = dir.file("taken", "a file the user keeps\n");
-  auto r = runRadkit("run '" + dataPath("cornell-box.json") + "' --patches 200 --no-render --out '" + taken + "'");
+  auto r = runRadkit("run '" + dataPath("cornell-box.json") +
+                     "' --patches 200 --no-render --out '" + taken + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find(taken), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Fix:"), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("form factors"), std::string::npos) << "refused only after the work:\n" << r.output;
+  EXPECT_EQ(r.output.find("form factors"), std::string::npos) << "refused only after the work:\n"
+                                                              << r.output;
   EXPECT_TRUE(fs::is_regular_file(taken));
-  r = runRadkit("run '" + dataPath("furnace.json") + "' --method hierarchical --no-render --out '" + taken + "'");
+  r = runRadkit("run '" + dataPath("furnace.json") + "' --method hierarchical --no-render --out '" +
+                taken + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find(taken), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("%"), std::string::npos) << "refused only after the work:\n" << r.output;
@@ -33,8 +36,8 @@ TEST(EarlyChecks, OutThatIsAFileIsRefusedBeforeTheWork) {
 // which a sample of pairs shows without the n²/2 facing tests.
 TEST(EarlyChecks, FormFactorsBeyondTheBudgetAreRefusedFromASample) {
   test::TempDir dir;
-  auto r = runRadkit("formfactors '" + dataPath("cornell-box.json") + "' --patches 30000 --memory-budget 1GiB --out '" +
-                     dir.path("o") + "'");
+  auto r = runRadkit("formfactors '" + dataPath("cornell-box.json") +
+                     "' --patches 30000 --memory-budget 1GiB --out '" + dir.path("o") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("estimated from 200000 sampled pairs"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Fix:"), std::string::npos) << r.output;
@@ -51,16 +54,17 @@ TEST(EarlyChecks, PhotonsCompareRefusesARunOfAnotherScene) {
   const std::string b = dir.file("b.json", std::string("{\"name\": \"room-b\", ") + body);
   auto r = runRadkit("run '" + a + "' --patches 8 --no-render --out '" + dir.path("run-a") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  r = runRadkit("photons '" + b + "' --photons 2000 --no-image --bench-rays 0 --compare '" + dir.path("run-a") +
-                "' --out '" + dir.path("p") + "'");
+  r = runRadkit("photons '" + b + "' --photons 2000 --no-image --bench-rays 0 --compare '" +
+                dir.path("run-a") + "' --out '" + dir.path("p") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("room-a"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("Fix:"), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("trace"), std::string::npos) << "refused only after tracing:\n" << r.output;
+  EXPECT_EQ(r.output.find("trace"), std::string::npos) << "refused only after tracing:\n"
+                                                       << r.output;
   EXPECT_FALSE(fs::exists(dir.path("p")));
   // The same scene is accepted.
-  r = runRadkit("photons '" + a + "' --photons 2000 --no-image --bench-rays 0 --compare '" + dir.path("run-a") +
-                "' --out '" + dir.path("q") + "'");
+  r = runRadkit("photons '" + a + "' --photons 2000 --no-image --bench-rays 0 --compare '" +
+                dir.path("run-a") + "' --out '" + dir.path("q") + "'");
   EXPECT_EQ(r.exitCode, 0) << r.output;
 }
 
@@ -68,9 +72,10 @@ TEST(EarlyChecks, PhotonsCompareRefusesARunOfAnotherScene) {
 TEST(EarlyChecks, UsageErrorsExitOneLikeEveryError) {
   test::TempDir dir;
   const std::string scene = "'" + dataPath("furnace.json") + "'";
-  for (const std::string& args : {"mesh " + scene + " --no-such-option --out '" + dir.path("o") + "'",
-                                  "formfactors " + scene + " --ff-samples 0 --out '" + dir.path("o") + "'",
-                                  "mesh " + scene, "mesh " + scene + " --units furlong --out '" + dir.path("o") + "'"}) {
+  for (const std::string& args :
+       {"mesh " + scene + " --no-such-option --out '" + dir.path("o") + "'",
+        "formfactors " + scene + " --ff-samples 0 --out '" + dir.path("o") + "'", "mesh " + scene,
+        "mesh " + scene + " --units furlong --out '" + dir.path("o") + "'"}) {
     auto r = runRadkit(args);
     EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
   }

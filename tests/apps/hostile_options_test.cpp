@@ -5,8 +5,8 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <iterator>
 #include <fstream>
+#include <iterator>
 
 #include <nlohmann/json.hpp>
 
@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 struct OptionCase {
   const char* name;
-  std::string args;                      ///< after "COMMAND SCENE"
+  std::string args;  ///< after "COMMAND SCENE"
   std::vector<std::string> mustMention;
   std::string command = "mesh";
 };
@@ -31,12 +31,14 @@ class HostileOption : public ::testing::TestWithParam<OptionCase> {};
 TEST_P(HostileOption, RefusedBeforeAnyWork) {
   const OptionCase& c = GetParam();
   test::TempDir dir;
-  const test::RunResult r = test::runRadkitWithin(
-      120, c.command + " '" + test::dataPath("furnace.json") + "' " + c.args + " --out '" + dir.path("o") + "'");
+  const test::RunResult r =
+      test::runRadkitWithin(120, c.command + " '" + test::dataPath("furnace.json") + "' " + c.args +
+                                     " --out '" + dir.path("o") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.exitCode, 124) << "timed out";
   for (const std::string& word : c.mustMention)
-    EXPECT_NE(r.output.find(word), std::string::npos) << "missing '" << word << "' in:\n" << r.output;
+    EXPECT_NE(r.output.find(word), std::string::npos) << "missing '" << word << "' in:\n"
+                                                      << r.output;
   EXPECT_FALSE(fs::exists(dir.path("o")));
   EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
 }
@@ -46,41 +48,75 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         OptionCase{"MaxAreaNan", "--max-area nan", {"--max-area", "'nan' is not a finite number"}},
         OptionCase{"MaxAreaInf", "--max-area inf", {"--max-area", "'inf' is not a finite number"}},
-        OptionCase{"MaxAreaTiny", "--max-area 1e-300", {"--max-area 1e-300", "more than 10000000 patches"}},
-        OptionCase{"MaxAreaSmall", "--max-area 1e-12", {"--max-area 1e-12", "more than 10000000 patches"}},
-        OptionCase{"MaxAreaTinyInRun", "--max-area 1e-300", {"furnace.json", "--max-area 1e-300"}, "run"},
+        OptionCase{"MaxAreaTiny",
+                   "--max-area 1e-300",
+                   {"--max-area 1e-300", "more than 10000000 patches"}},
+        OptionCase{
+            "MaxAreaSmall", "--max-area 1e-12", {"--max-area 1e-12", "more than 10000000 patches"}},
+        OptionCase{
+            "MaxAreaTinyInRun", "--max-area 1e-300", {"furnace.json", "--max-area 1e-300"}, "run"},
         OptionCase{"PatchesBillion", "--patches 1000000000", {"--patches", "1000000000"}},
         OptionCase{"TolNan", "--tol nan", {"--tol", "'nan' is not a finite number"}, "run"},
         OptionCase{"TolInf", "--tol inf", {"--tol"}, "run"},
         OptionCase{"MaxSecondsNan", "--max-seconds nan", {"--max-seconds"}, "run"},
         OptionCase{"AdaptiveTolNan", "--adaptive --adaptive-tol nan", {"--adaptive-tol"}, "run"},
-        OptionCase{"MemoryBudgetHuge", "--memory-budget 1e30GiB", {"--memory-budget", "larger than"}, "formfactors"},
+        OptionCase{"MemoryBudgetHuge",
+                   "--memory-budget 1e30GiB",
+                   {"--memory-budget", "larger than"},
+                   "formfactors"},
         // Found by data/tools/hostile_options.py: accepted before, NaN used or the study run first.
-        OptionCase{"SeedNegative", "--seed -1", {"--seed", "'-1' is not a whole number"}, "formfactors"},
-        OptionCase{"CreaseAngleNan", "--shading radiosity --smooth --crease-angle nan --size 8x8 --patches 6",
-                   {"--crease-angle", "'nan' is not a number in [0, 180]"}, "render"},
-        OptionCase{"SmoothErrorInf", "--shading radiosity --smooth --smooth-error inf --size 8x8 --patches 6",
-                   {"--smooth-error", "'inf' is not a finite number"}, "render"},
-        OptionCase{"RenderPhotonsHuge", "--shading photon-map --photons 4000000000 --size 8x8 --patches 6",
-                   {"--photons", "100000000"}, "render"},
-        OptionCase{"PhotonsHuge", "--photons 4000000000 --patches 6", {"--photons", "100000000"}, "photons"},
-        OptionCase{"HierarchicalEpsilonTiny", "--method hierarchical --epsilon 1e-300",
-                   {"--epsilon 1e-300", "[1e-06, 1)"}, "run"},
-        OptionCase{"StudyEpsilonsNan", "--epsilons nan --max-seconds 1", {"--epsilons", "'nan' is not a number"},
+        OptionCase{
+            "SeedNegative", "--seed -1", {"--seed", "'-1' is not a whole number"}, "formfactors"},
+        OptionCase{"CreaseAngleNan",
+                   "--shading radiosity --smooth --crease-angle nan --size 8x8 --patches 6",
+                   {"--crease-angle", "'nan' is not a number in [0, 180]"},
+                   "render"},
+        OptionCase{"SmoothErrorInf",
+                   "--shading radiosity --smooth --smooth-error inf --size 8x8 --patches 6",
+                   {"--smooth-error", "'inf' is not a finite number"},
+                   "render"},
+        OptionCase{"RenderPhotonsHuge",
+                   "--shading photon-map --photons 4000000000 --size 8x8 --patches 6",
+                   {"--photons", "100000000"},
+                   "render"},
+        OptionCase{"PhotonsHuge",
+                   "--photons 4000000000 --patches 6",
+                   {"--photons", "100000000"},
+                   "photons"},
+        OptionCase{"HierarchicalEpsilonTiny",
+                   "--method hierarchical --epsilon 1e-300",
+                   {"--epsilon 1e-300", "[1e-06, 1)"},
+                   "run"},
+        OptionCase{"StudyEpsilonsNan",
+                   "--epsilons nan --max-seconds 1",
+                   {"--epsilons", "'nan' is not a number"},
                    "study"},
-        OptionCase{"StudyEpsilonsTiny", "--epsilons 1e-300 --max-seconds 1", {"--epsilons", "[1e-06, 1]"}, "study"},
-        OptionCase{"StudyEpsilonsOne", "--epsilons 1 --max-seconds 1", {"--epsilons", "'1' must be below 1"},
+        OptionCase{"StudyEpsilonsTiny",
+                   "--epsilons 1e-300 --max-seconds 1",
+                   {"--epsilons", "[1e-06, 1]"},
                    "study"},
-        OptionCase{"StudyBudgetBelowReference", "--knob-patches 4000 --max-seconds 1",
-                   {"--max-seconds 1 is shorter than the reference of --knob-patches 4000", "8000 patches"}, "study"},
-        OptionCase{"RenderReportWithoutReference", "--report r.json --size 8x8 --patches 6",
-                   {"--report r.json needs --reference"}, "render"}),
-    [](const ::testing::TestParamInfo<OptionCase>& param) { return std::string(param.param.name); });
+        OptionCase{"StudyEpsilonsOne",
+                   "--epsilons 1 --max-seconds 1",
+                   {"--epsilons", "'1' must be below 1"},
+                   "study"},
+        OptionCase{"StudyBudgetBelowReference",
+                   "--knob-patches 4000 --max-seconds 1",
+                   {"--max-seconds 1 is shorter than the reference of --knob-patches 4000",
+                    "8000 patches"},
+                   "study"},
+        OptionCase{"RenderReportWithoutReference",
+                   "--report r.json --size 8x8 --patches 6",
+                   {"--report r.json needs --reference"},
+                   "render"}),
+    [](const ::testing::TestParamInfo<OptionCase>& param) {
+      return std::string(param.param.name);
+    });
 
 TEST(HostileOptionCli, ExposureNanRefusedByRender) {
   test::TempDir dir;
-  const test::RunResult r = test::runRadkitWithin(
-      120, "render '" + test::dataPath("furnace.json") + "' --exposure nan --out '" + dir.path("i.png") + "'");
+  const test::RunResult r =
+      test::runRadkitWithin(120, "render '" + test::dataPath("furnace.json") +
+                                     "' --exposure nan --out '" + dir.path("i.png") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("--exposure"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.path("i.png")));
@@ -89,9 +125,11 @@ TEST(HostileOptionCli, ExposureNanRefusedByRender) {
 // Point 9: report.json says how each solver stopped, with its spectral-radius estimate.
 TEST(HostileOptionCli, ReportSaysMaxIterationsExit) {
   test::TempDir dir;
-  const test::RunResult r = test::runRadkitWithin(
-      300, "run '" + test::dataPath("furnace.json") + "' --patches 24 --no-render --solvers jacobi "
-           "--max-iterations 20 --tol 1e-12 --out '" + dir.path("o") + "'");
+  const test::RunResult r =
+      test::runRadkitWithin(300, "run '" + test::dataPath("furnace.json") +
+                                     "' --patches 24 --no-render --solvers jacobi "
+                                     "--max-iterations 20 --tol 1e-12 --out '" +
+                                     dir.path("o") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::ifstream in(dir.path("o/report.json"));
   const nlohmann::json solver = nlohmann::json::parse(in)["solvers"][0];
@@ -113,11 +151,13 @@ TEST(HostileOptionCli, RenderOutIsAFolder) {
   test::TempDir dir;
   fs::create_directories(dir.path("images"));
   const test::RunResult r = test::runRadkitWithin(
-      120, "render '" + test::dataPath("furnace.json") + "' --patches 6 --size 8x8 --spp 1 --out '" +
-               dir.path("images") + "'");
+      120, "render '" + test::dataPath("furnace.json") +
+               "' --patches 6 --size 8x8 --spp 1 --out '" + dir.path("images") + "'");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_NE(r.output.find("--out " + dir.path("images") + " is a folder. Fix: give a file name inside it"),
-            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--out " + dir.path("images") +
+                          " is a folder. Fix: give a file name inside it"),
+            std::string::npos)
+      << r.output;
   EXPECT_TRUE(fs::is_empty(dir.path("images")));
   EXPECT_FALSE(fs::exists(dir.path("images.tmp")));
 }
@@ -125,14 +165,19 @@ TEST(HostileOptionCli, RenderOutIsAFolder) {
 // --report into a missing folder used to succeed without writing the report.
 TEST(HostileOptionCli, RenderReportIntoMissingFolder) {
   test::TempDir dir;
-  const std::string scene = "'" + test::dataPath("furnace.json") + "' --shading radiosity --patches 6 --size 8x8";
-  ASSERT_EQ(test::runRadkitWithin(120, "render " + scene + " --out '" + dir.path("ref.pfm") + "'").exitCode, 0);
+  const std::string scene =
+      "'" + test::dataPath("furnace.json") + "' --shading radiosity --patches 6 --size 8x8";
+  ASSERT_EQ(test::runRadkitWithin(120, "render " + scene + " --out '" + dir.path("ref.pfm") + "'")
+                .exitCode,
+            0);
   const test::RunResult r = test::runRadkitWithin(
-      120, "render " + scene + " --reference '" + dir.path("ref.pfm") + "' --report '" + dir.path("no/r.json") +
-               "' --out '" + dir.path("i.png") + "'");
+      120, "render " + scene + " --reference '" + dir.path("ref.pfm") + "' --report '" +
+               dir.path("no/r.json") + "' --out '" + dir.path("i.png") + "'");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_NE(r.output.find("--report " + dir.path("no/r.json") + ": folder " + dir.path("no") + " does not exist"),
-            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--report " + dir.path("no/r.json") + ": folder " + dir.path("no") +
+                          " does not exist"),
+            std::string::npos)
+      << r.output;
   EXPECT_FALSE(fs::exists(dir.path("i.png")));
 }
 
@@ -142,8 +187,10 @@ TEST(HostileOptionCli, RenderReportIntoMissingFolder) {
 TEST(HostileOptionCli, BenchRefusesCountsBeyondMemory) {
   const std::string scene = "'" + test::dataPath("furnace.json") + "'";
   const std::vector<std::pair<std::string, std::string>> cases{
-      {"bench formfactors " + scene + " --patches 6 --reference-rays 99999999999999999999", "--reference-rays"},
-      {"bench formfactors " + scene + " --patches 6 --reference-rays 100000001", "--reference-rays"},
+      {"bench formfactors " + scene + " --patches 6 --reference-rays 99999999999999999999",
+       "--reference-rays"},
+      {"bench formfactors " + scene + " --patches 6 --reference-rays 100000001",
+       "--reference-rays"},
       {"bench hierarchical " + scene + " --dense-patches 10000001", "--dense-patches"},
       {"bench path-trace " + scene + " --patches 6 --spp 2000000", "--spp"},
       {"bench solver --n 64 --repetitions 1 --threads 1000000", "--threads"}};
@@ -172,14 +219,17 @@ std::string closedBox(const test::TempDir& dir, double rho) {
 TEST(HostileOptionCli, HierarchicalNearSingularSaysWhyItStopped) {
   test::TempDir dir;
   const test::RunResult r = test::runRadkitWithin(
-      300, "run '" + closedBox(dir, 0.999999) + "' --method hierarchical --hr-rounds 1 --epsilon 1e-2 --hr-rays 4 "
-           "--max-iterations 5001 --no-render --out '" + dir.path("o") + "'");
+      300, "run '" + closedBox(dir, 0.999999) +
+               "' --method hierarchical --hr-rounds 1 --epsilon 1e-2 --hr-rays 4 "
+               "--max-iterations 5001 --no-render --out '" +
+               dir.path("o") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::ifstream in(dir.path("o/report.json"));
   const nlohmann::json solver = nlohmann::json::parse(in)["solvers"][0];
   EXPECT_EQ(solver["exit_reason"], "max_iterations") << solver.dump();
   EXPECT_EQ(solver["iterations"], 5001) << solver.dump();
-  EXPECT_EQ(solver["reason"].get<std::string>().rfind("not converged: maximum iterations (5001)", 0), 0u)
+  EXPECT_EQ(
+      solver["reason"].get<std::string>().rfind("not converged: maximum iterations (5001)", 0), 0u)
       << solver.dump();
   ASSERT_TRUE(solver["spectral_radius_estimate"].is_number()) << solver.dump();
   EXPECT_NEAR(solver["spectral_radius_estimate"].get<double>(), 0.999999, 1e-5);
@@ -198,18 +248,22 @@ TEST(HostileOptionCli, HierarchicalNearSingularSaysWhyItStopped) {
 TEST(HostileOptionCli, HierarchicalExitReasons) {
   test::TempDir dir;
   const std::string box = closedBox(dir, 0.5);
-  const std::string common = " --method hierarchical --hr-rounds 1 --epsilon 1e-2 --hr-rays 4 --no-render";
-  test::RunResult r = test::runRadkitWithin(300, "run '" + box + "'" + common + " --out '" + dir.path("a") + "'");
+  const std::string common =
+      " --method hierarchical --hr-rounds 1 --epsilon 1e-2 --hr-rays 4 --no-render";
+  test::RunResult r =
+      test::runRadkitWithin(300, "run '" + box + "'" + common + " --out '" + dir.path("a") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::ifstream a(dir.path("a/report.json"));
   EXPECT_EQ(nlohmann::json::parse(a)["solvers"][0]["exit_reason"], "converged");
-  r = test::runRadkitWithin(300, "run '" + box + "'" + common + " --tol 1e-300 --max-seconds 1e-9 --out '" +
-                                     dir.path("b") + "'");
+  r = test::runRadkitWithin(300, "run '" + box + "'" + common +
+                                     " --tol 1e-300 --max-seconds 1e-9 --out '" + dir.path("b") +
+                                     "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::ifstream b(dir.path("b/report.json"));
   const nlohmann::json solver = nlohmann::json::parse(b)["solvers"][0];
   EXPECT_EQ(solver["exit_reason"], "time_limit") << solver.dump();
-  EXPECT_EQ(solver["reason"].get<std::string>().rfind("not converged: time limit", 0), 0u) << solver.dump();
+  EXPECT_EQ(solver["reason"].get<std::string>().rfind("not converged: time limit", 0), 0u)
+      << solver.dump();
 }
 
 // Found by data/tools/hostile_options.py. `view --screenshot ''` opened the interactive window
@@ -218,7 +272,8 @@ TEST(HostileOptionCli, ViewRefusesEmptyScreenshotAndRunDir) {
   test::TempDir dir;
   test::RunResult r = test::runRadkitWithin(60, "view '" + dir.path("") + "' --screenshot ''");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_NE(r.output.find("--screenshot is empty. Fix: give a file name"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--screenshot is empty. Fix: give a file name"), std::string::npos)
+      << r.output;
   r = test::runRadkitWithin(60, "view '' --screenshot '" + dir.path("s.png") + "'");
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("RUN_DIR is empty"), std::string::npos) << r.output;
@@ -232,7 +287,8 @@ TEST(HostileOptionCli, OutputFolderEmptyOrWorkingFolder) {
   const std::string scene = "'" + test::dataPath("furnace.json") + "' --patches 6";
   test::RunResult r = test::runRadkitWithin(60, "mesh " + scene + " --out ''");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_NE(r.output.find("the output folder (--out) is empty. Fix: give a folder name"), std::string::npos)
+  EXPECT_NE(r.output.find("the output folder (--out) is empty. Fix: give a folder name"),
+            std::string::npos)
       << r.output;
   r = test::runRadkitWithin(60, "solvers " + scene + " --out ''");
   EXPECT_EQ(r.exitCode, 1) << r.output;
@@ -240,13 +296,14 @@ TEST(HostileOptionCli, OutputFolderEmptyOrWorkingFolder) {
   fs::create_directories(dir.path("work"));
   r = test::runRadkitWithin(60, "mesh " + scene + " --out '" + dir.path("work") + "/.'");
   EXPECT_EQ(r.exitCode, 0) << r.output;  // a folder named by a path ending in /. is fine
-  const std::string inWork = "cd '" + dir.path("work") + "' && timeout 60 '" + RADKIT_BINARY + "' mesh " + scene +
-                             " --out . > '" + dir.path("log") + "' 2>&1";
+  const std::string inWork = "cd '" + dir.path("work") + "' && timeout 60 '" + RADKIT_BINARY +
+                             "' mesh " + scene + " --out . > '" + dir.path("log") + "' 2>&1";
   const int status = std::system(inWork.c_str());
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << status;
   std::ifstream log(dir.path("log"));
   const std::string output((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
-  EXPECT_NE(output.find("--out . is the working folder or contains it"), std::string::npos) << output;
+  EXPECT_NE(output.find("--out . is the working folder or contains it"), std::string::npos)
+      << output;
   EXPECT_TRUE(fs::exists(dir.path("work/patches.csv")));
 }
 
@@ -254,19 +311,27 @@ TEST(HostileOptionCli, OutputFolderEmptyOrWorkingFolder) {
 // PFM header larger than its file allocated what the header said.
 TEST(HostileOptionCli, RenderReferenceCheckedBeforeRendering) {
   test::TempDir dir;
-  const std::string scene = "'" + test::dataPath("furnace.json") + "' --shading radiosity --patches 6";
-  ASSERT_EQ(test::runRadkitWithin(120, "render " + scene + " --size 16x16 --out '" + dir.path("ref.pfm") + "'").exitCode, 0);
-  test::RunResult r = test::runRadkitWithin(
-      120, "render " + scene + " --size 8x8 --reference '" + dir.path("ref.pfm") + "' --out '" + dir.path("i.png") + "'");
+  const std::string scene =
+      "'" + test::dataPath("furnace.json") + "' --shading radiosity --patches 6";
+  ASSERT_EQ(test::runRadkitWithin(
+                120, "render " + scene + " --size 16x16 --out '" + dir.path("ref.pfm") + "'")
+                .exitCode,
+            0);
+  test::RunResult r =
+      test::runRadkitWithin(120, "render " + scene + " --size 8x8 --reference '" +
+                                     dir.path("ref.pfm") + "' --out '" + dir.path("i.png") + "'");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_NE(r.output.find("--reference " + dir.path("ref.pfm") + " is 16x16, the image --size 8x8"), std::string::npos)
+  EXPECT_NE(r.output.find("--reference " + dir.path("ref.pfm") + " is 16x16, the image --size 8x8"),
+            std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(dir.path("i.png")));
   std::ofstream(dir.path("huge.pfm")) << "PF\n2000000000 2000000000\n-1\n0123456789ab";
-  r = test::runRadkitWithin(120, "render " + scene + " --size 8x8 --reference '" + dir.path("huge.pfm") + "' --out '" +
-                                     dir.path("i.png") + "'");
+  r = test::runRadkitWithin(120, "render " + scene + " --size 8x8 --reference '" +
+                                     dir.path("huge.pfm") + "' --out '" + dir.path("i.png") + "'");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_NE(r.output.find("huge.pfm: PFM header says 2000000000x2000000000 pixels"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("huge.pfm: PFM header says 2000000000x2000000000 pixels"),
+            std::string::npos)
+      << r.output;
   EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.path("i.png")));
 }
@@ -275,10 +340,12 @@ TEST(HostileOptionCli, RenderReferenceCheckedBeforeRendering) {
 TEST(HostileOptionCli, SeedBeyondSixtyFourBits) {
   test::TempDir dir;
   const test::RunResult r = test::runRadkitWithin(
-      60, "formfactors '" + test::dataPath("furnace.json") + "' --patches 6 --seed 18446744073709551616 --out '" +
-              dir.path("o") + "'");
+      60, "formfactors '" + test::dataPath("furnace.json") +
+              "' --patches 6 --seed 18446744073709551616 --out '" + dir.path("o") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("'18446744073709551616' is larger than 18446744073709551615"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'18446744073709551616' is larger than 18446744073709551615"),
+            std::string::npos)
+      << r.output;
   EXPECT_FALSE(fs::exists(dir.path("o")));
 }
 

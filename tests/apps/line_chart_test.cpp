@@ -9,12 +9,14 @@ namespace radkit {
 namespace {
 
 TEST(LineChart, AnOutlierTurnsALinearAxisLogarithmic) {
-  EXPECT_TRUE(needsLogAxis({1, 2, 3, 15084}));    // Southwell's shots beside sweeps
+  EXPECT_TRUE(needsLogAxis({1, 2, 3, 15084}));  // Southwell's shots beside sweeps
   EXPECT_FALSE(needsLogAxis({1, 2, 3, 50}));
-  EXPECT_FALSE(needsLogAxis({0, 1, 15084}));      // zero has no logarithm: stays linear
+  EXPECT_FALSE(needsLogAxis({0, 1, 15084}));  // zero has no logarithm: stays linear
   EXPECT_FALSE(needsLogAxis({}));
   EXPECT_EQ(chartPoints({ChartPanel{"a", "x", "y", false, false, {}}}), 0u);
-  EXPECT_EQ(chartPoints({ChartPanel{"a", "x", "y", false, false, {ChartSeries{"s", {1, 2}, {3, 4}}}}}), 2u);
+  EXPECT_EQ(
+      chartPoints({ChartPanel{"a", "x", "y", false, false, {ChartSeries{"s", {1, 2}, {3, 4}}}}}),
+      2u);
 }
 
 TEST(LineChart, LegendSitsOutsideThePlot) {
@@ -22,7 +24,9 @@ TEST(LineChart, LegendSitsOutsideThePlot) {
   // of the plot area can only be the legend's sample.
   test::TempDir dir;
   const std::string png = dir.path("chart.png");
-  writeLineChartPng(png, {ChartPanel{"t", "x", "y", false, false, {ChartSeries{"series", {0.5}, {0.5}}}}}, 600, 400);
+  writeLineChartPng(
+      png, {ChartPanel{"t", "x", "y", false, false, {ChartSeries{"series", {0.5}, {0.5}}}}}, 600,
+      400);
   const Canvas c = readPng(png);
   int legendPixels = 0;
   for (int y = 0; y < c.height(); ++y)

@@ -65,8 +65,8 @@ TEST(OutputFolder, RemovesStagingOfProcessesThatAreGone) {
   ASSERT_GT(child, 0);
   ASSERT_EQ(::waitpid(child, nullptr, 0), child);  // reaped: that PID names no process now
   const std::string dead = std::to_string(child), alive = std::to_string(::getppid());
-  for (const std::string& name : {".out.partial-" + dead, ".out.old-" + dead, ".out.partial-" + alive,
-                                  ".other.partial-" + dead}) {
+  for (const std::string& name : {".out.partial-" + dead, ".out.old-" + dead,
+                                  ".out.partial-" + alive, ".other.partial-" + dead}) {
     fs::create_directories(dir.path(name));
     dir.file(name + "/patches.csv", "x");
   }
@@ -77,8 +77,10 @@ TEST(OutputFolder, RemovesStagingOfProcessesThatAreGone) {
   }
   EXPECT_FALSE(fs::exists(dir.path(".out.partial-" + dead)));
   EXPECT_FALSE(fs::exists(dir.path(".out.old-" + dead)));
-  EXPECT_TRUE(fs::exists(dir.path(".out.partial-" + alive))) << "a running process's staging was removed";
-  EXPECT_TRUE(fs::exists(dir.path(".other.partial-" + dead))) << "another destination's staging was removed";
+  EXPECT_TRUE(fs::exists(dir.path(".out.partial-" + alive)))
+      << "a running process's staging was removed";
+  EXPECT_TRUE(fs::exists(dir.path(".other.partial-" + dead)))
+      << "another destination's staging was removed";
 }
 
 TEST(OutputFolder, RefusesAFolderRadkitDidNotWrite) {

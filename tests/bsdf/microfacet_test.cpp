@@ -8,9 +8,9 @@
 
 #include <cmath>
 
-#include "geometry/sampling.h"
 #include "bsdf/bsdf.h"
 #include "bsdf/specular.h"
+#include "geometry/sampling.h"
 #include "tests/common/statistics.h"
 
 namespace radkit {
@@ -31,7 +31,8 @@ double albedoByQuadrature(const GgxDistribution& d, MaskingShadowing g, double m
   double sum = 0;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < 2 * n; ++j) {
-      const Vec3 wi = direction((i + 0.5) / n, M_PI * (j + 0.5) / (2 * n));  // φ in (0, π): symmetric
+      const Vec3 wi =
+          direction((i + 0.5) / n, M_PI * (j + 0.5) / (2 * n));  // φ in (0, π): symmetric
       const Vec3 h = normalize(wo + wi);
       sum += d.D(h) * d.G(wo, wi, g) / (4 * wo.z);  // f μi with μi cancelled
     }
@@ -60,7 +61,8 @@ TEST(Microfacet, ExactSingleEvaluation) {
   EXPECT_NEAR(f->eval(wo, wi).y, 0.017592, 5e-7);
   // Schlick's hemispherical average F0 + (1 − F0)/21: F_avg = 2 ∫ F(μ) μ dμ.
   double avg = 0;
-  for (int k = 0; k < 100000; ++k) avg += 2 * fresnelSchlick({0.04, 0, 0}, (k + 0.5) / 1e5).x * (k + 0.5) / 1e5 / 1e5;
+  for (int k = 0; k < 100000; ++k)
+    avg += 2 * fresnelSchlick({0.04, 0, 0}, (k + 0.5) / 1e5).x * (k + 0.5) / 1e5 / 1e5;
   EXPECT_NEAR(avg, 0.04 + 0.96 / 21, 1e-9);
 }
 
@@ -102,7 +104,8 @@ TEST(Microfacet, ExactWeakWhiteFurnace) {
 
 TEST(Microfacet, ExactDirectionalAlbedo) {
   // docs/oracles.md: E(μo = 1, α = 1) ≈ 0.307 (height-correlated, F = 1).
-  EXPECT_NEAR(directionalAlbedo(GgxDistribution(1), MaskingShadowing::HeightCorrelated, 1.0), 0.307, 5e-4);
+  EXPECT_NEAR(directionalAlbedo(GgxDistribution(1), MaskingShadowing::HeightCorrelated, 1.0), 0.307,
+              5e-4);
   // Two quadratures that share nothing but f: the visible-normal warp (64² strata) and a
   // 400 × 800 (μi, φi) grid. Both are midpoint rules across the horizon cut-off, so they
   // agree to about 1e-3; E is below 1 everywhere (single scattering loses energy).
@@ -111,7 +114,8 @@ TEST(Microfacet, ExactDirectionalAlbedo) {
       for (double mu : {0.1, 0.5, 0.9}) {
         const GgxDistribution d(alpha);
         const double e = directionalAlbedo(d, g, mu);
-        EXPECT_NEAR(e, albedoByQuadrature(d, g, mu, 400), 2e-3) << maskingShadowingName(g) << " " << alpha << " " << mu;
+        EXPECT_NEAR(e, albedoByQuadrature(d, g, mu, 400), 2e-3)
+            << maskingShadowingName(g) << " " << alpha << " " << mu;
         EXPECT_LE(e, 1.0);
         EXPECT_GT(e, 0.0);
       }
@@ -123,7 +127,8 @@ TEST(Microfacet, ExactDirectionalAlbedo) {
   // Energy loss grows with roughness (at normal incidence, height-correlated).
   double previous = 1;
   for (double alpha : {0.1, 0.4, 0.7, 1.0}) {
-    const double e = directionalAlbedo(GgxDistribution(alpha), MaskingShadowing::HeightCorrelated, 1.0);
+    const double e =
+        directionalAlbedo(GgxDistribution(alpha), MaskingShadowing::HeightCorrelated, 1.0);
     EXPECT_LT(e, previous);
     previous = e;
   }
@@ -136,7 +141,8 @@ TEST(Microfacet, ExactAlbedoTable) {
   // within h²/8 · max|E''| (below 1e-3 here).
   EXPECT_NEAR(t.albedo(0.5 / 32), t.nodes()[0], 1e-15);
   for (double mu : {0.11, 0.37, 0.66, 0.93})
-    EXPECT_NEAR(t.albedo(mu), directionalAlbedo(d, MaskingShadowing::HeightCorrelated, mu), 1e-3) << mu;
+    EXPECT_NEAR(t.albedo(mu), directionalAlbedo(d, MaskingShadowing::HeightCorrelated, mu), 1e-3)
+        << mu;
   // E_avg = 2 ∫ E μ dμ, checked against a coarser direct sum.
   double sum = 0;
   for (int k = 0; k < 200; ++k) sum += 2 * t.albedo((k + 0.5) / 200) * (k + 0.5) / 200 / 200;
@@ -145,7 +151,8 @@ TEST(Microfacet, ExactAlbedoTable) {
   // The Kulla-Conty lobe is symmetric (reciprocal) and carries exactly 1 − E(μo).
   EXPECT_DOUBLE_EQ(t.multipleScattering(0.3, 0.8), t.multipleScattering(0.8, 0.3));
   double ms = 0;
-  for (int k = 0; k < 4000; ++k) ms += 2 * M_PI * t.multipleScattering(0.4, (k + 0.5) / 4000) * (k + 0.5) / 4000 / 4000;
+  for (int k = 0; k < 4000; ++k)
+    ms += 2 * M_PI * t.multipleScattering(0.4, (k + 0.5) / 4000) * (k + 0.5) / 4000 / 4000;
   EXPECT_NEAR(ms, 1 - t.albedo(0.4), 1e-6);
   EXPECT_EQ(multipleScatteringFresnel({1, 1, 1}, 0.6), (Vec3{1, 1, 1}));
 }
@@ -154,8 +161,8 @@ TEST(Microfacet, ExactAlbedoTable) {
 /// density over each cell (32 × 32 midpoint sub-samples per cell), with one more cell for
 /// samples the sampler loses. Returns the χ² p-value.
 template <typename Sample, typename Pdf>
-double chiSquareOfDirections(Sample sample, Pdf pdf, long long n, const std::string& name, double alpha,
-                             bool lowerHemisphere = false) {
+double chiSquareOfDirections(Sample sample, Pdf pdf, long long n, const std::string& name,
+                             double alpha, bool lowerHemisphere = false) {
   const int nt = 20, np = 40, sub = 32;
   const double zLo = lowerHemisphere ? -1 : 0;
   std::vector<double> observed(nt * np + 1, 0), expected(nt * np + 1, 0);
@@ -207,7 +214,8 @@ TEST(Microfacet, StatisticalVisibleNormals) {
         return true;
       };
       auto pdf = [&](const Vec3& m) { return d.visibleNormalPdf(wo, m); };
-      const double p = chiSquareOfDirections(sample, pdf, 200000, "vndf-" + std::to_string(index++), alpha);
+      const double p =
+          chiSquareOfDirections(sample, pdf, 200000, "vndf-" + std::to_string(index++), alpha);
       EXPECT_GT(p, alpha) << "alpha " << a << ", theta " << thetaDeg;
     }
 }
@@ -229,7 +237,8 @@ TEST(Microfacet, StatisticalCompensatedWhiteFurnace) {
       const int n = 200000;
       for (int k = 0; k < n; ++k) {
         const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-        if (auto b = f->sample(wo, u0, u1, u2)) sum += b->weight.y, sumSq += b->weight.y * b->weight.y;
+        if (auto b = f->sample(wo, u0, u1, u2))
+          sum += b->weight.y, sumSq += b->weight.y * b->weight.y;
         if (auto b = single->sample(wo, u0, u1, u2)) lossy += b->weight.y;
       }
       const double mean = sum / n, se = std::sqrt((sumSq / n - mean * mean) / n);

@@ -8,8 +8,8 @@
 
 #include <cmath>
 
-#include "geometry/sampling.h"
 #include "bsdf/specular.h"
+#include "geometry/sampling.h"
 #include "tests/common/statistics.h"
 
 namespace radkit {
@@ -38,11 +38,13 @@ std::vector<NamedBsdf> glossyModels() {
   for (MaskingShadowing g : {MaskingShadowing::HeightCorrelated, MaskingShadowing::Separable,
                              MaskingShadowing::SchlickGgx, MaskingShadowing::CookTorrance}) {
     s.masking = g;
-    out.push_back({std::string("ct-") + maskingShadowingName(g), makeCookTorranceBsdf({0.7, 0.4, 0.2}, 0, 0.6, {0.04, 0.04, 0.04}, s)});
+    out.push_back({std::string("ct-") + maskingShadowingName(g),
+                   makeCookTorranceBsdf({0.7, 0.4, 0.2}, 0, 0.6, {0.04, 0.04, 0.04}, s)});
   }
   s.masking = MaskingShadowing::HeightCorrelated;
   s.compensated = true;
-  out.push_back({"ct-metal-compensated", makeCookTorranceBsdf({0.9, 0.6, 0.3}, 1, 0.8, {0.04, 0.04, 0.04}, s)});
+  out.push_back({"ct-metal-compensated",
+                 makeCookTorranceBsdf({0.9, 0.6, 0.3}, 1, 0.8, {0.04, 0.04, 0.04}, s)});
   return out;
 }
 
@@ -50,7 +52,8 @@ TEST(Bsdf, Construct) {
   EXPECT_NE(makeBsdf("lambert", {})->describe().find("lambert"), std::string::npos);
   EXPECT_NE(makeBsdf("phong", BsdfParams::parse("ks=0.2, shininess=10"))->describe().find("phong"),
             std::string::npos);
-  auto ct = makeBsdf("cook-torrance", BsdfParams::parse("metallic=0.25"), {MaskingShadowing::SchlickGgx, true, 16});
+  auto ct = makeBsdf("cook-torrance", BsdfParams::parse("metallic=0.25"),
+                     {MaskingShadowing::SchlickGgx, true, 16});
   EXPECT_NE(ct->describe().find("schlick"), std::string::npos);
   EXPECT_NE(ct->describe().find("Kulla-Conty"), std::string::npos);
   // The Lambertian part is what radiosity sees: (1 − metallic) · base colour.
@@ -122,11 +125,13 @@ TEST(Bsdf, StatisticalAlbedoAtMostOne) {
                              MaskingShadowing::SchlickGgx, MaskingShadowing::CookTorrance})
     for (double roughness : {0.3, 1.0}) {
       s.masking = g;
-      models.push_back({std::string("ct-f1-") + maskingShadowingName(g), makeCookTorranceBsdf({1, 1, 1}, 1, roughness, {}, s)});
+      models.push_back({std::string("ct-f1-") + maskingShadowingName(g),
+                        makeCookTorranceBsdf({1, 1, 1}, 1, roughness, {}, s)});
     }
   s.masking = MaskingShadowing::HeightCorrelated;
   s.compensated = true;
-  models.push_back({"ct-white-compensated", makeCookTorranceBsdf({0.99, 0.99, 0.99}, 1, 1.0, {0.04, 0.04, 0.04}, s)});
+  models.push_back({"ct-white-compensated",
+                    makeCookTorranceBsdf({0.99, 0.99, 0.99}, 1, 1.0, {0.04, 0.04, 0.04}, s)});
   for (const NamedBsdf& m : models)
     for (double mu : {0.05, 0.4, 1.0}) {
       Rng rng(11, 0, int(mu * 100));
@@ -176,7 +181,8 @@ TEST(Bsdf, StatisticalSamplersMatchPdf) {
           double cell = 0;
           for (int a = 0; a < sub; ++a)
             for (int c = 0; c < sub; ++c)
-              cell += m.bsdf->pdf(wo, direction((i + (a + 0.5) / sub) / nt, 2 * M_PI * (j + (c + 0.5) / sub) / np));
+              cell += m.bsdf->pdf(
+                  wo, direction((i + (a + 0.5) / sub) / nt, 2 * M_PI * (j + (c + 0.5) / sub) / np));
           cell *= (1.0 / nt) * (2 * M_PI / np) / (sub * sub);
           expected[i * np + j] = cell * n;
           total += cell;
@@ -184,7 +190,8 @@ TEST(Bsdf, StatisticalSamplersMatchPdf) {
       EXPECT_LE(total, 1 + 2e-3) << m.name;
       expected.back() = std::max(0.0, 1 - total) * n;
       const std::string name = "bsdf-" + m.name + "-" + std::to_string(int(mu * 100));
-      EXPECT_GT(test::chiSquarePValue(observed, expected, name + "-chi2.csv", alpha), alpha) << name;
+      EXPECT_GT(test::chiSquarePValue(observed, expected, name + "-chi2.csv", alpha), alpha)
+          << name;
     }
 }
 

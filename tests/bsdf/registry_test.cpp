@@ -74,7 +74,8 @@ TEST(OrenNayar, ExactLimits) {
   auto lambert = makeLambertBsdf({0.6, 0.6, 0.6});
   Rng rng(1, 2, 3);
   for (int k = 0; k < 100; ++k) {
-    const Vec3 a = direction(rng.uniform(), 7 * rng.uniform()), b = direction(rng.uniform(), 7 * rng.uniform());
+    const Vec3 a = direction(rng.uniform(), 7 * rng.uniform()),
+               b = direction(rng.uniform(), 7 * rng.uniform());
     EXPECT_NEAR(smooth->eval(a, b).x, lambert->eval(a, b).x, 1e-15);
   }
   EXPECT_NEAR(smooth->diffuseAlbedo().x, 0.6, 1e-12);
@@ -87,7 +88,8 @@ TEST(OrenNayar, StatisticalAlbedoMatchesMonteCarlo) {
   // The albedo radiosity sees is ρ_bh = (1/π) ∫∫ f cos θi cos θo dωi dωo (quadrature in
   // oren_nayar.cpp); estimate it with cosine-distributed pairs: ρ_bh = E[π f].
   for (double sigma : {20.0, 60.0}) {
-    auto f = makeBsdf("oren-nayar", BsdfParams::parse("reflectance=0.7, sigma=" + std::to_string(sigma)));
+    auto f = makeBsdf("oren-nayar",
+                      BsdfParams::parse("reflectance=0.7, sigma=" + std::to_string(sigma)));
     Rng rng(9, int(sigma), 0);
     const int n = 400000;
     double sum = 0, sumSq = 0;

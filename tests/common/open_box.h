@@ -10,7 +10,8 @@ namespace radkit::test {
 
 /// Writes box.obj and box.mtl into `dir` and returns the OBJ's path. Walls face inward; the
 /// left wall (x = 0) is red, the right one (x = 1) green.
-inline std::string writeOpenBoxObj(const TempDir& dir, bool openTowardPlusZ, const std::string& name = "box") {
+inline std::string writeOpenBoxObj(const TempDir& dir, bool openTowardPlusZ,
+                                   const std::string& name = "box") {
   const double s = openTowardPlusZ ? 1 : -1;  // z of the open side
   auto v = [&](double x, double y, double z) {
     return "v " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z * s) + "\n";
@@ -22,10 +23,10 @@ inline std::string writeOpenBoxObj(const TempDir& dir, bool openTowardPlusZ, con
   obj += v(0.4, 0.99, 0.4) + v(0.6, 0.99, 0.4) + v(0.6, 0.99, 0.6) + v(0.4, 0.99, 0.6);
   // Counter-clockwise from inside for the +z box; mirroring z reverses every winding.
   auto f = [&](int a, int b, int c, int d) {
-    return openTowardPlusZ ? "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " +
-                                 std::to_string(d) + "\n"
-                           : "f " + std::to_string(d) + " " + std::to_string(c) + " " + std::to_string(b) + " " +
-                                 std::to_string(a) + "\n";
+    return openTowardPlusZ ? "f " + std::to_string(a) + " " + std::to_string(b) + " " +
+                                 std::to_string(c) + " " + std::to_string(d) + "\n"
+                           : "f " + std::to_string(d) + " " + std::to_string(c) + " " +
+                                 std::to_string(b) + " " + std::to_string(a) + "\n";
   };
   obj += "o back\nusemtl white\n" + f(1, 2, 3, 4);
   obj += "o floor\nusemtl white\n" + f(1, 5, 6, 2);
@@ -33,9 +34,10 @@ inline std::string writeOpenBoxObj(const TempDir& dir, bool openTowardPlusZ, con
   obj += "o left\nusemtl red\n" + f(1, 4, 8, 5);
   obj += "o right\nusemtl green\n" + f(2, 6, 7, 3);
   obj += "o light\nusemtl light\n" + f(9, 10, 11, 12);
-  dir.file(name + ".mtl",
-           "newmtl white\nKd 0.7 0.7 0.7\nnewmtl red\nKd 0.6 0.05 0.05\nnewmtl green\nKd 0.1 0.5 0.1\n"
-           "newmtl light\nKd 0.5 0.5 0.5\nKe 20 20 20\n");
+  dir.file(
+      name + ".mtl",
+      "newmtl white\nKd 0.7 0.7 0.7\nnewmtl red\nKd 0.6 0.05 0.05\nnewmtl green\nKd 0.1 0.5 0.1\n"
+      "newmtl light\nKd 0.5 0.5 0.5\nKe 20 20 20\n");
   return dir.file(name + ".obj", obj);
 }
 

@@ -68,9 +68,11 @@ double sidakAlpha(double alpha, int tests) { return 1 - std::pow(1 - alpha, 1.0 
 
 double studentTCritical(double alpha, double nu) {
   const bool normal = !std::isfinite(nu) || nu > 1e6;
-  const double logC = normal ? 0 : std::lgamma((nu + 1) / 2) - std::lgamma(nu / 2) - 0.5 * std::log(nu * M_PI);
+  const double logC =
+      normal ? 0 : std::lgamma((nu + 1) / 2) - std::lgamma(nu / 2) - 0.5 * std::log(nu * M_PI);
   auto density = [&](double x) {
-    return normal ? std::exp(-0.5 * x * x) / std::sqrt(2 * M_PI) : std::exp(logC - (nu + 1) / 2 * std::log1p(x * x / nu));
+    return normal ? std::exp(-0.5 * x * x) / std::sqrt(2 * M_PI)
+                  : std::exp(logC - (nu + 1) / 2 * std::log1p(x * x / nu));
   };
   // P(|T| > t) = 1 − 2 ∫_0^t density.
   auto tail = [&](double t) {

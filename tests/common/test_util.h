@@ -5,21 +5,24 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
-#include <vector>
 #include <random>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace radkit::test {
 
-inline std::string dataPath(const std::string& name) { return std::string(RADKIT_DATA_DIR) + "/" + name; }
+inline std::string dataPath(const std::string& name) {
+  return std::string(RADKIT_DATA_DIR) + "/" + name;
+}
 
 /// A fresh folder under the system temp dir, removed with the object.
 class TempDir {
  public:
   TempDir() {
     std::random_device rd;
-    m_path = std::filesystem::temp_directory_path() / ("radkit-test-" + std::to_string(rd()) + std::to_string(rd()));
+    m_path = std::filesystem::temp_directory_path() /
+             ("radkit-test-" + std::to_string(rd()) + std::to_string(rd()));
     std::filesystem::create_directories(m_path);
   }
   ~TempDir() {
@@ -58,7 +61,9 @@ inline RunResult runRadkit(const std::string& args, int seconds = 0) {
   return r;
 }
 
-inline RunResult runRadkitWithin(int seconds, const std::string& args) { return runRadkit(args, seconds); }
+inline RunResult runRadkitWithin(int seconds, const std::string& args) {
+  return runRadkit(args, seconds);
+}
 
 /// Rows of a CSV file without quoted fields, each a map from header name to text.
 inline std::vector<std::map<std::string, std::string>> readCsv(const std::string& path) {

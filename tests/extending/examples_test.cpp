@@ -16,7 +16,8 @@
 namespace radkit {
 
 std::unique_ptr<Solver> makeDampedJacobiSolver(SolverParams& params);
-std::unique_ptr<FormFactorMethod> createCentroid(const PatchMesh&, const Visibility&, const FormFactorSettings&);
+std::unique_ptr<FormFactorMethod> createCentroid(const PatchMesh&, const Visibility&,
+                                                 const FormFactorSettings&);
 
 namespace {
 
@@ -24,8 +25,8 @@ TEST(ExtendingExamples, ExactDampedJacobiSolvesTheSphereInterior) {
   // Inside a sphere F_ij = A_j/A, so with uniform ρ and E every patch has B = E/(1 − ρ)
   // (Cohen & Wallace 1993; docs/oracles.md, closed-form systems).
   const std::vector<double> area{1, 2, 3, 4};
-  test::Problem p = test::makeProblem(test::sphereFormFactors(area), area, test::grey({0.6, 0.6, 0.6, 0.6}),
-                                      test::grey({1, 1, 1, 1}));
+  test::Problem p = test::makeProblem(test::sphereFormFactors(area), area,
+                                      test::grey({0.6, 0.6, 0.6, 0.6}), test::grey({1, 1, 1, 1}));
   SolverParams params({{"omega", 0.7}});
   std::unique_ptr<Solver> solver = makeDampedJacobiSolver(params);
   params.rejectUnused("damped-jacobi");

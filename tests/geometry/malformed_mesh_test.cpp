@@ -28,7 +28,8 @@ test::RunResult meshCommand(const test::TempDir& dir, const std::string& mesh) {
   std::string target = mesh;
   if (fs::path(mesh).extension() != ".obj")
     target = dir.file("scene.json", R"({"materials": {"lamp": {"emission": [1,1,1]}},
-        "surfaces": [{"name": "m", "material": "lamp", "mesh": ")" + mesh + R"("}]})");
+        "surfaces": [{"name": "m", "material": "lamp", "mesh": ")" +
+                                        mesh + R"("}]})");
   return test::runRadkit("mesh '" + target + "' --out '" + dir.path("out") + "'");
 }
 
@@ -43,12 +44,14 @@ TEST_P(MalformedMesh, FailsCleanly) {
   EXPECT_NE(r.output.find(c.file + ": "), std::string::npos) << "must name the file:\n" << r.output;
   EXPECT_NE(r.output.find("Fix:"), std::string::npos) << r.output;
   for (const std::string& word : c.mustMention)
-    EXPECT_NE(r.output.find(word), std::string::npos) << "missing '" << word << "' in:\n" << r.output;
+    EXPECT_NE(r.output.find(word), std::string::npos) << "missing '" << word << "' in:\n"
+                                                      << r.output;
   EXPECT_FALSE(fs::exists(dir.path("out")));
 }
 
-const char* kPlyHead = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                       "property float z\n";
+const char* kPlyHead =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\n";
 const char* kTriangleOff = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
 const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 
@@ -58,9 +61,10 @@ std::string ply(const std::string& faceHeader, const std::string& body) {
 
 /// A binary little-endian PLY triangle whose face names vertex `third`.
 std::string binaryPly(std::int32_t third) {
-  std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
-                  "property float y\nproperty float z\nelement face 1\n"
-                  "property list uchar int vertex_indices\nend_header\n";
+  std::string s =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
   const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   s.append(reinterpret_cast<const char*>(v), sizeof v);
   s.push_back(3);
@@ -69,65 +73,114 @@ std::string binaryPly(std::int32_t third) {
   return s;
 }
 
-const char* kFacet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+const char* kFacet =
+    "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
 
 INSTANTIATE_TEST_SUITE_P(
     Loaders, MalformedMesh,
     ::testing::Values(
         // 1: OBJ face indices out of range, read as a whole scene.
-        MeshCase{"ObjIndexPastEnd", "a.obj", std::string(kTriangleObj) + "f 1 2 999\n", {"line 4", "vertex 999"}},
-        MeshCase{"ObjNegativeIndexTooFarBack", "a.obj", std::string(kTriangleObj) + "f -999 1 2\n",
+        MeshCase{"ObjIndexPastEnd",
+                 "a.obj",
+                 std::string(kTriangleObj) + "f 1 2 999\n",
+                 {"line 4", "vertex 999"}},
+        MeshCase{"ObjNegativeIndexTooFarBack",
+                 "a.obj",
+                 std::string(kTriangleObj) + "f -999 1 2\n",
                  {"line 4", "-999", "only 3 vertices"}},
-        MeshCase{"ObjIndexOverflowsInt", "a.obj", std::string(kTriangleObj) + "f 1 2 99999999999999\n",
+        MeshCase{"ObjIndexOverflowsInt",
+                 "a.obj",
+                 std::string(kTriangleObj) + "f 1 2 99999999999999\n",
                  {"line 4", "99999999999999"}},
-        MeshCase{"ObjIndexIntMin", "a.obj", std::string(kTriangleObj) + "f 1 2 -2147483648\n",
+        MeshCase{"ObjIndexIntMin",
+                 "a.obj",
+                 std::string(kTriangleObj) + "f 1 2 -2147483648\n",
                  {"line 4", "-2147483648"}},
-        MeshCase{"ObjIndexZero", "a.obj", std::string(kTriangleObj) + "f 0 1 2\n", {"line 4", "'0'"}},
+        MeshCase{
+            "ObjIndexZero", "a.obj", std::string(kTriangleObj) + "f 0 1 2\n", {"line 4", "'0'"}},
         // 2: PLY property before any element.
-        MeshCase{"PlyPropertyBeforeElement", "p.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n",
+        MeshCase{"PlyPropertyBeforeElement",
+                 "p.ply",
+                 "ply\nformat ascii 1.0\nproperty float x\nend_header\n",
                  {"line 3", "before any element"}},
         // 6: PLY header that never ends.
-        MeshCase{"PlyNoEndHeader", "p.ply", std::string(kPlyHead) + "element face 0\n", {"end_header"}},
+        MeshCase{
+            "PlyNoEndHeader", "p.ply", std::string(kPlyHead) + "element face 0\n", {"end_header"}},
         // 7: header counts that are huge, negative or not numbers.
-        MeshCase{"OffHugeFaceCount", "h.off", "OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n", {"line 2", "'4000000000'"}},
-        MeshCase{"OffCountBeyondFileSize", "h.off", "OFF\n3000000 1 0\n0 0 0\n", {"line 2", "3000000 vertices"}},
+        MeshCase{"OffHugeFaceCount",
+                 "h.off",
+                 "OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n",
+                 {"line 2", "'4000000000'"}},
+        MeshCase{"OffCountBeyondFileSize",
+                 "h.off",
+                 "OFF\n3000000 1 0\n0 0 0\n",
+                 {"line 2", "3000000 vertices"}},
         MeshCase{"OffBare", "h.off", "OFF\n", {"no vertex and face counts"}},
-        MeshCase{"PlyHugeFaceCount", "p.ply", ply("element face 400000000\nproperty list uchar int vertex_indices\n", ""),
+        MeshCase{"PlyHugeFaceCount",
+                 "p.ply",
+                 ply("element face 400000000\nproperty list uchar int vertex_indices\n", ""),
                  {"line 7", "400000000 'face' rows"}},
-        MeshCase{"PlyNegativeCount", "p.ply", ply("element face -1\nproperty list uchar int vertex_indices\n", ""),
+        MeshCase{"PlyNegativeCount",
+                 "p.ply",
+                 ply("element face -1\nproperty list uchar int vertex_indices\n", ""),
                  {"line 7", "'-1'"}},
-        MeshCase{"PlyFloatCount", "p.ply", ply("element face 1e20\nproperty list uchar int vertex_indices\n", ""),
+        MeshCase{"PlyFloatCount",
+                 "p.ply",
+                 ply("element face 1e20\nproperty list uchar int vertex_indices\n", ""),
                  {"line 7", "'1e20'"}},
-        MeshCase{"PlyNegativeListLength", "p.ply",
+        MeshCase{"PlyNegativeListLength",
+                 "p.ply",
                  ply("element face 1\nproperty list uchar int vertex_indices\n", "-1e30 0 1 2\n"),
                  {"line 13", "'-1e30'", "list length"}},
         // 10: faces that name missing vertices, truncated files, short elements.
-        MeshCase{"OffIndexOutOfRange", "o.off", std::string(kTriangleOff) + "3 0 1 7\n",
+        MeshCase{"OffIndexOutOfRange",
+                 "o.off",
+                 std::string(kTriangleOff) + "3 0 1 7\n",
                  {"line 6", "face 0 names vertex 7", "3 vertices"}},
-        MeshCase{"OffTruncatedFaces", "o.off", "OFF\n3 2 0\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n3 0 1 2\n",
+        MeshCase{"OffTruncatedFaces",
+                 "o.off",
+                 "OFF\n3 2 0\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n3 0 1 2\n",
                  {"ends after 1 of the 2 faces"}},
-        MeshCase{"OffTwoVertexFace", "o.off", std::string(kTriangleOff) + "2 0 1\n", {"line 6", "face 0 has 2 vertices"}},
-        MeshCase{"PlyAsciiIndexOutOfRange", "p.ply",
+        MeshCase{"OffTwoVertexFace",
+                 "o.off",
+                 std::string(kTriangleOff) + "2 0 1\n",
+                 {"line 6", "face 0 has 2 vertices"}},
+        MeshCase{"PlyAsciiIndexOutOfRange",
+                 "p.ply",
                  ply("element face 1\nproperty list uchar int vertex_indices\n", "3 0 1 3\n"),
                  {"line 13", "face 0 names vertex 3"}},
-        MeshCase{"PlyBinaryIndexOutOfRange", "b.ply", binaryPly(5), {"b.ply: face 0 names vertex 5"}},
+        MeshCase{
+            "PlyBinaryIndexOutOfRange", "b.ply", binaryPly(5), {"b.ply: face 0 names vertex 5"}},
         MeshCase{"PlyBinaryNegativeIndex", "b.ply", binaryPly(-1), {"face 0 names vertex -1"}},
-        MeshCase{"PlyTruncatedBody", "p.ply",
-                 ply("element face 2\nproperty list uchar int vertex_indices\n", "3 0 1 2\n3 0 1\n"),
-                 {"ends inside element 'face' row 1"}},
-        MeshCase{"StlAsciiWithoutEndsolid", "t.stl", std::string("solid t\n") + kFacet + kFacet + "facet normal 0 0 1\n",
+        MeshCase{
+            "PlyTruncatedBody",
+            "p.ply",
+            ply("element face 2\nproperty list uchar int vertex_indices\n", "3 0 1 2\n3 0 1\n"),
+            {"ends inside element 'face' row 1"}},
+        MeshCase{"StlAsciiWithoutEndsolid",
+                 "t.stl",
+                 std::string("solid t\n") + kFacet + kFacet + "facet normal 0 0 1\n",
                  {"without 'endsolid'", "after 2 complete facets"}},
-        MeshCase{"StlBinaryTruncated", "t.stl", std::string(80, ' ') + std::string("\x05\0\0\0", 4) + std::string(60, '\0'),
+        MeshCase{"StlBinaryTruncated",
+                 "t.stl",
+                 std::string(80, ' ') + std::string("\x05\0\0\0", 4) + std::string(60, '\0'),
                  {"binary STL of 5 triangles", "has 334 bytes", "144"}},
-        MeshCase{"ObjTwoVertexFace", "a.obj", std::string(kTriangleObj) + "f 1 2 3\nf 1 2\n", {"line 5", "2 vertices"}},
-        MeshCase{"ObjTwoCoordinateVertex", "a.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n", {"line 2", "2 coordinates"}}),
+        MeshCase{"ObjTwoVertexFace",
+                 "a.obj",
+                 std::string(kTriangleObj) + "f 1 2 3\nf 1 2\n",
+                 {"line 5", "2 vertices"}},
+        MeshCase{"ObjTwoCoordinateVertex",
+                 "a.obj",
+                 "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n",
+                 {"line 2", "2 coordinates"}}),
     [](const ::testing::TestParamInfo<MeshCase>& param) { return std::string(param.param.name); });
 
 // 10: an MTL colour with one value would be read as (r, 0, 0).
 TEST(MalformedMeshCli, MtlColourWithOneValue) {
   test::TempDir dir;
   dir.file("s.mtl", "newmtl lamp\nKd 0.5\nKe 1 1 1\n");
-  const std::string obj = dir.file("s.obj", "mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 3\n");
+  const std::string obj =
+      dir.file("s.obj", "mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 3\n");
   const test::RunResult r = meshCommand(dir, obj);
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("s.mtl: line 2: 'Kd' needs three values"), std::string::npos) << r.output;
@@ -142,13 +195,18 @@ TEST(MalformedMeshCli, RefusesPipesAndDevices) {
   ASSERT_EQ(mkfifo(dir.path("f.json").c_str(), 0600), 0);
   fs::create_symlink("/dev/zero", dir.path("z.ply"));
   for (const std::string& mesh : {dir.path("f.off"), dir.path("z.ply")}) {
-    const std::string scene = dir.file("scene.json", R"({"materials": {"lamp": {"emission": [1,1,1]}},
-        "surfaces": [{"name": "m", "material": "lamp", "mesh": ")" + mesh + R"("}]})");
-    const test::RunResult r = test::runRadkitWithin(60, "mesh '" + scene + "' --out '" + dir.path("out") + "'");
+    const std::string scene =
+        dir.file("scene.json", R"({"materials": {"lamp": {"emission": [1,1,1]}},
+        "surfaces": [{"name": "m", "material": "lamp", "mesh": ")" +
+                                   mesh + R"("}]})");
+    const test::RunResult r =
+        test::runRadkitWithin(60, "mesh '" + scene + "' --out '" + dir.path("out") + "'");
     EXPECT_EQ(r.exitCode, 1) << mesh << ":\n" << r.output;
-    EXPECT_NE(r.output.find(mesh + ": the mesh file is not a regular file"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(mesh + ": the mesh file is not a regular file"), std::string::npos)
+        << r.output;
   }
-  const test::RunResult r = test::runRadkitWithin(60, "mesh '" + dir.path("f.json") + "' --out '" + dir.path("out") + "'");
+  const test::RunResult r = test::runRadkitWithin(
+      60, "mesh '" + dir.path("f.json") + "' --out '" + dir.path("out") + "'");
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.path("out")));
@@ -158,9 +216,10 @@ TEST(MalformedMeshCli, RefusesPipesAndDevices) {
 // an STL with 'endsolid', OBJ with relative and slashed indices.
 TEST(MalformedMeshCli, AcceptsWellFormedVariants) {
   test::TempDir dir;
-  std::string big = "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty double x\n"
-                    "property double y\nproperty double z\nelement face 1\n"
-                    "property list uchar uint vertex_indices\nend_header\n";
+  std::string big =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty double x\n"
+      "property double y\nproperty double z\nelement face 1\n"
+      "property list uchar uint vertex_indices\nend_header\n";
   const double v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   for (double d : v)
     for (int b = 7; b >= 0; --b) big.push_back(reinterpret_cast<const char*>(&d)[b]);

@@ -32,11 +32,13 @@ namespace {
 
 TEST(MeshReader, ReadingLeavesNoAllocationBehind) {
   test::TempDir dir;
-  const std::string off = dir.file("t.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
-  const std::string ply = dir.file("t.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                                            "property float y\nproperty float z\nelement face 1\n"
-                                            "property list uchar int vertex_indices\nend_header\n"
-                                            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string off =
+      dir.file("t.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  const std::string ply = dir.file("t.ply",
+                                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                   "property float y\nproperty float z\nelement face 1\n"
+                                   "property list uchar int vertex_indices\nend_header\n"
+                                   "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   readMeshFile(off);  // first reads register OpenMesh's readers and other statics
   readMeshFile(ply);
   const long before = g_live.load();

@@ -23,11 +23,12 @@ TEST(ObjScene, GroupSwitchingMaterialIsSplitPerMaterial) {
   test::TempDir dir;
   dir.file("m.mtl", kMtl);
   // Two quads side by side in group "box" (materials a, b, a), and a group "lid" on its own.
-  const std::string obj = dir.file("s.obj",
-      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
-      "v 0 0 1\nv 1 0 1\nv 1 1 1\n"
-      "g box\nusemtl a\nf 1 2 3 4\nusemtl b\nf 2 5 6 3\n"
-      "g lid\nusemtl b\nf 7 8 9\n");
+  const std::string obj =
+      dir.file("s.obj",
+               "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+               "v 0 0 1\nv 1 0 1\nv 1 1 1\n"
+               "g box\nusemtl a\nf 1 2 3 4\nusemtl b\nf 2 5 6 3\n"
+               "g lid\nusemtl b\nf 7 8 9\n");
   const Scene scene = loadScene(obj);
   ASSERT_EQ(scene.surfaces.size(), 3u);
   const Surface& a = surfaceNamed(scene, "box.a");
@@ -55,17 +56,21 @@ TEST(ObjScene, ManyGroupsAndLargeGroupsLoad) {
   dir.file("m.mtl", kMtl);
   const int groups = 5000, strip = 20000;
   std::string text = "mtllib m.mtl\nusemtl b\n";
-  for (int i = 0; i < strip + 2; ++i) text += "v " + std::to_string(i) + " " + std::to_string(i % 2) + " 0\n";
+  for (int i = 0; i < strip + 2; ++i)
+    text += "v " + std::to_string(i) + " " + std::to_string(i % 2) + " 0\n";
   for (int i = 0; i < groups; ++i)
-    text += "g g" + std::to_string(i) + "\nf " + std::to_string(i + 1) + " " + std::to_string(i + 2) + " " +
-            std::to_string(i + 3) + "\n";
+    text += "g g" + std::to_string(i) + "\nf " + std::to_string(i + 1) + " " +
+            std::to_string(i + 2) + " " + std::to_string(i + 3) + "\n";
   text += "g strip\n";  // one group of 15 000 faces: a scan of the group per face was quadratic
   for (int i = groups; i < strip; ++i)
-    text += "f " + std::to_string(i + 1) + " " + std::to_string(i + 2) + " " + std::to_string(i + 3) + "\n";
+    text += "f " + std::to_string(i + 1) + " " + std::to_string(i + 2) + " " +
+            std::to_string(i + 3) + "\n";
   dir.file("s.obj", text);
-  const test::RunResult r = test::runRadkit("mesh '" + dir.path("s.obj") + "' --out '" + dir.path("out") + "'", 30);
+  const test::RunResult r =
+      test::runRadkit("mesh '" + dir.path("s.obj") + "' --out '" + dir.path("out") + "'", 30);
   EXPECT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("surfaces: " + std::to_string(groups + 1)), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("surfaces: " + std::to_string(groups + 1)), std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("input faces: " + std::to_string(strip)), std::string::npos) << r.output;
 }
 

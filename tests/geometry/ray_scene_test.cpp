@@ -31,7 +31,8 @@ PatchMesh cube(double s, Vec3 offset, int n) {
     Surface f;
     f.name = "f" + std::to_string(scene.surfaces.size());
     f.material = 0;
-    f.vertices = {offset + o * s, offset + (o + u) * s, offset + (o + u + v) * s, offset + (o + v) * s};
+    f.vertices = {offset + o * s, offset + (o + u) * s, offset + (o + u + v) * s,
+                  offset + (o + v) * s};
     f.faces = {Face{{0, 1, 2, 3}}};
     scene.surfaces.push_back(f);
   };
@@ -74,11 +75,12 @@ TEST(RayScene, ExactBlockedAndUnblocked) {
   m.patches.push_back(t);
   RayScene rays(m);
   BruteForceVisibility brute(m);
-  for (const Visibility* v : {static_cast<const Visibility*>(&rays), static_cast<const Visibility*>(&brute)}) {
+  for (const Visibility* v :
+       {static_cast<const Visibility*>(&rays), static_cast<const Visibility*>(&brute)}) {
     EXPECT_TRUE(v->occluded({0.5, 0.5, -1}, {0.5, 0.5, 1}));
-    EXPECT_FALSE(v->occluded({1.5, 0.5, -1}, {1.5, 0.5, 1}));  // between the two patches
-    EXPECT_TRUE(v->occluded({2.2, 0.2, -1}, {2.2, 0.2, 1}));   // through the triangle
-    EXPECT_FALSE(v->occluded({2.8, 0.8, -1}, {2.8, 0.8, 1}));  // beside its hypotenuse
+    EXPECT_FALSE(v->occluded({1.5, 0.5, -1}, {1.5, 0.5, 1}));     // between the two patches
+    EXPECT_TRUE(v->occluded({2.2, 0.2, -1}, {2.2, 0.2, 1}));      // through the triangle
+    EXPECT_FALSE(v->occluded({2.8, 0.8, -1}, {2.8, 0.8, 1}));     // beside its hypotenuse
     EXPECT_FALSE(v->occluded({0.5, 0.5, -1}, {0.5, 0.5, -0.5}));  // stops short
     auto hit = v->closestHit({2.2, 0.2, 5}, {0, 0, -1}, 0);
     ASSERT_TRUE(hit.has_value());
@@ -92,7 +94,8 @@ TEST(RayScene, ExactBlockedAndUnblocked) {
 // hit is a self-hit. Checked at 1 mm and 1 km, and for a 1 km cube 1000 km from the origin.
 void checkNoSelfHits(double size, Vec3 offset) {
   PatchMesh m = cube(size, offset, 8);
-  for (const Patch& p : m.patches) ASSERT_LT(dot(p.normal, p.centroid - (offset + Vec3{0.5, 0.5, 0.5} * size)), 0);
+  for (const Patch& p : m.patches)
+    ASSERT_LT(dot(p.normal, p.centroid - (offset + Vec3{0.5, 0.5, 0.5} * size)), 0);
   RayScene rays(m);
   std::mt19937_64 rng(12345);
   std::uniform_int_distribution<int> pick(0, m.size() - 1);

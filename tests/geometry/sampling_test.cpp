@@ -73,7 +73,8 @@ TEST(Sampling, StatisticalCosineHemisphere) {
           Vec3 w{s * std::cos(phi), s * std::sin(phi), z};
           expected[a * nphi + b] += N * cosineHemispherePdf(w) * dz * dphi / (sub * sub);
         }
-  EXPECT_GT(test::chiSquarePValue(observed, expected, "chi2_cosine_hemisphere.csv", kAlpha), kAlpha);
+  EXPECT_GT(test::chiSquarePValue(observed, expected, "chi2_cosine_hemisphere.csv", kAlpha),
+            kAlpha);
 }
 
 // Points on a trapezoid histogrammed on a grid over its bounding rectangle; the pdf 1/A
@@ -94,14 +95,17 @@ TEST(Sampling, StatisticalPatchArea) {
       int m = 4;
       std::copy(quad, quad + 4, poly);
       double x0 = 3.0 * b / nx, x1 = 3.0 * (b + 1) / nx, y0 = double(a) / ny, y1 = (a + 1.0) / ny;
-      const Vec3 planes[4][2] = {{{x0, 0, 0}, {1, 0, 0}}, {{x1, 0, 0}, {-1, 0, 0}},
-                                 {{0, y0, 0}, {0, 1, 0}}, {{0, y1, 0}, {0, -1, 0}}};
+      const Vec3 planes[4][2] = {{{x0, 0, 0}, {1, 0, 0}},
+                                 {{x1, 0, 0}, {-1, 0, 0}},
+                                 {{0, y0, 0}, {0, 1, 0}},
+                                 {{0, y1, 0}, {0, -1, 0}}};
       for (const auto& pl : planes) {
         m = clipToHalfSpace(poly, m, pl[0], pl[1], tmp);
         std::copy(tmp, tmp + m, poly);
       }
       double cellArea = 0;
-      for (int k = 1; k + 1 < m; ++k) cellArea += 0.5 * cross(poly[k] - poly[0], poly[k + 1] - poly[0]).z;
+      for (int k = 1; k + 1 < m; ++k)
+        cellArea += 0.5 * cross(poly[k] - poly[0], poly[k + 1] - poly[0]).z;
       expected[a * nx + b] = N * cellArea * patchUniformPdf(area);
     }
   EXPECT_GT(test::chiSquarePValue(observed, expected, "chi2_patch_area.csv", kAlpha), kAlpha);

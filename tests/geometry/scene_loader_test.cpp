@@ -46,7 +46,8 @@ TEST(SceneLoader, EveryDataSceneLoads) {
 TEST(SceneLoader, EnclosuresFaceInward) {
   // Every face of the closed and open boxes must face the scene's centre: an outward face
   // sees nothing, and its form factors are all zero.
-  for (const char* file : {"cornell-box-empty.json", "cube-one-emitter.json", "furnace.json", "sphere-interior.json"}) {
+  for (const char* file : {"cornell-box-empty.json", "cube-one-emitter.json", "furnace.json",
+                           "sphere-interior.json"}) {
     SCOPED_TRACE(file);
     Scene scene = loadScene(dataPath(file));
     Bounds3 b = scene.bounds();
@@ -73,7 +74,8 @@ TEST(SceneLoader, CornellBoxAsMeasured) {
   for (const Surface& s : scene.surfaces)
     if (s.name == "light")
       for (const Face& f : s.faces) {
-        Vec3 a = s.vertices[f.vertices[0]], b = s.vertices[f.vertices[1]], c = s.vertices[f.vertices[2]];
+        Vec3 a = s.vertices[f.vertices[0]], b = s.vertices[f.vertices[1]],
+             c = s.vertices[f.vertices[2]];
         area += length(cross(b - a, c - a)) * (f.vertices.size() == 4 ? 1.0 : 0.5);
       }
   EXPECT_NEAR(area, 13650.0, 1e-9);
@@ -97,24 +99,29 @@ TEST(SceneLoader, MaterialModels) {
   EXPECT_EQ(plastic.bsdf, "phong");
   EXPECT_EQ(plastic.diffuseAlbedo(), (Vec3{0.5, 0.4, 0.3}));
   EXPECT_NE(plastic.description.find("n=50"), std::string::npos) << plastic.description;
-  EXPECT_EQ(s.materials[s.findMaterial("gold")].diffuseAlbedo(), (Vec3{0, 0, 0}));  // metals have no diffuse part
+  EXPECT_EQ(s.materials[s.findMaterial("gold")].diffuseAlbedo(),
+            (Vec3{0, 0, 0}));  // metals have no diffuse part
   // ((1.5-1)/(1.5+1))² = 0.04
-  EXPECT_NE(s.materials[s.findMaterial("ceramic")].description.find("F0=[0.04, 0.04, 0.04]"), std::string::npos);
+  EXPECT_NE(s.materials[s.findMaterial("ceramic")].description.find("F0=[0.04, 0.04, 0.04]"),
+            std::string::npos);
   EXPECT_EQ(s.materials[s.findMaterial("glass")].diffuseAlbedo(), (Vec3{0, 0, 0}));
-  EXPECT_NE(s.materials[s.findMaterial("mirror")].description.find("colour=[1, 1, 1]"), std::string::npos);
+  EXPECT_NE(s.materials[s.findMaterial("mirror")].description.find("colour=[1, 1, 1]"),
+            std::string::npos);
   EXPECT_EQ(s.materials[s.findMaterial("gold")].bsdf, "cook-torrance");
   // A key of another model, an unknown model and a non-conserving Phong are errors.
   for (const char* bad : {R"("brdf": "lambert", "shininess": 3)", R"("brdf": "velvet")",
                           R"("brdf": "phong", "kd": [0.6,0.6,0.6], "ks": [0.5,0.5,0.5])",
                           R"("brdf": "cook-torrance", "roughness": 0)"}) {
-    std::string text = std::string(R"({"materials": {"m": {"emission": [1,1,1], )") + bad +
-                       R"(}}, "surfaces": [{"name": "a", "material": "m", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})";
+    std::string text =
+        std::string(R"({"materials": {"m": {"emission": [1,1,1], )") + bad +
+        R"(}}, "surfaces": [{"name": "a", "material": "m", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})";
     try {
       loadScene(dir.file("bad.json", text));
       ADD_FAILURE() << bad;
     } catch (const InputError& e) {
       // The message names the file and the material.
-      EXPECT_NE(std::string(e.what()).find("bad.json: material \"m\""), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("bad.json: material \"m\""), std::string::npos)
+          << e.what();
     }
   }
 }
@@ -122,11 +129,12 @@ TEST(SceneLoader, MaterialModels) {
 TEST(SceneLoader, ObjWithMtlAsScene) {
   test::TempDir dir;
   dir.file("box.mtl", "newmtl white\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 2 3 4\n");
-  std::string obj = dir.file("box.obj",
-                             "mtllib box.mtl\n"
-                             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 0 1 1\nv 1 1 1\nv 1 0 1\n"
-                             "o floor\nusemtl white\nf 1 2 3 4\n"
-                             "o lamp\nusemtl lamp\nf 5 6 7 8\n");
+  std::string obj =
+      dir.file("box.obj",
+               "mtllib box.mtl\n"
+               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 0 1 1\nv 1 1 1\nv 1 0 1\n"
+               "o floor\nusemtl white\nf 1 2 3 4\n"
+               "o lamp\nusemtl lamp\nf 5 6 7 8\n");
   Scene scene = loadScene(obj);
   ASSERT_EQ(scene.surfaces.size(), 2u);
   EXPECT_EQ(scene.surfaces[0].name, "floor");
@@ -141,17 +149,21 @@ TEST(SceneLoader, MeshFormatsAndTransform) {
   test::TempDir dir;
   // One unit square as two triangles, written in each format OpenMesh reads.
   dir.file("sq.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
-  dir.file("sq.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                     "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
-                     "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
-  dir.file("sq.stl", "solid sq\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
-                     "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\n"
-                     "vertex 0 1 0\nendloop\nendfacet\nendsolid sq\n");
+  dir.file("sq.ply",
+           "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+           "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+           "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  dir.file("sq.stl",
+           "solid sq\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+           "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\n"
+           "vertex 0 1 0\nendloop\nendfacet\nendsolid sq\n");
   for (const char* ext : {"off", "ply", "stl"}) {
     SCOPED_TRACE(ext);
-    std::string scene = dir.file("s.json", std::string(R"({"materials": {"m": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
-      "surfaces": [{"name": "sq", "material": "m", "mesh": "sq.)") + ext +
-      R"(", "transform": {"scale": 2, "translate": [10, 0, 0]}}]})");
+    std::string scene = dir.file(
+        "s.json",
+        std::string(R"({"materials": {"m": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
+      "surfaces": [{"name": "sq", "material": "m", "mesh": "sq.)") +
+            ext + R"(", "transform": {"scale": 2, "translate": [10, 0, 0]}}]})");
     Scene s = loadScene(scene);
     ASSERT_EQ(s.surfaces.size(), 1u);
     EXPECT_EQ(s.surfaces[0].faces.size(), 2u);
@@ -227,13 +239,15 @@ TEST(SceneLoader, JsonIncludesObjKeepingItsMtlMaterials) {
     ADD_FAILURE() << "no surface " << surface;
     return Material{};
   };
-  EXPECT_DOUBLE_EQ(material("left").diffuseAlbedo().z, 0.6) << "the scene's material overrides the MTL's";
+  EXPECT_DOUBLE_EQ(material("left").diffuseAlbedo().z, 0.6)
+      << "the scene's material overrides the MTL's";
   EXPECT_DOUBLE_EQ(material("right").diffuseAlbedo().y, 0.5) << "Kd from the MTL";
   EXPECT_DOUBLE_EQ(material("light").emission.x, 20) << "Ke from the MTL";
   EXPECT_NEAR(s.bounds().hi.z, 100, 1e-9) << "the transform scales the included geometry";
 
   // A missing file and a non-OBJ are refused with the surface and the fix.
-  const std::string missing = dir.file("missing.json", R"({"surfaces": [{"include": "nope.obj"}]})");
+  const std::string missing =
+      dir.file("missing.json", R"({"surfaces": [{"include": "nope.obj"}]})");
   try {
     loadScene(missing);
     ADD_FAILURE() << "a missing include was accepted";
@@ -260,7 +274,9 @@ const char* kBox =
 TEST(SceneLoader, MtlSemanticsAreWarnedNotSilent) {
   test::TempDir dir;
   // Ks only (Kd 0): a glossy Phong material, not black; Ka is ambient colour, not emission.
-  dir.file("box.mtl", "newmtl shiny\nKd 0 0 0\nKa 1 1 1\nKs 0.5 0.5 0.5\nNs 20\nnewmtl lamp\nKd 0.5 0.5 0.5\nKe 5 5 5\n");
+  dir.file("box.mtl",
+           "newmtl shiny\nKd 0 0 0\nKa 1 1 1\nKs 0.5 0.5 0.5\nNs 20\nnewmtl lamp\nKd 0.5 0.5 "
+           "0.5\nKe 5 5 5\n");
   LoadReport report;
   Scene scene = loadScene(dir.file("box.obj", kBox), &report);
   const Material& shiny = scene.materials[scene.findMaterial("shiny")];

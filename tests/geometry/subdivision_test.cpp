@@ -43,21 +43,25 @@ double unmatchedEdgeLength(const PatchMesh& mesh, int surface) {
   std::map<std::pair<int, int>, int> edges;
   for (int i = mesh.surfaceBegin[surface]; i < mesh.surfaceBegin[surface + 1]; ++i) {
     const Patch& p = mesh.patches[i];
-    for (int k = 0; k < p.vertexCount; ++k) edges[{p.vertex[k], p.vertex[(k + 1) % p.vertexCount]}]++;
+    for (int k = 0; k < p.vertexCount; ++k)
+      edges[{p.vertex[k], p.vertex[(k + 1) % p.vertexCount]}]++;
   }
   double len = 0;
   for (const auto& [e, count] : edges)
-    if (!edges.count({e.second, e.first})) len += count * length(mesh.vertices[e.first] - mesh.vertices[e.second]);
+    if (!edges.count({e.second, e.first}))
+      len += count * length(mesh.vertices[e.first] - mesh.vertices[e.second]);
   return len;
 }
 
 double boundaryLength(const Surface& s) {
   std::map<std::pair<int, int>, int> edges;
   for (const Face& f : s.faces)
-    for (std::size_t k = 0; k < f.vertices.size(); ++k) edges[{f.vertices[k], f.vertices[(k + 1) % f.vertices.size()]}]++;
+    for (std::size_t k = 0; k < f.vertices.size(); ++k)
+      edges[{f.vertices[k], f.vertices[(k + 1) % f.vertices.size()]}]++;
   double len = 0;
   for (const auto& [e, count] : edges)
-    if (!edges.count({e.second, e.first})) len += length(s.vertices[e.first] - s.vertices[e.second]);
+    if (!edges.count({e.second, e.first}))
+      len += length(s.vertices[e.first] - s.vertices[e.second]);
   return len;
 }
 
@@ -82,13 +86,15 @@ void checkInvariants(const Scene& scene, const PatchMesh& mesh, double maxArea) 
         if (distanceToFace(s, f, p.centroid) > 1e-9 * scale) continue;
         found = true;
         EXPECT_NEAR(dot(p.normal, faceNormal(s, f)), 1.0, 1e-9);
-        for (int k = 0; k < p.vertexCount; ++k) EXPECT_LE(distanceToFace(s, f, mesh.vertex(p, k)), 1e-9 * scale);
+        for (int k = 0; k < p.vertexCount; ++k)
+          EXPECT_LE(distanceToFace(s, f, mesh.vertex(p, k)), 1e-9 * scale);
         break;
       }
       EXPECT_TRUE(found) << "patch " << i << " lies outside its surface";
     }
     EXPECT_NEAR(patchArea, area, 1e-12 * area) << "area not preserved";
-    EXPECT_NEAR(unmatchedEdgeLength(mesh, int(si)), boundaryLength(s), 1e-9 * boundaryLength(s)) << "T-junction";
+    EXPECT_NEAR(unmatchedEdgeLength(mesh, int(si)), boundaryLength(s), 1e-9 * boundaryLength(s))
+        << "T-junction";
   }
 }
 
@@ -108,10 +114,14 @@ TEST(Subdivision, NoOptionKeepsInputFaces) {
 }
 
 TEST(Subdivision, InvariantsOnEveryDataScene) {
-  const std::pair<const char*, double> cases[] = {
-      {"cornell-box.json", 2000}, {"cornell-box.json", 150}, {"cornell-box-empty.json", 900},
-      {"cube-one-emitter.json", 0.01}, {"furnace.json", 0.003}, {"parallel-squares.json", 0.02},
-      {"perpendicular-squares.json", 0.05}, {"sphere-interior.json", 0.005}};
+  const std::pair<const char*, double> cases[] = {{"cornell-box.json", 2000},
+                                                  {"cornell-box.json", 150},
+                                                  {"cornell-box-empty.json", 900},
+                                                  {"cube-one-emitter.json", 0.01},
+                                                  {"furnace.json", 0.003},
+                                                  {"parallel-squares.json", 0.02},
+                                                  {"perpendicular-squares.json", 0.05},
+                                                  {"sphere-interior.json", 0.005}};
   for (const auto& [file, maxArea] : cases) {
     SCOPED_TRACE(file);
     Scene scene = loadScene(test::dataPath(file));
@@ -154,7 +164,7 @@ TEST(Subdivision, PatchCountTarget) {
 TEST(Subdivision, MeshSurfaceConformsAcrossFaces) {
   Scene scene = loadScene(test::dataPath("sphere-interior.json"));
   PatchMesh mesh = subdivide(scene, {0, 320 * 9});
-  EXPECT_EQ(mesh.size(), 320 * 9);                 // each triangle into 3×3
+  EXPECT_EQ(mesh.size(), 320 * 9);                  // each triangle into 3×3
   EXPECT_NEAR(unmatchedEdgeLength(mesh, 0), 0, 0);  // closed: every edge has its twin
 }
 

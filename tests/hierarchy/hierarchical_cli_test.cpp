@@ -14,10 +14,11 @@ namespace {
 TEST(HierarchicalCli, CornellBoxWritesEveryOutput) {
   TempDir dir;
   std::string out = dir.path("run");
-  RunResult r = runRadkit("run " + dataPath("cornell-box.json") + " --method hierarchical --image-size 64 --out " + out);
+  RunResult r = runRadkit("run " + dataPath("cornell-box.json") +
+                          " --method hierarchical --image-size 64 --out " + out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* f : {"patches.csv", "surfaces.csv", "radiosity.vtp", "convergence.csv", "convergence.png", "report.json",
-                        "render.png", "links.png"})
+  for (const char* f : {"patches.csv", "surfaces.csv", "radiosity.vtp", "convergence.csv",
+                        "convergence.png", "report.json", "render.png", "links.png"})
     EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
   nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/report.json"));
   EXPECT_EQ(report["method"], "hierarchical");
@@ -30,10 +31,12 @@ TEST(HierarchicalCli, CornellBoxWritesEveryOutput) {
   EXPECT_EQ(report["mesh"]["patches"], h["leaves"]);
   EXPECT_TRUE(report["solvers"][0]["converged"].get<bool>());
   // Leaves are patches: one row each in patches.csv.
-  EXPECT_EQ(static_cast<long long>(readCsv(out + "/patches.csv").size()), h["leaves"].get<long long>());
+  EXPECT_EQ(static_cast<long long>(readCsv(out + "/patches.csv").size()),
+            h["leaves"].get<long long>());
   // The escape estimate makes the balance an independent check: within a few standard errors.
   double se = report["escape_estimate"]["escaped_standard_error_W"][1];
-  double emitted = report["energy_balance"]["emitted_W"][1], absorbed = report["energy_balance"]["absorbed_W"][1],
+  double emitted = report["energy_balance"]["emitted_W"][1],
+         absorbed = report["energy_balance"]["absorbed_W"][1],
          escaped = report["energy_balance"]["escaped_W"][1];
   EXPECT_LT(std::fabs(emitted - absorbed - escaped), 4 * se + 0.01 * emitted);
 }
@@ -43,9 +46,11 @@ TEST(HierarchicalCli, DenseOnlyOptionsAndBadValuesAreRefused) {
   std::string out = dir.path("run");
   // Each refusal names the option it refuses (and, for dense-only ones, what to use instead).
   auto refuses = [&](const std::string& options, std::initializer_list<const char*> named) {
-    RunResult r = runRadkit("run " + dataPath("cornell-box.json") + " --method hierarchical " + options + " --out " + out);
+    RunResult r = runRadkit("run " + dataPath("cornell-box.json") + " --method hierarchical " +
+                            options + " --out " + out);
     EXPECT_NE(r.exitCode, 0) << options;
-    for (const char* name : named) EXPECT_NE(r.output.find(name), std::string::npos) << options << ": " << r.output;
+    for (const char* name : named)
+      EXPECT_NE(r.output.find(name), std::string::npos) << options << ": " << r.output;
   };
   refuses("--patches 100", {"--patches", "--epsilon"});
   refuses("--epsilon 0", {"--epsilon"});
@@ -60,7 +65,8 @@ TEST(HierarchicalCli, DenseOnlyOptionsAndBadValuesAreRefused) {
 TEST(HierarchicalCli, StudyMeasuresTheEpsilonLadder) {
   TempDir dir;
   std::string out = dir.path("study");
-  RunResult r = runRadkit("study " + dataPath("cube-one-emitter.json") + " --max-seconds 10 --epsilons 1e-2 1e-3 --out " + out);
+  RunResult r = runRadkit("study " + dataPath("cube-one-emitter.json") +
+                          " --max-seconds 10 --epsilons 1e-2 1e-3 --out " + out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   int ran = 0;
   std::vector<double> errors;

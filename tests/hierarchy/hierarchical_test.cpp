@@ -3,14 +3,14 @@
 // through cluster links, and determinism across thread counts.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <tbb/global_control.h>
+#include <cmath>
 
 #include "geometry/ray_scene.h"
 #include "geometry/sampling.h"
 #include "hierarchy/hierarchical.h"
-#include "hierarchy/refine.h"
 #include "hierarchy/link_matrix.h"
+#include "hierarchy/refine.h"
 #include "radiosity/contour.h"
 #include "radiosity/radiosity_pipeline.h"
 #include "tests/radiosity/test_scenes.h"
@@ -34,11 +34,13 @@ struct SceneBuilder {
     scene.materials.push_back(m);
     return static_cast<int>(scene.materials.size()) - 1;
   }
-  void rectangle(const std::string& name, int material, Vec3 corner, Vec3 e1, Vec3 e2, int nu, int nv) {
+  void rectangle(const std::string& name, int material, Vec3 corner, Vec3 e1, Vec3 e2, int nu,
+                 int nv) {
     Surface s;
     s.name = name, s.material = material, s.source = "test: " + name;
     for (int b = 0; b <= nv; ++b)
-      for (int a = 0; a <= nu; ++a) s.vertices.push_back(corner + e1 * (double(a) / nu) + e2 * (double(b) / nv));
+      for (int a = 0; a <= nu; ++a)
+        s.vertices.push_back(corner + e1 * (double(a) / nu) + e2 * (double(b) / nv));
     for (int b = 0; b < nv; ++b)
       for (int a = 0; a < nu; ++a) {
         int v = b * (nu + 1) + a;
@@ -60,7 +62,8 @@ struct SceneBuilder {
 double maxRelativeDifference(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   double worst = 0;
   for (std::size_t i = 0; i < a.size(); ++i)
-    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(a[i][c] - b[i][c]) / std::fabs(b[i][c]));
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::fabs(a[i][c] - b[i][c]) / std::fabs(b[i][c]));
   return worst;
 }
 
@@ -104,8 +107,9 @@ void expectApproachesDense(const Scene& scene, double minArea) {
     dense.stopping.tolerance = 1e-10;
     PipelineResult d = runPipeline(scene, hr.leaves, dense);
     errors.push_back(maxRelativeDifference(hr.radiosity, d.radiosity));
-    std::printf("epsilon %g: %d leaves, max relative difference from dense on the same leaves %.3g\n", eps,
-                hr.leaves.size(), errors.back());
+    std::printf(
+        "epsilon %g: %d leaves, max relative difference from dense on the same leaves %.3g\n", eps,
+        hr.leaves.size(), errors.back());
   }
   EXPECT_LT(errors[1], errors[0]);
   EXPECT_LT(errors[2], errors[1]);
@@ -147,7 +151,8 @@ TEST(Hierarchical, FurnaceWithClusters) {
   for (const Vec3& v : hr.radiosity) EXPECT_NEAR(v.y, 20.0, 20.0 * 1e-8);
   // The balance's escape is estimated by rays (a few slip through seams): within 4 of its
   // standard errors.
-  EXPECT_LT(hr.energy.relativeImbalance, 4 * hr.escapedStandardError.y / hr.energy.emitted.y + 1e-9);
+  EXPECT_LT(hr.energy.relativeImbalance,
+            4 * hr.escapedStandardError.y / hr.energy.emitted.y + 1e-9);
 }
 
 /// The furnace again with a box (five faces, open below) resting on the floor: every leaf that
@@ -172,11 +177,12 @@ TEST(Hierarchical, FurnaceWithABoxOnTheFloor) {
   int under = 0;
   for (int i = 0; i < hr.leaves.size(); ++i) {
     const Patch& p = hr.leaves.patches[i];
-    const bool covered = p.centroid.z < 1e-9 && p.centroid.x > lo && p.centroid.x < hi && p.centroid.y > lo &&
-                         p.centroid.y < hi;
+    const bool covered = p.centroid.z < 1e-9 && p.centroid.x > lo && p.centroid.x < hi &&
+                         p.centroid.y > lo && p.centroid.y < hi;
     under += covered;
     EXPECT_NEAR(hr.radiosity[i].y, covered ? 1.0 : 20.0, 20.0 * 1e-8)
-        << "leaf " << i << " at (" << p.centroid.x << ", " << p.centroid.y << ", " << p.centroid.z << ")";
+        << "leaf " << i << " at (" << p.centroid.x << ", " << p.centroid.y << ", " << p.centroid.z
+        << ")";
   }
   EXPECT_GT(under, 0);
   EXPECT_EQ(hr.system->normalisedLeaves(), hr.leaves.size() - under);
@@ -197,9 +203,10 @@ TEST(Hierarchical, NearSingularBoxRefinesBoundedly) {
   for (long long k : hr.linksByKind) links += k;
   EXPECT_LT(links, 1000000);
   EXPECT_FALSE(hr.solve.exit.empty());
-  EXPECT_GT(hr.threshold, 100 * s.epsilon * 6.0) << "tau should follow the light leaving the surfaces";
-  std::printf("near-singular box: %lld links, %d leaves, exit %s, tau %.3g\n", links, hr.leaves.size(),
-              hr.solve.exit.c_str(), hr.threshold);
+  EXPECT_GT(hr.threshold, 100 * s.epsilon * 6.0)
+      << "tau should follow the light leaving the surfaces";
+  std::printf("near-singular box: %lld links, %d leaves, exit %s, tau %.3g\n", links,
+              hr.leaves.size(), hr.solve.exit.c_str(), hr.threshold);
 }
 
 /// An open scene: nothing is normalised, and a row sum far above 1 (a coarse ε between nearby
@@ -240,7 +247,8 @@ TEST(Hierarchical, ViewFactorThroughClusterLinksWithinTheLinkBound) {
     const int leaf = hr.leaves.surfaceBegin[1];
     const int node = hr.leafNodes[leaf];
     int clusterLinks = 0;
-    for (const HLink& l : hr.system->links()) clusterLinks += l.receiver == node && !(*hr.hierarchy)[l.source].element;
+    for (const HLink& l : hr.system->links())
+      clusterLinks += l.receiver == node && !(*hr.hierarchy)[l.source].element;
     if (eps == 1e-2) {
       EXPECT_GT(clusterLinks, 0) << "the emitter should be reached through clusters";
     }
@@ -299,8 +307,10 @@ TEST(Hierarchical, ShadowedPowerIsUnbiasedWithFewRays) {
   for (double v : power) mean += v / power.size();
   for (double v : power) var += (v - mean) * (v - mean) / (power.size() - 1);
   const double se = std::sqrt(var / power.size() + referenceSe * referenceSe);
-  std::printf("receiver's share of the emitted power: hierarchy %.5f (16 seeds, sd %.5f), reference %.5f +- %.5f\n",
-              mean, std::sqrt(var), reference, referenceSe);
+  std::printf(
+      "receiver's share of the emitted power: hierarchy %.5f (16 seeds, sd %.5f), reference %.5f "
+      "+- %.5f\n",
+      mean, std::sqrt(var), reference, referenceSe);
   EXPECT_GT(reference, 0.1);
   EXPECT_LT(reference, 0.19) << "the blocker should shadow part of the receiver";
   EXPECT_NEAR(mean, reference, 4 * se);

@@ -37,25 +37,27 @@ std::map<std::string, std::map<std::string, std::string>> readCsvByKey(const std
   return rows;
 }
 
-const std::string kQuick = " --photons 100000 --gather 8 --image-size 64 --bench-rays 10000 --max-area 0.05";
+const std::string kQuick =
+    " --photons 100000 --gather 8 --image-size 64 --bench-rays 10000 --max-area 0.05";
 
 TEST(PhotonsCommand, ConstructWritesEveryFile) {
   test::TempDir dir;
   const std::string out = dir.path("spot");
-  auto r = runRadkit("photons '" + dataPath("mirror-spot.json") + "'" + kQuick + " --out '" + out + "'");
+  auto r =
+      runRadkit("photons '" + dataPath("mirror-spot.json") + "'" + kQuick + " --out '" + out + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* f : {"patches.csv", "surfaces.csv", "photonmap.png", "caustics.png", "comparison.csv",
-                        "difference.png", "report.json"})
+  for (const char* f : {"patches.csv", "surfaces.csv", "photonmap.png", "caustics.png",
+                        "comparison.csv", "difference.png", "report.json"})
     EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
   EXPECT_EQ(readText(out + "/patches.csv").rfind("id,surface,area,cx,cy,cz,nx,ny,nz,rho_r", 0), 0u);
   EXPECT_EQ(readText(out + "/surfaces.csv").rfind("surface,area,b_r,b_g,b_b\n", 0), 0u);
   nlohmann::json report = nlohmann::json::parse(readText(out + "/report.json"));
   EXPECT_EQ(report["photons"]["emitted"], 100000);
   EXPECT_GT(report["photons"]["caustic"].get<double>(), 0);
-  EXPECT_NEAR(report["photons"]["emitted_power"][0].get<double>(), report["photons"]["total_power"][0].get<double>(),
-              1e-9);
-  for (const char* rate : {"photons_per_second", "embree_closest_hit_rays_per_second", "kd_build_photons_per_second",
-                           "kd_queries_per_second"})
+  EXPECT_NEAR(report["photons"]["emitted_power"][0].get<double>(),
+              report["photons"]["total_power"][0].get<double>(), 1e-9);
+  for (const char* rate : {"photons_per_second", "embree_closest_hit_rays_per_second",
+                           "kd_build_photons_per_second", "kd_queries_per_second"})
     EXPECT_GT(report["rates"][rate].get<double>(), 0) << rate;
   EXPECT_GT(report["memory"]["photon_map_bytes"].get<double>(), 0);
   // The target gets about twice the light radiosity gives it (the mirror's spot): far beyond
@@ -70,8 +72,9 @@ TEST(PhotonsCommand, ConstructWritesEveryFile) {
 
 TEST(PhotonsCommand, ExactSameOutputForSameSeed) {
   test::TempDir dir;
-  const std::string args = "photons '" + dataPath("cornell-box-specular.json") +
-                           "' --photons 20000 --gather 4 --image-size 32 --bench-rays 0 --no-radiosity --patches 200";
+  const std::string args =
+      "photons '" + dataPath("cornell-box-specular.json") +
+      "' --photons 20000 --gather 4 --image-size 32 --bench-rays 0 --no-radiosity --patches 200";
   ASSERT_EQ(runRadkit(args + " --out '" + dir.path("a") + "'").exitCode, 0);
   ASSERT_EQ(runRadkit(args + " --out '" + dir.path("b") + "'").exitCode, 0);
   EXPECT_EQ(readText(dir.path("a/patches.csv")), readText(dir.path("b/patches.csv")));
@@ -84,10 +87,11 @@ TEST(PhotonsCommand, ExactCompareReadsRunFolder) {
   test::TempDir dir;
   fs::create_directories(dir.path("run"));
   dir.file("run/surfaces.csv",
-           "surface,area,b_r,b_g,b_b\nlamp,0.0001,10000,10000,10000\nmirror,0.04,0,0,0\ntarget,0.01,0.25,0.25,0.25\n"
+           "surface,area,b_r,b_g,b_b\nlamp,0.0001,10000,10000,10000\nmirror,0.04,0,0,0\ntarget,0."
+           "01,0.25,0.25,0.25\n"
            "wall,2.39,0,0,0\n");
-  auto r = runRadkit("photons '" + dataPath("mirror-spot.json") + "'" + kQuick + " --compare '" + dir.path("run") +
-                     "' --out '" + dir.path("out") + "'");
+  auto r = runRadkit("photons '" + dataPath("mirror-spot.json") + "'" + kQuick + " --compare '" +
+                     dir.path("run") + "' --out '" + dir.path("out") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   auto rows = readCsvByKey(dir.path("out/comparison.csv"));
   EXPECT_EQ(std::stod(rows["target"]["radiosity_b_g"]), 0.25);
@@ -105,7 +109,8 @@ TEST(PhotonsCommand, ConstructBadInputFailsWithoutOutput) {
       {spot + " --k 1", "--k"},
       {spot + " --filter box", "--filter"},
       {" '" + dir.file("dark.json", R"({"materials": {"g": {"reflectance": [0.5,0.5,0.5]}},
-        "surfaces": [{"name": "a", "material": "g", "polygon": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}]})") + "' --photons 10",
+        "surfaces": [{"name": "a", "material": "g", "polygon": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}]})") +
+           "' --photons 10",
        "emission"},
   };
   fs::create_directories(dir.path("other"));
@@ -116,7 +121,8 @@ TEST(PhotonsCommand, ConstructBadInputFailsWithoutOutput) {
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir.path("out"))) << c.args;
   }
-  auto r = runRadkit("photons" + spot + " --compare '" + dir.path("other") + "' --out '" + dir.path("out") + "'");
+  auto r = runRadkit("photons" + spot + " --compare '" + dir.path("other") + "' --out '" +
+                     dir.path("out") + "'");
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("Fix:"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.path("out")));

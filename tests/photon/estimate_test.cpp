@@ -9,8 +9,8 @@
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
-#include "radiosity/radiosity_pipeline.h"
 #include "photon/tracer.h"
+#include "radiosity/radiosity_pipeline.h"
 #include "render/radiosity_image.h"
 #include "tests/common/test_util.h"
 
@@ -37,7 +37,8 @@ struct PhotonRun {
   PhotonTraceStats stats;
 };
 
-PhotonRun runPhotons(const std::string& file, int patches, std::size_t photons, std::uint64_t seed) {
+PhotonRun runPhotons(const std::string& file, int patches, std::size_t photons,
+                     std::uint64_t seed) {
   PhotonRun r{loadScene(test::dataPath(file)), {}, {}, {}};
   r.mesh = subdivide(r.scene, {0, patches});
   RayScene rays(r.mesh);
@@ -64,7 +65,8 @@ TEST(PhotonRadiosity, StatisticalFurnace) {
   // Quadrupling N halves the standard error: it scales as 1/√N (its own estimate varies by
   // about 1/√(2·paths), far below the 5 % allowed here).
   PhotonRun r4 = runPhotons("furnace.json", 96, 4 * n, 6);
-  EXPECT_NEAR(r.estimate.surfaces[0].radiosityError.x / r4.estimate.surfaces[0].radiosityError.x, 2.0, 0.1);
+  EXPECT_NEAR(r.estimate.surfaces[0].radiosityError.x / r4.estimate.surfaces[0].radiosityError.x,
+              2.0, 0.1);
   // Power balance: with no escape, absorbed + truncated paths are all of them.
   EXPECT_EQ(r.stats.escaped, 0u);
   // Patches too: the total over the cube, weighted by area, is the emitted power times 2.
@@ -74,7 +76,8 @@ TEST(PhotonRadiosity, StatisticalFurnace) {
     area += r.mesh.patches[i].area;
   }
   double se2 = 0;
-  for (const SurfaceEstimate& s : r.estimate.surfaces) se2 += std::pow(s.radiosityError.x * s.area, 2);
+  for (const SurfaceEstimate& s : r.estimate.surfaces)
+    se2 += std::pow(s.radiosityError.x * s.area, 2);
   EXPECT_NEAR(weighted / area, 2.0, z * std::sqrt(se2) / area * std::sqrt(6.0));  // ≤ Σ|cov| bound
 }
 
@@ -95,7 +98,8 @@ TEST(PhotonRadiosity, StatisticalCornellBoxMatchesRadiosity) {
     const Vec3 b = rf.surfaces[s].radiosity;
     for (int c = 0; c < 3; ++c) {
       const double discretisation = std::fabs(b[c] - rc.surfaces[s].radiosity[c]);
-      EXPECT_NEAR(p.radiosity[c], b[c], z * p.radiosityError[c] + discretisation) << p.name << " channel " << c;
+      EXPECT_NEAR(p.radiosity[c], b[c], z * p.radiosityError[c] + discretisation)
+          << p.name << " channel " << c;
     }
     const double relative = luminance(p.radiosity) / luminance(b) - 1;
     std::printf("%-10s photon Y %.5f ± %.5f, radiosity %.5f, difference %+.3f %%\n", p.name.c_str(),
@@ -136,10 +140,12 @@ TEST(PhotonRadiosity, StatisticalMirrorSpotExceedsRadiosity) {
   PipelineResult rad = runPipeline(r.scene, settings);
   const double hRad = rad.surfaces[target].irradiance.x;
   const double z = zFor(3);
-  std::printf("target H: photons %.5f ± %.5f (caustic %.5f ± %.5f); radiosity %.5f; predicted direct %.5f + mirror "
-              "%.5f\n",
-              p.irradiance.x, p.irradianceError.x, p.causticIrradiance.x, p.causticIrradianceError.x, hRad, direct,
-              mirrored);
+  std::printf(
+      "target H: photons %.5f ± %.5f (caustic %.5f ± %.5f); radiosity %.5f; predicted direct %.5f "
+      "+ mirror "
+      "%.5f\n",
+      p.irradiance.x, p.irradianceError.x, p.causticIrradiance.x, p.causticIrradianceError.x, hRad,
+      direct, mirrored);
   EXPECT_NEAR(p.irradiance.x, direct + mirrored, z * p.irradianceError.x);
   EXPECT_NEAR(p.causticIrradiance.x, mirrored, z * p.causticIrradianceError.x);
   // Radiosity (the mirror is black to it) misses the mirrored light: the photon estimate

@@ -5,16 +5,16 @@
 // map's density-estimation bias is −2 % on the all-Lambertian box too (docs/photon-mapping.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <algorithm>
 #include <map>
 
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
-#include "render/path_tracer.h"
 #include "photon/image.h"
+#include "render/path_tracer.h"
 #include "render/shading_context.h"
 #include "tests/common/statistics.h"
 #include "tests/common/test_util.h"
@@ -26,7 +26,8 @@ constexpr int kSize = 48;
 
 /// The surface seen at each pixel centre, or −1 at pixels next to another surface: a pixel's
 /// jittered samples must all see the surface it is counted for.
-std::vector<int> interiorSurfaces(const Scene& scene, const PatchMesh& mesh, const RadianceImage& img) {
+std::vector<int> interiorSurfaces(const Scene& scene, const PatchMesh& mesh,
+                                  const RadianceImage& img) {
   auto surfaceAt = [&](int x, int y) {
     const int p = img.patch[std::size_t(y) * img.width + x];
     return p < 0 ? -1 : mesh.patches[p].surface;
@@ -45,7 +46,8 @@ std::vector<int> interiorSurfaces(const Scene& scene, const PatchMesh& mesh, con
 
 /// Mean radiance per channel over the interior pixels of each named surface.
 std::map<std::string, Vec3> surfaceMeans(const Scene& scene, const std::vector<int>& surfaces,
-                                         const RadianceImage& img, std::map<std::string, int>* pixels = nullptr) {
+                                         const RadianceImage& img,
+                                         std::map<std::string, int>* pixels = nullptr) {
   std::map<std::string, Vec3> mean;
   std::map<std::string, int> count;
   for (std::size_t p = 0; p < img.radiance.size(); ++p) {
@@ -101,7 +103,8 @@ TEST(PhotonGlossy, StatisticalFinalGatherMatchesPathTracer) {
     PhotonMaps maps = buildPhotonMaps(mesh, tracePhotons(scene, mesh, rays, emitters, ps).photons);
     maps.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
     const PhotonScene in{scene, mesh, rays, emitters, *maps.global, *maps.caustic};
-    const RadianceImage img = renderPhotonImage(in, camera, kSize, kSize, PhotonView::FinalGather, ps);
+    const RadianceImage img =
+        renderPhotonImage(in, camera, kSize, kSize, PhotonView::FinalGather, ps);
     for (const auto& [name, v] : surfaceMeans(scene, surfaces, img)) {
       sum[name] += v;
       sumSq[name] += mul(v, v);
@@ -115,18 +118,23 @@ TEST(PhotonGlossy, StatisticalFinalGatherMatchesPathTracer) {
     ASSERT_GT(pixels[name], 20) << name;
     for (int c = 0; c < 3; ++c) {
       const double m = sum[name][c] / runs;
-      const double varMean = std::max(0.0, sumSq[name][c] / runs - m * m) * runs / (runs - 1) / runs;
+      const double varMean =
+          std::max(0.0, sumSq[name][c] / runs - m * m) * runs / (runs - 1) / runs;
       const int n = pixels[name];
       const double refSe2 = refVar[name][c] / (double(n) * n);
       const double se = std::sqrt(varMean + refSe2);
-      const double nu = varMean > 0 ? (varMean + refSe2) * (varMean + refSe2) / (varMean * varMean / (runs - 1)) : 1e9;
+      const double nu =
+          varMean > 0 ? (varMean + refSe2) * (varMean + refSe2) / (varMean * varMean / (runs - 1))
+                      : 1e9;
       const double z = test::studentTCritical(alpha, nu);
-      std::printf("%s channel %d: photons %.6g path tracer %.6g, difference %.2f standard errors (bound %.2f)\n",
-                  name.c_str(), c, m, ref.at(name)[c], (m - ref.at(name)[c]) / se, z);
+      std::printf(
+          "%s channel %d: photons %.6g path tracer %.6g, difference %.2f standard errors (bound "
+          "%.2f)\n",
+          name.c_str(), c, m, ref.at(name)[c], (m - ref.at(name)[c]) / se, z);
       if (std::find(asserted.begin(), asserted.end(), name) == asserted.end()) continue;
       EXPECT_NEAR(m, ref.at(name)[c], z * se)
-          << name << " channel " << c << ": photons " << m << " path tracer " << ref.at(name)[c] << " se "
-          << se << " (photon se " << std::sqrt(varMean) << ")";
+          << name << " channel " << c << ": photons " << m << " path tracer " << ref.at(name)[c]
+          << " se " << se << " (photon se " << std::sqrt(varMean) << ")";
     }
   }
 }

@@ -41,8 +41,10 @@ TEST(PhotonMap, ExactKernelWeights) {
   const Vec3 c = mesh.patches[0].centroid;
   const Frame f(n);
   PhotonMap map(mesh, {photonAt(c, 1, 0), photonAt(c + f.s * 0.5, 1, 0), photonAt(c + f.t, 1, 0)});
-  // Epanechnikov: (2/πr²) Σ (1 − d²/r²) = (2/π)(1 + 0.75); cone: (3/πr²) Σ (1 − d/r) = (3/π)(1 + 0.5).
-  EXPECT_NEAR(map.irradiance(c, n, 3, IrradianceFilter::Epanechnikov).irradiance.x, 3.5 / M_PI, 1e-6);
+  // Epanechnikov: (2/πr²) Σ (1 − d²/r²) = (2/π)(1 + 0.75); cone: (3/πr²) Σ (1 − d/r) = (3/π)(1 +
+  // 0.5).
+  EXPECT_NEAR(map.irradiance(c, n, 3, IrradianceFilter::Epanechnikov).irradiance.x, 3.5 / M_PI,
+              1e-6);
   EXPECT_NEAR(map.irradiance(c, n, 3, IrradianceFilter::Cone).irradiance.y, 4.5 / M_PI, 1e-6);
   EXPECT_NEAR(map.irradiance(c, n, 3, IrradianceFilter::Cone).radius, 1, 1e-6);
   // A query facing another way sees none of them.
@@ -55,7 +57,8 @@ TEST(PhotonMap, ExactNearestMatchesBruteForce) {
   ASSERT_EQ(mesh.size(), 2);
   std::vector<Photon> photons;
   Rng rng(21, 0, 0);
-  for (int k = 0; k < 20000; ++k) photons.push_back(photonAt(pointOnPatch(mesh, k % 2, rng), 1, k % 2));
+  for (int k = 0; k < 20000; ++k)
+    photons.push_back(photonAt(pointOnPatch(mesh, k % 2, rng), 1, k % 2));
   // One kd-tree, and the same photons cut into octree cells of at most 1000 (many parts, some
   // of whose boxes lie nearer than the k-th photon): both must find exactly the brute force's.
   for (std::size_t perPart : {kMaxPhotonsPerKdPart, std::size_t(1000)}) {
@@ -73,7 +76,9 @@ TEST(PhotonMap, ExactNearestMatchesBruteForce) {
       for (std::uint32_t i = 0; i < ordered.size(); ++i) {
         if (ordered[i].patch != at.patch) continue;  // the other square is perpendicular
         float s = 0;
-        for (int c = 0; c < 3; ++c) s += (ordered[i].position[c] - at.position[c]) * (ordered[i].position[c] - at.position[c]);
+        for (int c = 0; c < 3; ++c)
+          s +=
+              (ordered[i].position[c] - at.position[c]) * (ordered[i].position[c] - at.position[c]);
         brute.push_back({s, i});
       }
       std::partial_sort(brute.begin(), brute.begin() + 30, brute.end());
@@ -131,7 +136,8 @@ struct BiasMeasurement {
   }
 };
 
-std::pair<BiasMeasurement, BiasMeasurement> pointLightBias(std::size_t photons, int k, int repeats) {
+std::pair<BiasMeasurement, BiasMeasurement> pointLightBias(std::size_t photons, int k,
+                                                           int repeats) {
   Scene scene = loadScene(test::dataPath("point-light-plane.json"));
   PatchMesh mesh = subdivide(scene, {1e4, 0});
   RayScene rays(mesh);
@@ -148,7 +154,8 @@ std::pair<BiasMeasurement, BiasMeasurement> pointLightBias(std::size_t photons, 
     std::vector<Photon> all = tracePhotons(scene, mesh, rays, emitters, s).photons;
     auto relativeError = [&](std::vector<Photon> p, double scale) {
       PhotonMap map(mesh, std::move(p));
-      return scale * luminance(map.irradiance({0, 0, 0}, {0, 0, 1}, k, filter).irradiance) / exact - 1;
+      return scale * luminance(map.irradiance({0, 0, 0}, {0, 0, 1}, k, filter).irradiance) / exact -
+             1;
     };
     for (std::size_t q = 0; q < 4; ++q) {
       std::vector<Photon> part;

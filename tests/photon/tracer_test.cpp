@@ -25,8 +25,10 @@ const double kAlpha = test::sidakAlpha(0.01, 2);
 /// exitance eb) at z = 2, 3 m to the side.
 std::string twoLamps(const test::TempDir& dir, const std::string& ea, const std::string& eb) {
   return dir.file("lamps.json", R"({"materials": {
-      "a": {"reflectance": [0,0,0], "emission": )" + ea + R"(},
-      "b": {"reflectance": [0,0,0], "emission": )" + eb + R"(}},
+      "a": {"reflectance": [0,0,0], "emission": )" +
+                                    ea + R"(},
+      "b": {"reflectance": [0,0,0], "emission": )" +
+                                    eb + R"(}},
     "surfaces": [{"name": "a", "material": "a", "polygon": [[0,0,1],[0,1,1],[2,1,1],[2,0,1]]},
                  {"name": "b", "material": "b", "polygon": [[5,0,2],[5,1,2],[6,1,2],[6,0,2]]}]})");
 }
@@ -55,9 +57,11 @@ TEST(PhotonEmission, ConstructPowersSumToEmittedPower) {
   s.photons = n;
   PhotonTrace t = tracePhotons(scene, mesh, rays, emitters, s);
   EXPECT_EQ(t.stats.emitted, n);
-  EXPECT_EQ(t.stats.stored, 0u);  // nothing diffuse below the lamps; some of b's light hits a's back
+  EXPECT_EQ(t.stats.stored,
+            0u);  // nothing diffuse below the lamps; some of b's light hits a's back
   EXPECT_EQ(t.stats.escaped + t.stats.absorbed, n);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.emittedPower[c], emitters.totalPower()[c], tolerance * sum[c]);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(t.emittedPower[c], emitters.totalPower()[c], tolerance * sum[c]);
 }
 
 TEST(PhotonEmission, StatisticalPowersOfColouredLamps) {
@@ -109,23 +113,27 @@ TEST(PhotonEmission, StatisticalPositionsAndDirections) {
     posObs[(e.patch * cells + cy) * cells + cx] += 1;
     const Vec3 local = Frame(down).toLocal(e.direction);
     const double phi = std::atan2(local.y, local.x) + M_PI;
-    dirObs[std::min(nz - 1, int(local.z * nz)) * nphi + std::min(nphi - 1, int(phi / (2 * M_PI) * nphi))] += 1;
+    dirObs[std::min(nz - 1, int(local.z * nz)) * nphi +
+           std::min(nphi - 1, int(phi / (2 * M_PI) * nphi))] += 1;
   }
   for (int p = 0; p < 2; ++p)
     for (int c = 0; c < cells * cells; ++c)
-      posExp[p * cells * cells + c] = n * emitters.pdfArea(p) * mesh.patches[p].area / (cells * cells);
+      posExp[p * cells * cells + c] =
+          n * emitters.pdfArea(p) * mesh.patches[p].area / (cells * cells);
   const Frame frame(down);
   for (int iz = 0; iz < nz; ++iz)
     for (int ip = 0; ip < nphi; ++ip) {
       double integral = 0;
       for (int a = 0; a < 8; ++a)
         for (int b = 0; b < 8; ++b) {
-          const double z = (iz + (a + 0.5) / 8) / nz, phi = (ip + (b + 0.5) / 8) / nphi * 2 * M_PI - M_PI;
+          const double z = (iz + (a + 0.5) / 8) / nz,
+                       phi = (ip + (b + 0.5) / 8) / nphi * 2 * M_PI - M_PI;
           const double s = std::sqrt(1 - z * z);
           const Vec3 w = frame.toWorld({s * std::cos(phi), s * std::sin(phi), z});
           integral += photonEmissionPdf(emitters, 0, down, w) / emitters.pdfArea(0);
         }
-      dirExp[iz * nphi + ip] = n * integral / 64 * (1.0 / nz) * (2 * M_PI / nphi);  // dω = d(cos θ) dφ
+      dirExp[iz * nphi + ip] =
+          n * integral / 64 * (1.0 / nz) * (2 * M_PI / nphi);  // dω = d(cos θ) dφ
     }
   EXPECT_GT(test::chiSquarePValue(posObs, posExp, "chi2_photon_positions.csv", kAlpha), kAlpha);
   EXPECT_GT(test::chiSquarePValue(dirObs, dirExp, "chi2_photon_directions.csv", kAlpha), kAlpha);
@@ -146,7 +154,8 @@ TEST(PhotonTracer, ExactSameForAnyThreadCount) {
   ASSERT_EQ(all.photons.size(), one.photons.size());
   ASSERT_GT(all.stats.caustic, 0u);  // glass and mirror blocks make caustics
   for (std::size_t k = 0; k < all.photons.size(); ++k) {
-    ASSERT_EQ(0, std::memcmp(all.photons[k].position, one.photons[k].position, sizeof(float) * 3)) << k;
+    ASSERT_EQ(0, std::memcmp(all.photons[k].position, one.photons[k].position, sizeof(float) * 3))
+        << k;
     ASSERT_EQ(0, std::memcmp(all.photons[k].power, one.photons[k].power, sizeof(float) * 3)) << k;
     ASSERT_EQ(all.photons[k].patch, one.photons[k].patch);
   }
@@ -159,7 +168,8 @@ TEST(PhotonTracer, ExactSameForAnyThreadCount) {
 
 TEST(PhotonTracer, ConstructRejectsSceneWithoutEmitters) {
   test::TempDir dir;
-  Scene scene = loadScene(dir.file("dark.json", R"({"materials": {"g": {"reflectance": [0.5,0.5,0.5]}},
+  Scene scene =
+      loadScene(dir.file("dark.json", R"({"materials": {"g": {"reflectance": [0.5,0.5,0.5]}},
     "surfaces": [{"name": "a", "material": "g", "polygon": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}]})"));
   PatchMesh mesh = subdivide(scene, {1, 0});
   RayScene rays(mesh);

@@ -41,7 +41,8 @@ TEST(Refine, ExactAreasTileOnTheCornellBox) {
     RefinedMesh r = refinePatches(mesh, split);
     ASSERT_EQ(r.mesh.size(), mesh.size() + 3 * int(std::count(split.begin(), split.end(), 1)));
     for (std::size_t s = 0; s + 1 < mesh.surfaceBegin.size(); ++s)
-      EXPECT_NEAR(surfaceArea(r.mesh, int(s)), surfaceArea(mesh, int(s)), 1e-12 * surfaceArea(mesh, int(s)));
+      EXPECT_NEAR(surfaceArea(r.mesh, int(s)), surfaceArea(mesh, int(s)),
+                  1e-12 * surfaceArea(mesh, int(s)));
     for (int k = 0; k < r.mesh.size(); ++k) {
       const Patch& parent = mesh.patches[r.parent[k]];
       EXPECT_NEAR(dot(r.mesh.patches[k].normal, parent.normal), 1.0, 1e-12);
@@ -64,7 +65,8 @@ TEST(Refine, ExactNeighboursAcrossTJunctions) {
   nb = surfaceNeighbours(r.mesh);
   auto near = [&](int i, double x, double y) {  // does patch i's list contain the child at (x, y)?
     for (int j : nb[i])
-      if (std::fabs(r.mesh.patches[j].centroid.x - x) < 1e-9 && std::fabs(r.mesh.patches[j].centroid.y - y) < 1e-9)
+      if (std::fabs(r.mesh.patches[j].centroid.x - x) < 1e-9 &&
+          std::fabs(r.mesh.patches[j].centroid.y - y) < 1e-9)
         return true;
     return false;
   };
@@ -75,18 +77,19 @@ TEST(Refine, ExactNeighboursAcrossTJunctions) {
   EXPECT_TRUE(near(5, 0.375, 0.375));
   std::vector<char> again(7, 0);
   for (int k = 0; k < 4; ++k)
-    if (std::fabs(r.mesh.patches[k].centroid.x - 0.375) < 1e-9 && std::fabs(r.mesh.patches[k].centroid.y - 0.125) < 1e-9)
+    if (std::fabs(r.mesh.patches[k].centroid.x - 0.375) < 1e-9 &&
+        std::fabs(r.mesh.patches[k].centroid.y - 0.125) < 1e-9)
       again[k] = 1;
   RefinedMesh r2 = refinePatches(r.mesh, again);
   nb = surfaceNeighbours(r2.mesh);
   int right = -1;
   for (int k = 0; k < r2.mesh.size(); ++k)
-    if (std::fabs(r2.mesh.patches[k].centroid.x - 0.75) < 1e-9 && std::fabs(r2.mesh.patches[k].centroid.y - 0.25) < 1e-9)
+    if (std::fabs(r2.mesh.patches[k].centroid.x - 0.75) < 1e-9 &&
+        std::fabs(r2.mesh.patches[k].centroid.y - 0.25) < 1e-9)
       right = k;
   ASSERT_GE(right, 0);
   int grandchildren = 0;  // the two grandchildren at x = 7/16 touching x = ½
-  for (int j : nb[right])
-    grandchildren += std::fabs(r2.mesh.patches[j].centroid.x - 0.4375) < 1e-9;
+  for (int j : nb[right]) grandchildren += std::fabs(r2.mesh.patches[j].centroid.x - 0.4375) < 1e-9;
   EXPECT_EQ(grandchildren, 2);
 }
 
@@ -143,9 +146,10 @@ Scene shadowScene(const test::TempDir& dir) {
   json s = {{"name", "shadow"}, {"units", "m"}};
   s["materials"]["grey"] = {{"reflectance", {0.5, 0.5, 0.5}}};
   s["materials"]["lamp"] = {{"reflectance", {0, 0, 0}}, {"emission", {10, 10, 10}}};
-  s["surfaces"] = {{{"name", "floor"}, {"material", "grey"}, {"polygon", sq(0, 1, 0, true)}},
-                   {{"name", "blocker"}, {"material", "grey"}, {"polygon", sq(0.425, 0.575, 0.5, true)}},
-                   {{"name", "lamp"}, {"material", "lamp"}, {"polygon", sq(0.495, 0.505, 1, false)}}};
+  s["surfaces"] = {
+      {{"name", "floor"}, {"material", "grey"}, {"polygon", sq(0, 1, 0, true)}},
+      {{"name", "blocker"}, {"material", "grey"}, {"polygon", sq(0.425, 0.575, 0.5, true)}},
+      {{"name", "lamp"}, {"material", "lamp"}, {"polygon", sq(0.495, 0.505, 1, false)}}};
   return loadScene(dir.file("shadow.json", s.dump()));
 }
 }  // namespace
@@ -158,15 +162,20 @@ TEST(Adaptive, ExactShadowBoundaryPatches) {
   ASSERT_EQ(mesh.surfaceBegin[1], 100);
   RayScene rays(mesh);
   std::vector<char> flagged = shadowBoundaryPatches(scene, mesh, rays, 16);
-  auto crosses = [](double lo, double hi) { return (lo < 0.35 && hi > 0.35) || (lo < 0.65 && hi > 0.65); };
+  auto crosses = [](double lo, double hi) {
+    return (lo < 0.35 && hi > 0.35) || (lo < 0.65 && hi > 0.65);
+  };
   auto inside = [](double lo, double hi) { return hi > 0.35 && lo < 0.65; };
   for (int i = 0; i < 100; ++i) {
     const Patch& p = mesh.patches[i];
-    double x0 = p.centroid.x - 0.05, x1 = p.centroid.x + 0.05, y0 = p.centroid.y - 0.05, y1 = p.centroid.y + 0.05;
+    double x0 = p.centroid.x - 0.05, x1 = p.centroid.x + 0.05, y0 = p.centroid.y - 0.05,
+           y1 = p.centroid.y + 0.05;
     bool expected = (crosses(x0, x1) && inside(y0, y1)) || (crosses(y0, y1) && inside(x0, x1));
-    EXPECT_EQ(bool(flagged[i]), expected) << "floor patch at " << p.centroid.x << ", " << p.centroid.y;
+    EXPECT_EQ(bool(flagged[i]), expected)
+        << "floor patch at " << p.centroid.x << ", " << p.centroid.y;
   }
-  for (int i = 100; i < mesh.size(); ++i) EXPECT_FALSE(flagged[i]) << "patch " << i << " of the blocker or lamp";
+  for (int i = 100; i < mesh.size(); ++i)
+    EXPECT_FALSE(flagged[i]) << "patch " << i << " of the blocker or lamp";
 }
 
 // Refinement goes where the shadow edge is: after one round every patch the edge crosses is
@@ -184,7 +193,8 @@ TEST(Adaptive, ExactRefinesAroundTheShadowEdge) {
   ASSERT_EQ(r.rounds.size(), 2u);
   EXPECT_EQ(r.rounds[0].shadowPatches, 12);
   auto distance = [](const Vec3& c) {  // from the centroid to the shadow square's outline
-    double dx = std::max(std::fabs(c.x - 0.5) - 0.15, 0.0), dy = std::max(std::fabs(c.y - 0.5) - 0.15, 0.0);
+    double dx = std::max(std::fabs(c.x - 0.5) - 0.15, 0.0),
+           dy = std::max(std::fabs(c.y - 0.5) - 0.15, 0.0);
     double outside = std::hypot(dx, dy);
     double inside = std::min(0.15 - std::fabs(c.x - 0.5), 0.15 - std::fabs(c.y - 0.5));
     return outside > 0 ? outside : inside;
@@ -193,8 +203,11 @@ TEST(Adaptive, ExactRefinesAroundTheShadowEdge) {
   for (int i = r.final.mesh.surfaceBegin[0]; i < r.final.mesh.surfaceBegin[1]; ++i) {
     const Patch& p = r.final.mesh.patches[i];
     bool child = p.area < 0.005;
-    if (child) EXPECT_LT(distance(p.centroid), 0.16) << p.centroid.x << ", " << p.centroid.y;
-    else EXPECT_GT(distance(p.centroid), 0.04) << "unsplit patch on the edge " << p.centroid.x << ", " << p.centroid.y;
+    if (child)
+      EXPECT_LT(distance(p.centroid), 0.16) << p.centroid.x << ", " << p.centroid.y;
+    else
+      EXPECT_GT(distance(p.centroid), 0.04)
+          << "unsplit patch on the edge " << p.centroid.x << ", " << p.centroid.y;
     ringChildren += child && distance(p.centroid) < 0.05;
   }
   EXPECT_EQ(ringChildren, 48);

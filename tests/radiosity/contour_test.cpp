@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "radiosity/contour.h"
 #include "geometry/sampling.h"
+#include "radiosity/contour.h"
 #include "test_scenes.h"
 
 namespace radkit {
@@ -50,8 +50,8 @@ TEST(Contour, ExactDiskOffAxis) {
   EXPECT_NEAR(test::diskOffAxis(1, 1, 0.5), 0.4379826327, 1e-10);
   for (double l : {0.5, 2.0}) {
     const int sides = 2048;
-    double f = pointToPolygonFormFactor({l, 0, 0}, {0, 0, 1},
-                                        regularPolygon({0, 0, 1}, 1.0, sides, true));
+    double f =
+        pointToPolygonFormFactor({l, 0, 0}, {0, 0, 1}, regularPolygon({0, 0, 1}, 1.0, sides, true));
     double inner = test::diskOffAxis(std::cos(M_PI / sides), 1, l);
     EXPECT_GE(f, inner - 1e-15);
     EXPECT_LE(f, test::diskOffAxis(1, 1, l) + 1e-15);

@@ -40,7 +40,12 @@ TEST(Hemisphere, Construct) {
 
 TEST(Hemisphere, StatisticalClosedForms) {
   const int K = 20000;
-  struct Case { const char* name; test::MeshBuilder b; int i, j; double exact; };
+  struct Case {
+    const char* name;
+    test::MeshBuilder b;
+    int i, j;
+    double exact;
+  };
   Case cases[] = {
       {"C-11 1x1 at 1", test::parallelRectangles(1, 1, 1), 0, 1, test::c11ParallelRectangles(1, 1)},
       {"C-11 1x1.5 at 0.5", test::parallelRectangles(1, 1.5, 0.5), 0, 1,

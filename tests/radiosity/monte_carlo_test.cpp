@@ -44,13 +44,15 @@ TEST(MonteCarlo, Construct) {
 // C-11 at several aspect ratios and the cube's opposite faces. (C-14 is left out: at a shared
 // edge cos cos/r² is not square-integrable, so the sample variance does not converge.)
 TEST(MonteCarlo, StatisticalClosedForms) {
-  struct Case { double a, b, c; };
+  struct Case {
+    double a, b, c;
+  };
   for (Case k : {Case{1, 1, 1}, Case{2, 2, 1}, Case{1, 1.5, 0.5}}) {
     test::MeshBuilder b = test::parallelRectangles(k.a, k.b, k.c);
     RowEntry e = estimate(b, 0, 1, 4096);
     double exact = test::c11ParallelRectangles(k.a / k.c, k.b / k.c);
-    std::printf("[ monte-carlo ] C-11 %gx%g at %g  K=4096  F=%.6f  exact %.6f  se %.2e\n", k.a,
-                k.b, k.c, e.value, exact, e.standardError);
+    std::printf("[ monte-carlo ] C-11 %gx%g at %g  K=4096  F=%.6f  exact %.6f  se %.2e\n", k.a, k.b,
+                k.c, e.value, exact, e.standardError);
     EXPECT_GT(e.standardError, 0);
     EXPECT_LE(std::fabs(e.value - exact), 4 * e.standardError);
   }

@@ -39,7 +39,10 @@ TEST(PointPolygon, ExactParallelRectangles) {
   EXPECT_NEAR(test::c11ParallelRectangles(2, 2), 0.415253, 5e-7);
   EXPECT_NEAR(test::c11ParallelRectangles(1, 5), 0.359167, 5e-7);
   EXPECT_NEAR(test::c11ParallelRectangles(1 / 0.5, 1.5 / 0.5), 0.4755764365, 1e-10);
-  struct Case { double a, b, c; int n; };
+  struct Case {
+    double a, b, c;
+    int n;
+  };
   for (Case k : {Case{1, 1, 1, 1}, Case{0.5, 0.5, 1, 1}, Case{2, 2, 1, 1}, Case{1, 5, 1, 1},
                  Case{1, 1.5, 0.5, 1}, Case{1, 1.5, 0.5, 4}, Case{1, 1, 1, 5}}) {
     test::MeshBuilder b = test::parallelRectangles(k.a, k.b, k.c, k.n);
@@ -57,9 +60,12 @@ TEST(PointPolygon, ExactPerpendicularSharedEdge) {
   EXPECT_NEAR(test::c14PerpendicularRectangles(1, 2), 0.232853, 5e-7);
   EXPECT_NEAR(test::c14PerpendicularRectangles(2, 1), 0.116426, 5e-7);
   EXPECT_NEAR(test::c14PerpendicularRectangles(0.5, 0.5), 0.240636, 5e-7);
-  EXPECT_NEAR(1 * test::c14PerpendicularRectangles(1, 2), 2 * test::c14PerpendicularRectangles(2, 1),
-              1e-14);
-  struct Case { double w, h; int n; };
+  EXPECT_NEAR(1 * test::c14PerpendicularRectangles(1, 2),
+              2 * test::c14PerpendicularRectangles(2, 1), 1e-14);
+  struct Case {
+    double w, h;
+    int n;
+  };
   for (Case k : {Case{1, 1, 1}, Case{1, 2, 1}, Case{2, 1, 1}, Case{0.5, 0.5, 1}, Case{1, 1, 4},
                  Case{1, 2, 3}}) {
     test::MeshBuilder b = test::perpendicularRectangles(1, k.w, k.h, k.n);
@@ -76,7 +82,9 @@ TEST(PointPolygon, ExactPerpendicularSharedEdge) {
 TEST(PointPolygon, ExactCoaxialDisks) {
   EXPECT_NEAR(test::coaxialDisks(1, 1, 1), (3 - std::sqrt(5.0)) / 2, 1e-15);
   EXPECT_NEAR(test::coaxialDisks(0.1, 0.2, 0.5), 0.133931, 5e-7);
-  struct Case { double r1, r2, h; };
+  struct Case {
+    double r1, r2, h;
+  };
   const int sides = 48;
   for (Case k : {Case{1, 1, 1}, Case{0.1, 0.2, 0.5}, Case{1, 0.5, 0.3}}) {
     test::MeshBuilder b;
@@ -108,8 +116,8 @@ TEST(PointPolygon, ExactCube) {
     EXPECT_NEAR(r.diagnostics.rowSumMin, 1.0, 1e-4) << n;
     EXPECT_NEAR(r.diagnostics.rowSumMax, 1.0, 1e-4) << n;
     EXPECT_LT(r.diagnostics.maxRelativeReciprocityError, 1e-12);
-    std::printf("[ cube ] n=%d  opposite err %.2e  adjacent err %.2e  row sums [%.8f, %.8f]\n",
-                n, surfaceF(r, b, 0, 1) - opposite, surfaceF(r, b, 0, 2) - adjacent,
+    std::printf("[ cube ] n=%d  opposite err %.2e  adjacent err %.2e  row sums [%.8f, %.8f]\n", n,
+                surfaceF(r, b, 0, 1) - opposite, surfaceF(r, b, 0, 2) - adjacent,
                 r.diagnostics.rowSumMin, r.diagnostics.rowSumMax);
   }
 }
@@ -131,9 +139,10 @@ TEST(PointPolygon, ExactSphereInterior) {
       for (int j = 0; j < m.size(); ++j)
         rowError[i] += std::fabs(formFactorAt(r.matrix, i, j) - m.patches[j].area / total);
     for (double e : rowError) worst = std::max(worst, e);
-    std::printf("[ sphere ] level %d (%4d facets): max_i sum_j |F_ij - A_j/A| = %.3e, row sums "
-                "[%.8f, %.8f]\n", level, m.size(), worst, r.diagnostics.rowSumMin,
-                r.diagnostics.rowSumMax);
+    std::printf(
+        "[ sphere ] level %d (%4d facets): max_i sum_j |F_ij - A_j/A| = %.3e, row sums "
+        "[%.8f, %.8f]\n",
+        level, m.size(), worst, r.diagnostics.rowSumMin, r.diagnostics.rowSumMax);
     EXPECT_NEAR(r.diagnostics.rowSumMin, 1.0, 1e-4);
     EXPECT_NEAR(r.diagnostics.rowSumMax, 1.0, 1e-4);
     EXPECT_LT(worst, 0.7 * previous);

@@ -23,7 +23,8 @@ json quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 }
 
 /// The six inward faces of the cube corner + [0, L]³ as surfaces of one material.
-void addCube(json& surfaces, const std::string& prefix, const Vec3& o, double L, const std::string& material) {
+void addCube(json& surfaces, const std::string& prefix, const Vec3& o, double L,
+             const std::string& material) {
   auto P = [&](double x, double y, double z) { return o + Vec3{x, y, z} * L; };
   json faces = {{"bottom", quad(P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0))},
                 {"top", quad(P(0, 0, 1), P(0, 1, 1), P(1, 1, 1), P(1, 0, 1))},
@@ -35,16 +36,20 @@ void addCube(json& surfaces, const std::string& prefix, const Vec3& o, double L,
     surfaces.push_back({{"name", prefix + name}, {"material", material}, {"polygon", poly}});
 }
 
-Scene loadJson(const test::TempDir& dir, const json& scene) { return loadScene(dir.file("scene.json", scene.dump())); }
+Scene loadJson(const test::TempDir& dir, const json& scene) {
+  return loadScene(dir.file("scene.json", scene.dump()));
+}
 
 json furnaceJson(double L, double rho, double emission) {
   json s = {{"name", "furnace"}, {"units", "m"}, {"surfaces", json::array()}};
-  s["materials"]["glow"] = {{"reflectance", {rho, rho, rho}}, {"emission", {emission, emission, emission}}};
+  s["materials"]["glow"] = {{"reflectance", {rho, rho, rho}},
+                            {"emission", {emission, emission, emission}}};
   addCube(s["surfaces"], "", {0, 0, 0}, L, "glow");
   return s;
 }
 
-PipelineSettings settingsFor(int patches, const std::string& method = "point-polygon", int samples = 16) {
+PipelineSettings settingsFor(int patches, const std::string& method = "point-polygon",
+                             int samples = 16) {
   PipelineSettings s;
   s.mesh.targetPatches = patches;
   s.formFactors.method = method;
@@ -87,8 +92,10 @@ TEST(Stability, ExactReflectanceNearOne) {
     double bound = (rho * exact * delta / (1 - rho * (1 + delta)) + 1e-10 * exact) / exact;
     for (const SolveResult& solve : r.solves) {
       double err = maxRelativeError(toVec3(solve.radiosity), exact);
-      std::printf("rho %.4f %-12s %7ld iterations  max rel. error %.2e  bound %.2e  (row-sum deviation %.1e)\n", rho,
-                  solve.solver.c_str(), solve.iterations, err, bound, delta);
+      std::printf(
+          "rho %.4f %-12s %7ld iterations  max rel. error %.2e  bound %.2e  (row-sum deviation "
+          "%.1e)\n",
+          rho, solve.solver.c_str(), solve.iterations, err, bound, delta);
       EXPECT_TRUE(solve.converged) << solve.reason;
       EXPECT_LE(err, bound * 1.01 + 1e-12) << solve.solver << " at rho " << rho;
     }
@@ -134,12 +141,19 @@ TEST(Stability, ExactHowellFactorsAtExtremeScales) {
     s["materials"]["grey"] = {{"reflectance", {0.5, 0.5, 0.5}}};
     s["materials"]["lamp"] = {{"reflectance", {0, 0, 0}}, {"emission", {1, 1, 1}}};
     auto P = [&](double x, double y, double z) { return Vec3{x, y, z} * L; };
-    s["surfaces"] = {{{"name", "lower"}, {"material", "grey"}, {"polygon", quad(P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0))}},
-                     {{"name", "upper"}, {"material", "lamp"}, {"polygon", quad(P(0, 0, 1), P(0, 1, 1), P(1, 1, 1), P(1, 0, 1))}},
-                     {{"name", "wall"}, {"material", "lamp"}, {"polygon", quad(P(0, 0, 0), P(0, 0, 1), P(1, 0, 1), P(1, 0, 0))}}};
+    s["surfaces"] = {{{"name", "lower"},
+                      {"material", "grey"},
+                      {"polygon", quad(P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0))}},
+                     {{"name", "upper"},
+                      {"material", "lamp"},
+                      {"polygon", quad(P(0, 0, 1), P(0, 1, 1), P(1, 1, 1), P(1, 0, 1))}},
+                     {{"name", "wall"},
+                      {"material", "lamp"},
+                      {"polygon", quad(P(0, 0, 0), P(0, 0, 1), P(1, 0, 1), P(1, 0, 0))}}};
     PipelineResult r = runPipeline(loadJson(dir, s), settingsFor(48));
     EXPECT_NEAR(surfaceFormFactor(r, 0, 1), test::c11ParallelRectangles(1, 1), 1e-4) << "L = " << L;
-    EXPECT_NEAR(surfaceFormFactor(r, 0, 2), test::c14PerpendicularRectangles(1, 1), 1e-4) << "L = " << L;
+    EXPECT_NEAR(surfaceFormFactor(r, 0, 2), test::c14PerpendicularRectangles(1, 1), 1e-4)
+        << "L = " << L;
   }
 }
 
@@ -155,13 +169,20 @@ json sliverScene(int m, bool alongY) {
   for (int k = 0; k < m; ++k) {
     double a = double(k) / m, b = double(k + 1) / m;
     auto P = [&](double u, double v) { return alongY ? Vec3{u, v, 0} : Vec3{v, u, 0}; };
-    json t1 = {point(P(a, 0)), point(P(b, 0)), point(P(b, 1))}, t2 = {point(P(a, 0)), point(P(b, 1)), point(P(a, 1))};
-    if (!alongY) t1 = {point(P(a, 0)), point(P(b, 1)), point(P(b, 0))}, t2 = {point(P(a, 0)), point(P(a, 1)), point(P(b, 1))};
+    json t1 = {point(P(a, 0)), point(P(b, 0)), point(P(b, 1))},
+         t2 = {point(P(a, 0)), point(P(b, 1)), point(P(a, 1))};
+    if (!alongY)
+      t1 = {point(P(a, 0)), point(P(b, 1)), point(P(b, 0))},
+      t2 = {point(P(a, 0)), point(P(a, 1)), point(P(b, 1))};
     tris.push_back(t1), tris.push_back(t2);
   }
   s["surfaces"] = {{{"name", "lower"}, {"material", "grey"}, {"polygons", tris}},
-                   {{"name", "upper"}, {"material", "lamp"}, {"polygon", quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1})}},
-                   {{"name", "wall"}, {"material", "lamp"}, {"polygon", quad({0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0})}}};
+                   {{"name", "upper"},
+                    {"material", "lamp"},
+                    {"polygon", quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1})}},
+                   {{"name", "wall"},
+                    {"material", "lamp"},
+                    {"polygon", quad({0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0})}}};
   return s;
 }
 }  // namespace
@@ -171,7 +192,8 @@ json sliverScene(int m, bool alongY) {
 // the pooled hit fraction (n·K rays, stratification only lowers the variance).
 TEST(Stability, ExactSliverTriangles) {
   test::TempDir dir;
-  const double c11 = test::c11ParallelRectangles(1, 1), c14 = test::c14PerpendicularRectangles(1, 1);
+  const double c11 = test::c11ParallelRectangles(1, 1),
+               c14 = test::c14PerpendicularRectangles(1, 1);
   for (bool alongY : {true, false}) {
     Scene scene = loadJson(dir, sliverScene(300, alongY));
     PipelineSettings s = settingsFor(0);
@@ -187,9 +209,10 @@ TEST(Stability, ExactSliverTriangles) {
     s.formFactors.samples = 256;
     r = runPipeline(scene, s);
     f11 = surfaceFormFactor(r, 0, 1), f14 = surfaceFormFactor(r, 0, 2);
-    double se11 = std::sqrt(c11 * (1 - c11) / (600.0 * 256)), se14 = std::sqrt(c14 * (1 - c14) / (600.0 * 256));
-    std::printf("slivers along %s: hemisphere C-11 %.5f (se %.1e), C-14 %.5f (se %.1e)\n", alongY ? "y" : "x",
-                f11, se11, f14, se14);
+    double se11 = std::sqrt(c11 * (1 - c11) / (600.0 * 256)),
+           se14 = std::sqrt(c14 * (1 - c14) / (600.0 * 256));
+    std::printf("slivers along %s: hemisphere C-11 %.5f (se %.1e), C-14 %.5f (se %.1e)\n",
+                alongY ? "y" : "x", f11, se11, f14, se14);
     EXPECT_NEAR(f11, c11, 4 * se11);
     EXPECT_NEAR(f14, c14, 4 * se14);
   }
@@ -207,20 +230,26 @@ TEST(Stability, TinyBlockerInALargeRoom) {
     addCube(s["surfaces"], "", {0, 0, 0}, 1, "lamp");
     Vec3 o{0.5, 0.5, 0};
     auto sq = [&](double z, bool up) {
-      Vec3 a = o + Vec3{0, 0, z}, b = o + Vec3{size, 0, z}, c = o + Vec3{size, size, z}, d = o + Vec3{0, size, z};
+      Vec3 a = o + Vec3{0, 0, z}, b = o + Vec3{size, 0, z}, c = o + Vec3{size, size, z},
+           d = o + Vec3{0, size, z};
       return up ? quad(a, b, c, d) : quad(a, d, c, b);
     };
-    s["surfaces"].push_back({{"name", "patch"}, {"material", "grey"}, {"polygon", sq(1e-9 * size, true)}});
-    s["surfaces"].push_back({{"name", "blocker"}, {"material", "grey"}, {"polygon", sq(size, false)}});
+    s["surfaces"].push_back(
+        {{"name", "patch"}, {"material", "grey"}, {"polygon", sq(1e-9 * size, true)}});
+    s["surfaces"].push_back(
+        {{"name", "blocker"}, {"material", "grey"}, {"polygon", sq(size, false)}});
     PipelineSettings ps = settingsFor(0);
     ps.formFactors.samples = 256;
     ps.solvers.clear();
     PipelineResult r = runPipeline(loadJson(dir, s), ps);
     double toBlocker = surfaceFormFactor(r, 6, 7), toRoom = 0;
     for (int t = 0; t < 6; ++t) toRoom += surfaceFormFactor(r, 6, t);
-    std::printf("size %.0e m: F(patch->blocker) %.5f (exact %.5f), F(patch->room) %.5f (exact %.5f)\n", size,
-                toBlocker, test::c11ParallelRectangles(1, 1), toRoom, 1 - test::c11ParallelRectangles(1, 1));
-    EXPECT_NEAR(toBlocker, test::c11ParallelRectangles(1, 1), 1e-3) << size;  // no rays: contour formula
+    std::printf(
+        "size %.0e m: F(patch->blocker) %.5f (exact %.5f), F(patch->room) %.5f (exact %.5f)\n",
+        size, toBlocker, test::c11ParallelRectangles(1, 1), toRoom,
+        1 - test::c11ParallelRectangles(1, 1));
+    EXPECT_NEAR(toBlocker, test::c11ParallelRectangles(1, 1), 1e-3)
+        << size;  // no rays: contour formula
     // Occlusion needs features well above the ray offset (1e-6 of the scene, 1.7e-6 m here):
     // at 1e-3 m and above the room's share is right within the K = 256 visibility noise.
     if (size >= 1e-3) {

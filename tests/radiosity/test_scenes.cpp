@@ -33,7 +33,8 @@ int MeshBuilder::addRectangle(const std::string& name, const Vec3& corner, const
       m_mesh.vertices.push_back(corner + e1 * (double(a) / nu) + e2 * (double(b) / nv));
   auto id = [&](int a, int b) { return base + b * (nu + 1) + a; };
   for (int b = 0; b < nv; ++b)
-    for (int a = 0; a < nu; ++a) addPatch({id(a, b), id(a + 1, b), id(a + 1, b + 1), id(a, b + 1)}, s);
+    for (int a = 0; a < nu; ++a)
+      addPatch({id(a, b), id(a + 1, b), id(a + 1, b + 1), id(a, b + 1)}, s);
   return s;
 }
 
@@ -90,13 +91,13 @@ MeshBuilder perpendicularRectangles(double l, double w, double h, int n) {
 
 MeshBuilder icosphereInterior(int level, double r) {
   const double t = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Vec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   for (Vec3& p : v) p = normalize(p);
-  std::vector<std::array<int, 3>> f = {
-      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
   for (int l = 0; l < level; ++l) {
     std::map<std::pair<int, int>, int> mid;
     auto midpoint = [&](int a, int b) {
@@ -154,6 +155,5 @@ double coaxialDisks(double r1, double r2, double h) {
   double R1 = r1 / h, R2 = r2 / h, X = 1 + (1 + R2 * R2) / (R1 * R1);
   return 0.5 * (X - std::sqrt(X * X - 4 * (R2 / R1) * (R2 / R1)));
 }
-
 
 }  // namespace radkit::test

@@ -50,5 +50,4 @@ double diskOnAxis(double R, double h);
 double diskOffAxis(double r, double h, double l);
 double coaxialDisks(double r1, double r2, double h);
 
-
 }  // namespace radkit::test

@@ -43,7 +43,8 @@ TEST(AutomaticCamera, SeesAnOpenBoxUnmirrored) {
 TEST(AutomaticCamera, ClosedModelFromItsFrontFacingSide) {
   // One outward-facing square at y = 0 (a floor seen from above) and nothing else: only the +y
   // side sees a front face.
-  std::vector<Triangle> t{{Vec3{0, 0, 0}, Vec3{0, 0, 1}, Vec3{1, 0, 1}}, {Vec3{0, 0, 0}, Vec3{1, 0, 1}, Vec3{1, 0, 0}}};
+  std::vector<Triangle> t{{Vec3{0, 0, 0}, Vec3{0, 0, 1}, Vec3{1, 0, 1}},
+                          {Vec3{0, 0, 0}, Vec3{1, 0, 1}, Vec3{1, 0, 0}}};
   const Camera c = automaticCamera(t);
   EXPECT_GT(c.position.y, 0.5);
   EXPECT_GT(length(cross(c.lookAt - c.position, c.up)), 0) << "up must not be the view direction";
@@ -56,7 +57,8 @@ TEST(ParseCamera, GivesEveryPartAndRefusesNonsense) {
   EXPECT_EQ(c.up.x, 1);
   EXPECT_EQ(c.fovDeg, 30);
   EXPECT_EQ(parseCamera("--camera", "0,1,4,0,1,0").up.y, 1);
-  for (const char* bad : {"0,1,4", "0,1,4,0,1,x", "0,1,4,0,1,4", "0,1,4,0,1,0,0,0,1,180", "0,5,0,0,0,0", "1,2,3,4,5,6,7"}) {
+  for (const char* bad : {"0,1,4", "0,1,4,0,1,x", "0,1,4,0,1,4", "0,1,4,0,1,0,0,0,1,180",
+                          "0,5,0,0,0,0", "1,2,3,4,5,6,7"}) {
     try {
       parseCamera("--camera", bad);
       ADD_FAILURE() << bad << " was accepted";
@@ -82,7 +84,8 @@ TEST(RenderCamera, OpenBoxObjIsNotBlack) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_GT(meanRadiance(readPfm(dir.path("auto.pfm"))), 0.01);
   // --camera replaces the automatic one: from behind the back wall, nothing faces it.
-  r = test::runRadkit("render '" + obj + "' --camera 0.5,0.5,-3,0.5,0.5,0" + common + dir.path("behind.pfm"));
+  r = test::runRadkit("render '" + obj + "' --camera 0.5,0.5,-3,0.5,0.5,0" + common +
+                      dir.path("behind.pfm"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(meanRadiance(readPfm(dir.path("behind.pfm"))), 0);
   r = test::runRadkit("render '" + obj + "' --camera 0,0,1" + common + dir.path("bad.pfm"));

@@ -2,10 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include "bsdf/specular.h"
 #include "geometry/sampling.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
-#include "bsdf/specular.h"
 #include "tests/common/statistics.h"
 #include "tests/common/test_util.h"
 

@@ -53,13 +53,17 @@ TEST(ImageComparison, StatisticalSubtractsTheReferenceNoise) {
   EXPECT_EQ(e[1].pixels, w * h / 2);
   for (int r : {1, 2}) {
     const double sx = r == 1 ? 0.1 : 0.3, values = 3.0 * e[r].pixels;
-    const double se = std::sqrt((2 * std::pow(sx * sx + sr * sr / 2, 2) + std::pow(sr, 4) / 2) / values);
+    const double se =
+        std::sqrt((2 * std::pow(sx * sx + sr * sr / 2, 2) + std::pow(sr, 4) / 2) / values);
     EXPECT_NEAR(e[r].rmse * e[r].rmse, sx * sx, 4 * se) << e[r].name;
-    EXPECT_NEAR(e[r].referenceNoise * e[r].referenceNoise, sr * sr / 2, 4 * std::pow(sr, 2) / std::sqrt(2 * values));
-    EXPECT_GT(e[r].rawRmse * e[r].rawRmse - sx * sx, 4 * se) << "the raw error must be visibly inflated";
+    EXPECT_NEAR(e[r].referenceNoise * e[r].referenceNoise, sr * sr / 2,
+                4 * std::pow(sr, 2) / std::sqrt(2 * values));
+    EXPECT_GT(e[r].rawRmse * e[r].rawRmse - sx * sx, 4 * se)
+        << "the raw error must be visibly inflated";
   }
   EXPECT_NEAR(e[1].referenceMean, 1, 0.05);
-  EXPECT_THROW(compareToReference(image, {blank(8, 8)}, region, {"left", "right"}), std::invalid_argument);
+  EXPECT_THROW(compareToReference(image, {blank(8, 8)}, region, {"left", "right"}),
+               std::invalid_argument);
 }
 
 }  // namespace

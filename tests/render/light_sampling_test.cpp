@@ -69,8 +69,8 @@ TEST(SphericalRectangle, StatisticalUniformInSolidAngle) {
   double chi2 = 0;
   for (int a = 0; a < grid; ++a)
     for (int b = 0; b < grid; ++b) {
-      const double omega = rectangleSolidAngle(x0 + w * a / grid, x0 + w * (a + 1) / grid, y0 + hgt * b / grid,
-                                               y0 + hgt * (b + 1) / grid, h);
+      const double omega = rectangleSolidAngle(x0 + w * a / grid, x0 + w * (a + 1) / grid,
+                                               y0 + hgt * b / grid, y0 + hgt * (b + 1) / grid, h);
       const double expected = n * omega / r.solidAngle();
       chi2 += (count[a * grid + b] - expected) * (count[a * grid + b] - expected) / expected;
     }
@@ -97,8 +97,8 @@ TEST(LightSampling, StatisticalIrradianceOfASquareLight) {
   PatchMesh mesh = subdivide(scene, {0, 0});
   RayScene rays(mesh);
   for (const auto& [x, y] : {std::pair{0.5, 0.5}, std::pair{0.2, 0.7}, std::pair{0.03, 0.97}}) {
-    const double f = cornerFormFactor(x, y, 1) + cornerFormFactor(1 - x, y, 1) + cornerFormFactor(x, 1 - y, 1) +
-                     cornerFormFactor(1 - x, 1 - y, 1);
+    const double f = cornerFormFactor(x, y, 1) + cornerFormFactor(1 - x, y, 1) +
+                     cornerFormFactor(x, 1 - y, 1) + cornerFormFactor(1 - x, 1 - y, 1);
     const double exact = 0.5 / M_PI * f;
     double standardError[2];
     for (LightSampling mode : {LightSampling::Area, LightSampling::SolidAngle}) {
@@ -126,7 +126,8 @@ TEST(LightSampling, StatisticalIrradianceOfASquareLight) {
       standardError[int(mode)] = se;
       EXPECT_NEAR(mean, exact, 4 * se) << x << " " << y << " mode " << int(mode);
     }
-    EXPECT_LT(standardError[int(LightSampling::SolidAngle)], 0.8 * standardError[int(LightSampling::Area)])
+    EXPECT_LT(standardError[int(LightSampling::SolidAngle)],
+              0.8 * standardError[int(LightSampling::Area)])
         << x << " " << y;
   }
 }

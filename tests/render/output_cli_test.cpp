@@ -27,7 +27,8 @@ TEST(RenderFormats, ExrHoldsThePfmsValues) {
   ASSERT_EQ(exr.width, 12);
   ASSERT_EQ(exr.height, 8);
   ASSERT_EQ(exr.radiance.size(), pfm.radiance.size());
-  for (std::size_t k = 0; k < pfm.radiance.size(); ++k) EXPECT_EQ(exr.radiance[k], pfm.radiance[k]) << k;
+  for (std::size_t k = 0; k < pfm.radiance.size(); ++k)
+    EXPECT_EQ(exr.radiance[k], pfm.radiance[k]) << k;
   EXPECT_GT(meanRadiance(exr), 0);
   EXPECT_FALSE(std::filesystem::exists(dir.path("a.exr.tmp")));
 }
@@ -45,7 +46,8 @@ TEST(RenderFormats, UnsupportedExtensionIsRefusedBeforeRendering) {
 TEST(RenderFormats, PhotonMapTakesSpp) {
   // --spp given: passes of one jittered ray per pixel, averaged; not given: one pass as before.
   test::TempDir dir;
-  const std::string common = "render --shading photon-map --patches 60 --photons 2000 --size 8x8 --out ";
+  const std::string common =
+      "render --shading photon-map --patches 60 --photons 2000 --size 8x8 --out ";
   ASSERT_EQ(test::runRadkit(common + dir.path("default.pfm")).exitCode, 0);
   ASSERT_EQ(test::runRadkit(common + dir.path("one.pfm") + " --spp 1").exitCode, 0);
   ASSERT_EQ(test::runRadkit(common + dir.path("four.pfm") + " --spp 4").exitCode, 0);

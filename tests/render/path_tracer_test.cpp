@@ -30,7 +30,8 @@ RegionMean regionMean(const MonteCarloImage& img, const std::vector<bool>& insid
   for (std::size_t k = 0; k < inside.size(); ++k)
     if (inside[k]) r.mean += img.image.radiance[k], variance += img.varianceOfMean[k], ++r.pixels;
   r.mean = r.mean / r.pixels;
-  r.standardError = {std::sqrt(variance.x) / r.pixels, std::sqrt(variance.y) / r.pixels, std::sqrt(variance.z) / r.pixels};
+  r.standardError = {std::sqrt(variance.x) / r.pixels, std::sqrt(variance.y) / r.pixels,
+                     std::sqrt(variance.z) / r.pixels};
   return r;
 }
 
@@ -49,7 +50,9 @@ void expectFurnaceMean(const ShadingScene& shading, PathTraceSettings s, const s
   std::vector<double> means;
   for (std::uint64_t seed = 1; seed <= 16; ++seed) {
     s.seed = seed;
-    means.push_back(regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(256, true)).mean.y);
+    means.push_back(
+        regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(256, true))
+            .mean.y);
   }
   double mean = 0, spread = 0;
   for (double m : means) mean += m / means.size();
@@ -70,10 +73,12 @@ TEST(PathTracer, StatisticalFurnace) {
   PathTraceSettings s;
   s.width = s.height = 24;
   s.samplesPerPixel = 8;
-  RegionMean small = regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(24 * 24, true));
+  RegionMean small =
+      regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(24 * 24, true));
   s.samplesPerPixel = 32;
   s.seed = 2;
-  RegionMean big = regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(24 * 24, true));
+  RegionMean big =
+      regionMean(renderPathTraced(shading, furnaceCamera(), s), std::vector<bool>(24 * 24, true));
   EXPECT_NEAR(big.mean.y, 2 / M_PI, 4 * big.standardError.y);
   EXPECT_NEAR(small.mean.y, 2 / M_PI, 4 * small.standardError.y);
   EXPECT_LT(big.standardError.y, 0.02 * big.mean.y);
@@ -139,7 +144,8 @@ TEST(FinalGather, StatisticalFurnace) {
     std::vector<double> means;
     for (std::uint64_t seed = 1; seed <= 16; ++seed) {
       s.seed = seed;
-      const MonteCarloImage img = renderFinalGather(shading, furnaceCamera(), lighting, s, variant == 2 ? &guide : nullptr);
+      const MonteCarloImage img =
+          renderFinalGather(shading, furnaceCamera(), lighting, s, variant == 2 ? &guide : nullptr);
       means.push_back(regionMean(img, std::vector<bool>(256, true)).mean.y);
     }
     double mean = 0, spread = 0;

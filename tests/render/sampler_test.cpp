@@ -15,9 +15,11 @@
 namespace radkit {
 namespace {
 
-constexpr SamplerType kAll[] = {SamplerType::Independent, SamplerType::Stratified, SamplerType::Sobol};
+constexpr SamplerType kAll[] = {SamplerType::Independent, SamplerType::Stratified,
+                                SamplerType::Sobol};
 
-/// Points of one pixel's 2-D dimension `pair` (0: the first get2D, 1: after one get1D and one get2D).
+/// Points of one pixel's 2-D dimension `pair` (0: the first get2D, 1: after one get1D and one
+/// get2D).
 std::vector<std::array<double, 2>> points(Sampler& s, std::uint64_t pixel, int n, int pair) {
   std::vector<std::array<double, 2>> out;
   for (int i = 0; i < n; ++i) {
@@ -39,8 +41,10 @@ TEST(Sampler, SobolPrefixesAreZeroTwoNets) {
         for (int j = 0; j <= m; ++j) {
           std::set<long> cells;
           for (int i = 0; i < (1 << m); ++i)
-            cells.insert(long(p[i][0] * (1 << j)) * (1 << (m - j)) + long(p[i][1] * (1 << (m - j))));
-          EXPECT_EQ(cells.size(), std::size_t(1) << m) << "pixel " << pixel << " pair " << pair << " m " << m;
+            cells.insert(long(p[i][0] * (1 << j)) * (1 << (m - j)) +
+                         long(p[i][1] * (1 << (m - j))));
+          EXPECT_EQ(cells.size(), std::size_t(1) << m)
+              << "pixel " << pixel << " pair " << pair << " m " << m;
         }
     }
   // Unscrambled, the first points are Sobol's: (0, 0), (1/2, 1/2), (1/4, 3/4), (3/4, 1/4).
@@ -105,9 +109,16 @@ TEST(Sampler, StatisticalUniformAndDecorrelated) {
       first[int(s->get2D()[0] * 64)] += 1;
     }
     const std::string name = "sampler-" + samplerName(type);
-    EXPECT_GT(test::chiSquarePValue(grid, std::vector<double>(256, 64), name + "-grid.csv", alpha), alpha) << name;
-    EXPECT_GT(test::chiSquarePValue(pair, std::vector<double>(256, 64), name + "-pair.csv", alpha), alpha) << name;
-    EXPECT_GT(test::chiSquarePValue(first, std::vector<double>(64, 64), name + "-pixels.csv", alpha), alpha) << name;
+    EXPECT_GT(test::chiSquarePValue(grid, std::vector<double>(256, 64), name + "-grid.csv", alpha),
+              alpha)
+        << name;
+    EXPECT_GT(test::chiSquarePValue(pair, std::vector<double>(256, 64), name + "-pair.csv", alpha),
+              alpha)
+        << name;
+    EXPECT_GT(
+        test::chiSquarePValue(first, std::vector<double>(64, 64), name + "-pixels.csv", alpha),
+        alpha)
+        << name;
   }
 }
 
@@ -133,7 +144,8 @@ Errors integrate(SamplerType type, int n, int replicates) {
   double sq2 = 0, e2 = 0;
   for (double x : e) out.mse += x * x, out.bias += x;
   out.mse /= replicates, out.bias /= replicates;
-  for (double x : e) sq2 += (x * x - out.mse) * (x * x - out.mse), e2 += (x - out.bias) * (x - out.bias);
+  for (double x : e)
+    sq2 += (x * x - out.mse) * (x * x - out.mse), e2 += (x - out.bias) * (x - out.bias);
   out.mseError = std::sqrt(sq2 / (replicates - 1) / replicates);
   out.biasError = std::sqrt(e2 / (replicates - 1) / replicates);
   return out;
@@ -149,10 +161,12 @@ TEST(Sampler, StatisticalConvergenceOnASmoothIntegrand) {
     const double L = 0.5 * std::log(a.mse / b.mse);
     const double se = 0.5 * std::hypot(a.mseError / a.mse, b.mseError / b.mse);
     const std::string name = samplerName(type);
-    std::printf("%-11s RMSE 16: %.3g  1024: %.3g  ratio %.1f (N^-1/2: 8)\n", name.c_str(), std::sqrt(a.mse),
-                std::sqrt(b.mse), std::exp(L));
-    if (type == SamplerType::Independent) EXPECT_NEAR(L, std::log(8.0), 4 * se) << name;
-    else EXPECT_GT(L - 4 * se, std::log(8.0)) << name;
+    std::printf("%-11s RMSE 16: %.3g  1024: %.3g  ratio %.1f (N^-1/2: 8)\n", name.c_str(),
+                std::sqrt(a.mse), std::sqrt(b.mse), std::exp(L));
+    if (type == SamplerType::Independent)
+      EXPECT_NEAR(L, std::log(8.0), 4 * se) << name;
+    else
+      EXPECT_GT(L - 4 * se, std::log(8.0)) << name;
     EXPECT_NEAR(a.bias, 0, 4 * a.biasError) << name;
     EXPECT_NEAR(b.bias, 0, 4 * b.biasError) << name;
   }
@@ -171,7 +185,8 @@ TEST(Sampler, ReversedSobol1IsSobol1Reversed) {
 
 TEST(Sampler, DeterministicPerSeedAndPermutationsArePermutations) {
   for (SamplerType type : kAll) {
-    auto a = makeSampler(type, 7, 1, 8), b = makeSampler(type, 7, 1, 8), c = makeSampler(type, 8, 1, 8);
+    auto a = makeSampler(type, 7, 1, 8), b = makeSampler(type, 7, 1, 8),
+         c = makeSampler(type, 8, 1, 8);
     a->start(12, 0), b->start(12, 0), c->start(12, 0);  // independent streams are read in order
     const double x = a->get1D();
     EXPECT_EQ(x, b->get1D());
@@ -180,7 +195,8 @@ TEST(Sampler, DeterministicPerSeedAndPermutationsArePermutations) {
   for (std::uint32_t n : {1u, 5u, 16u, 100u}) {
     std::set<std::uint32_t> seen;
     std::set<std::uint32_t> shuffled;
-    for (std::uint32_t i = 0; i < n; ++i) seen.insert(permuteIndex(i, n, 1234)), shuffled.insert(shuffleIndex(i, n, 99));
+    for (std::uint32_t i = 0; i < n; ++i)
+      seen.insert(permuteIndex(i, n, 1234)), shuffled.insert(shuffleIndex(i, n, 99));
     EXPECT_EQ(seen.size(), n);
     EXPECT_LT(*seen.rbegin(), n);
     EXPECT_EQ(shuffled.size(), n);

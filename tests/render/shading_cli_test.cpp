@@ -17,18 +17,22 @@ namespace {
 
 TEST(RenderCommand, WritesPngAndPfm) {
   test::TempDir dir;
-  test::RunResult r = test::runRadkit("render --shading path-trace --spp 2 --size 24x16 --out " + dir.path("a.png"));
+  test::RunResult r = test::runRadkit("render --shading path-trace --spp 2 --size 24x16 --out " +
+                                      dir.path("a.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   Canvas png = readPng(dir.path("a.png"));
   EXPECT_EQ(png.width(), 24);
   EXPECT_EQ(png.height(), 16);
-  r = test::runRadkit("render --shading path-trace --spp 1 --size 8x8 --tonemap filmic --out " + dir.path("b.pfm"));
+  r = test::runRadkit("render --shading path-trace --spp 1 --size 8x8 --tonemap filmic --out " +
+                      dir.path("b.pfm"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   RadianceImage hdr = readPfm(dir.path("b.pfm"));
   EXPECT_EQ(hdr.width, 8);
-  r = test::runRadkit("render --shading cook-torrance --patches 60 --spp 1 --size 8x8 --out " + dir.path("c.png"));
+  r = test::runRadkit("render --shading cook-torrance --patches 60 --spp 1 --size 8x8 --out " +
+                      dir.path("c.png"));
   EXPECT_EQ(r.exitCode, 0) << r.output;
-  r = test::runRadkit("render --shading photon-map --patches 60 --photons 2000 --size 8x8 --out " + dir.path("d.png"));
+  r = test::runRadkit("render --shading photon-map --patches 60 --photons 2000 --size 8x8 --out " +
+                      dir.path("d.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(readPng(dir.path("d.png")).width(), 8);
 }
@@ -37,13 +41,15 @@ TEST(RenderCommand, ComparesWithReferenceRenders) {
   // Two independent path-traced references, then a final gather measured against them.
   test::TempDir dir;
   for (const char* seed : {"1", "2"}) {
-    test::RunResult r = test::runRadkit(std::string("render --spp 4 --size 16x16 --seed ") + seed + " --out " +
-                                        dir.path(std::string("ref") + seed + ".pfm"));
+    test::RunResult r = test::runRadkit(std::string("render --spp 4 --size 16x16 --seed ") + seed +
+                                        " --out " + dir.path(std::string("ref") + seed + ".pfm"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
   }
-  test::RunResult r = test::runRadkit("render --shading final-gather --patches 60 --spp 2 --sampler stratified --size 16x16"
-                                      " --reference " + dir.path("ref1.pfm") + " --reference " + dir.path("ref2.pfm") +
-                                      " --report " + dir.path("r.json") + " --out " + dir.path("fg.pfm"));
+  test::RunResult r = test::runRadkit(
+      "render --shading final-gather --patches 60 --spp 2 --sampler stratified --size 16x16"
+      " --reference " +
+      dir.path("ref1.pfm") + " --reference " + dir.path("ref2.pfm") + " --report " +
+      dir.path("r.json") + " --out " + dir.path("fg.pfm"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("rmse all"), std::string::npos) << r.output;
   std::ifstream in(dir.path("r.json"));
@@ -52,11 +58,15 @@ TEST(RenderCommand, ComparesWithReferenceRenders) {
   EXPECT_EQ(j["regions"][0]["region"], "all");
   EXPECT_EQ(j["regions"][0]["pixels"], 256);
   EXPECT_GT(j["regions"][0]["reference_noise"].get<double>(), 0);
-  r = test::runRadkit("render --shading radiosity --smooth --crease-angle 45 --smooth-error 0.2 --patches 60 --size 16x16"
-                      " --reference " + dir.path("ref1.pfm") + " --out " + dir.path("s.pfm"));
+  r = test::runRadkit(
+      "render --shading radiosity --smooth --crease-angle 45 --smooth-error 0.2 --patches 60 "
+      "--size 16x16"
+      " --reference " +
+      dir.path("ref1.pfm") + " --out " + dir.path("s.pfm"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("its own noise is not subtracted"), std::string::npos) << r.output;
-  r = test::runRadkit("render --spp 1 --size 8x8 --reference " + dir.path("ref1.pfm") + " --out " + dir.path("x.pfm"));
+  r = test::runRadkit("render --spp 1 --size 8x8 --reference " + dir.path("ref1.pfm") + " --out " +
+                      dir.path("x.pfm"));
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("--size"), std::string::npos) << r.output;
 }
@@ -69,10 +79,12 @@ TEST(RenderCommand, RefusesBadInput) {
   EXPECT_NE(test::runRadkit("render --shading toon --out " + dir.path("a.png")).exitCode, 0);
   std::string dark = dir.file("dark.json", R"({"materials": {"m": {"reflectance": [0.5,0.5,0.5]}},
     "surfaces": [{"name": "a", "material": "m", "polygon": [[0,0,0],[1,0,0],[1,1,0]]}]})");
-  r = test::runRadkit("render '" + dark + "' --shading photon-map --size 8x8 --out " + dir.path("e.png"));
+  r = test::runRadkit("render '" + dark + "' --shading photon-map --size 8x8 --out " +
+                      dir.path("e.png"));
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("no surface emits"), std::string::npos) << r.output;
-  EXPECT_FALSE(std::filesystem::exists(dir.path("a.png")) || std::filesystem::exists(dir.path("e.png")));
+  EXPECT_FALSE(std::filesystem::exists(dir.path("a.png")) ||
+               std::filesystem::exists(dir.path("e.png")));
 }
 
 TEST(BrdfCommand, PrintsAlbedo) {
@@ -81,7 +93,8 @@ TEST(BrdfCommand, PrintsAlbedo) {
   nlohmann::json j = nlohmann::json::parse(r.output);
   EXPECT_NEAR(j["E"].get<double>(), 0.307, 1e-3);  // docs/oracles.md
   EXPECT_LT(j["E_avg"].get<double>(), 1);
-  r = test::runRadkit("brdf --model cook-torrance --alpha 0.6 --mu 0.3 --g separable --compensated");
+  r = test::runRadkit(
+      "brdf --model cook-torrance --alpha 0.6 --mu 0.3 --g separable --compensated");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   j = nlohmann::json::parse(r.output);
   EXPECT_NEAR(j["E"].get<double>(), 1, 3e-3);
@@ -93,8 +106,9 @@ TEST(BrdfCommand, PrintsAlbedo) {
 }
 
 TEST(BrdfCommand, RefusesBadInput) {
-  for (const char* args : {"brdf --alpha 0 --mu 0.5", "brdf --alpha 1.5 --mu 0.5", "brdf --alpha 0.5 --mu 0",
-                           "brdf --alpha 0.5 --mu 1.01", "brdf --model phong", "brdf --g beckmann"}) {
+  for (const char* args :
+       {"brdf --alpha 0 --mu 0.5", "brdf --alpha 1.5 --mu 0.5", "brdf --alpha 0.5 --mu 0",
+        "brdf --alpha 0.5 --mu 1.01", "brdf --model phong", "brdf --g beckmann"}) {
     test::RunResult r = test::runRadkit(args);
     EXPECT_NE(r.exitCode, 0) << args;
     EXPECT_FALSE(r.output.empty()) << args;

@@ -83,17 +83,22 @@ class CornellBox : public ::testing::Test {
       int n = 0;
       for (std::size_t k = 0; k < surface.size(); ++k)
         if (surface[k] == s)
-          m += mc.image.radiance[k], variance += mc.varianceOfMean[k], r += fine.radiance[k], rc += coarse.radiance[k], ++n;
+          m += mc.image.radiance[k], variance += mc.varianceOfMean[k], r += fine.radiance[k],
+              rc += coarse.radiance[k], ++n;
       if (n < 40) continue;
       ++walls;
       for (int c = 0; c < 3; ++c) {
-        const double mean = m[c] / n, se = std::sqrt(variance[c]) / n, ref = r[c] / n, delta = std::fabs(ref - rc[c] / n);
+        const double mean = m[c] / n, se = std::sqrt(variance[c]) / n, ref = r[c] / n,
+                     delta = std::fabs(ref - rc[c] / n);
         std::printf("%s %-12s ch%d  %.5f ± %.5f  radiosity %.5f, δ %.5f  %+.2f %%\n", what,
-                    s_scene->surfaces[s].name.c_str(), c, mean, se, ref, delta, 100 * (mean / ref - 1));
-        const std::string where = std::string(what) + " " + s_scene->surfaces[s].name + " channel " + std::to_string(c);
+                    s_scene->surfaces[s].name.c_str(), c, mean, se, ref, delta,
+                    100 * (mean / ref - 1));
+        const std::string where =
+            std::string(what) + " " + s_scene->surfaces[s].name + " channel " + std::to_string(c);
         EXPECT_NEAR(mean, ref, 0.02 * ref + kSigmas * se) << where;
         EXPECT_NEAR(mean, ref, delta + kSigmas * se) << where;
-        EXPECT_LT(se, 0.01 * ref) << where << ": the error bar must be small for 2 % to mean something";
+        EXPECT_LT(se, 0.01 * ref) << where
+                                  << ": the error bar must be small for 2 % to mean something";
       }
     }
     EXPECT_GE(walls, 5);  // floor, ceiling, back, left and right walls, and block faces
@@ -121,7 +126,8 @@ TEST_F(CornellBox, StatisticalCookTorranceModeMatchesRadiosity) {
   TwoPassSettings s;
   s.width = s.height = kSize;
   s.samplesPerPixel = 64;
-  expectAgreement(renderTwoPass(shading, *s_scene->camera, radiosityLighting(*s_fine), s), "cook-torrance");
+  expectAgreement(renderTwoPass(shading, *s_scene->camera, radiosityLighting(*s_fine), s),
+                  "cook-torrance");
 }
 
 TEST_F(CornellBox, StatisticalPhongModeMatchesRadiosity) {
@@ -162,9 +168,11 @@ TEST_F(CornellBox, SmoothKeepsEverySurfaceMean) {
   is.width = is.height = 2 * kSize;
   is.samplesPerAxis = 1;
   const std::vector<bool> oneSided(s_scene->surfaces.size(), false);
-  const RadianceImage flat = renderRadiosity(s_fine->mesh, *s_fine->rays, *s_scene->camera, s_fine->radiosity, oneSided, is);
+  const RadianceImage flat = renderRadiosity(s_fine->mesh, *s_fine->rays, *s_scene->camera,
+                                             s_fine->radiosity, oneSided, is);
   is.smooth = true;
-  const RadianceImage smooth = renderRadiosity(s_fine->mesh, *s_fine->rays, *s_scene->camera, s_fine->radiosity, oneSided, is);
+  const RadianceImage smooth = renderRadiosity(s_fine->mesh, *s_fine->rays, *s_scene->camera,
+                                               s_fine->radiosity, oneSided, is);
   const std::size_t surfaces = s_scene->surfaces.size();
   std::vector<Vec3> f(surfaces), m(surfaces);
   std::vector<int> n(surfaces, 0);
@@ -178,7 +186,8 @@ TEST_F(CornellBox, SmoothKeepsEverySurfaceMean) {
     if (n[s] < 40) continue;
     ++checked;
     for (int c = 0; c < 3; ++c)
-      EXPECT_NEAR(m[s][c], f[s][c], 0.01 * f[s][c]) << s_scene->surfaces[s].name << " channel " << c;
+      EXPECT_NEAR(m[s][c], f[s][c], 0.01 * f[s][c])
+          << s_scene->surfaces[s].name << " channel " << c;
   }
   EXPECT_GE(checked, 7);
 }

@@ -16,7 +16,8 @@ TEST(HdrIo, ExactPfmRoundTrip) {
   RadianceImage img;
   img.width = 3;
   img.height = 2;
-  img.radiance = {{0, 1, 2}, {0.5, 1e-3, 1e4}, {3, 4, 5}, {6, 7, 8}, {0.25, 0.125, 9}, {1e-8, 100, 0}};
+  img.radiance = {{0, 1, 2}, {0.5, 1e-3, 1e4}, {3, 4, 5},
+                  {6, 7, 8}, {0.25, 0.125, 9}, {1e-8, 100, 0}};
   writePfm(dir.path("a.pfm"), img);
   RadianceImage back = readPfm(dir.path("a.pfm"));
   ASSERT_EQ(back.width, 3);
@@ -37,7 +38,7 @@ TEST(HdrIo, ExactPfmRoundTrip) {
 TEST(HdrIo, ExactFilmicCurve) {
   EXPECT_EQ(acesFilmic(0), 0);
   EXPECT_NEAR(acesFilmic(1), (2.51 + 0.03) / (2.43 + 0.59 + 0.14), 1e-15);  // 0.80380...
-  EXPECT_EQ(acesFilmic(1e6), 1);  // clamped
+  EXPECT_EQ(acesFilmic(1e6), 1);                                            // clamped
   double previous = 0;
   for (double x = 0.01; x < 7; x *= 1.3) {  // monotone below its clamp at x ≈ 7.24
     EXPECT_GT(acesFilmic(x), previous);
@@ -49,7 +50,8 @@ TEST(HdrIo, ExactFilmicCurve) {
   img.patch = {0};
   Canvas srgb = toneMapCurve(img, 1, ToneCurve::Srgb), ref = toneMap(img, 1);
   EXPECT_EQ(srgb.at(0, 0).r, ref.at(0, 0).r);
-  EXPECT_EQ(toneMapCurve(img, 1, ToneCurve::Filmic).at(0, 0).b, std::lround(255 * srgbEncode(acesFilmic(3))));
+  EXPECT_EQ(toneMapCurve(img, 1, ToneCurve::Filmic).at(0, 0).b,
+            std::lround(255 * srgbEncode(acesFilmic(3))));
 }
 
 }  // namespace

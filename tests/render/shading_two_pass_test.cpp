@@ -41,11 +41,15 @@ TEST_F(TwoPass, Construct) {
 }
 
 TEST_F(TwoPass, ConstructSubstitutions) {
-  const Material ct = makeMaterial("ct", "cook-torrance", "roughness=0.5");  // α = 0.25: n = 2/α² − 2 = 30
-  EXPECT_NE(makeShadingBsdf(ct, {}, GlossyModel::Phong)->describe().find("n=30"), std::string::npos);
+  const Material ct =
+      makeMaterial("ct", "cook-torrance", "roughness=0.5");  // α = 0.25: n = 2/α² − 2 = 30
+  EXPECT_NE(makeShadingBsdf(ct, {}, GlossyModel::Phong)->describe().find("n=30"),
+            std::string::npos);
   const Material phong = makeMaterial("phong", "phong", "shininess=30");  // α = √(2/32) = 0.25
-  EXPECT_NE(makeShadingBsdf(phong, {}, GlossyModel::CookTorrance)->describe().find("alpha=0.25"), std::string::npos);
-  EXPECT_NE(makeShadingBsdf(phong, {}, GlossyModel::AsDeclared)->describe().find("phong"), std::string::npos);
+  EXPECT_NE(makeShadingBsdf(phong, {}, GlossyModel::CookTorrance)->describe().find("alpha=0.25"),
+            std::string::npos);
+  EXPECT_NE(makeShadingBsdf(phong, {}, GlossyModel::AsDeclared)->describe().find("phong"),
+            std::string::npos);
 }
 
 }  // namespace

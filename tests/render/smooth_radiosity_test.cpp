@@ -30,8 +30,8 @@ std::vector<Vec3> constantPerFace(const PatchMesh& mesh) {
 }
 
 /// Pixels (centre samples) whose smooth radiance differs from their patch's flat value.
-int pixelsOffTheirFace(const Scene& scene, const PatchMesh& mesh, const std::vector<Vec3>& b, double creaseDeg,
-                       int& seen) {
+int pixelsOffTheirFace(const Scene& scene, const PatchMesh& mesh, const std::vector<Vec3>& b,
+                       double creaseDeg, int& seen) {
   RayScene rays(mesh);
   ImageSettings s;
   s.width = s.height = 96;
@@ -39,7 +39,8 @@ int pixelsOffTheirFace(const Scene& scene, const PatchMesh& mesh, const std::vec
   s.smooth = true;
   s.smoothing.creaseAngleDeg = creaseDeg;
   s.smoothing.relativeError = 1e9;  // no jump test: creases alone must keep the faces apart
-  const RadianceImage img = renderRadiosity(mesh, rays, *scene.camera, b, std::vector<bool>(scene.surfaces.size(), true), s);
+  const RadianceImage img = renderRadiosity(mesh, rays, *scene.camera, b,
+                                            std::vector<bool>(scene.surfaces.size(), true), s);
   int off = 0;
   seen = 0;
   for (std::size_t k = 0; k < img.radiance.size(); ++k) {
@@ -69,7 +70,8 @@ PatchMesh grid(int n) {
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
       Patch p;
-      p.vertex = {y * (n + 1) + x, y * (n + 1) + x + 1, (y + 1) * (n + 1) + x + 1, (y + 1) * (n + 1) + x};
+      p.vertex = {y * (n + 1) + x, y * (n + 1) + x + 1, (y + 1) * (n + 1) + x + 1,
+                  (y + 1) * (n + 1) + x};
       p.vertexCount = 4;
       p.surface = 0;
       computePatchGeometry(m.vertices, p);
@@ -83,8 +85,8 @@ TEST(SmoothRadiosity, CornerValuesForTheViewerKeepCreasesSurfacesAndJumps) {
   // Square A (z = 0) shares an edge with the coplanar square B and another with C, folded up
   // by 90°. A's corners on B's edge average A and B (equal areas) while they are one
   // surface and agree; its corners on the crease keep A's value.
-  const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0},
-                                    {2, 1, 0}, {0, 1, 1}, {0, 0, 1}};
+  const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                    {2, 0, 0}, {2, 1, 0}, {0, 1, 1}, {0, 0, 1}};
   const std::vector<std::vector<int>> polygons = {{0, 1, 2, 3}, {1, 4, 5, 2}, {0, 3, 6, 7}};
   auto cornersOfA = [&](std::vector<int> surface, std::vector<double> b) {
     const std::vector<double> c = smoothCornerValues(points, polygons, surface, b);
@@ -97,11 +99,12 @@ TEST(SmoothRadiosity, CornerValuesForTheViewerKeepCreasesSurfacesAndJumps) {
   EXPECT_NEAR(blended[2], 1.05, 1e-15);
   EXPECT_NEAR(blended[3], 1, 1e-15);
   // B on another surface, or B far brighter than the error explains: A stays flat.
-  for (const std::vector<double>& c : {cornersOfA({0, 1, 0}, {1, 1.1, 1.05}), cornersOfA({0, 0, 0}, {1, 5, 1.05})})
+  for (const std::vector<double>& c :
+       {cornersOfA({0, 1, 0}, {1, 1.1, 1.05}), cornersOfA({0, 0, 0}, {1, 5, 1.05})})
     for (double v : c) EXPECT_NEAR(v, 1, 1e-15);
   // Colours follow the same rule (the grey overload is the Vec3 one's x).
-  const std::vector<Vec3> colour =
-      smoothCornerValues(points, polygons, {0, 0, 0}, {Vec3{1, 1, 1}, Vec3{1.1, 1.1, 1.1}, Vec3{1.05, 1.05, 1.05}});
+  const std::vector<Vec3> colour = smoothCornerValues(
+      points, polygons, {0, 0, 0}, {Vec3{1, 1, 1}, Vec3{1.1, 1.1, 1.1}, Vec3{1.05, 1.05, 1.05}});
   EXPECT_NEAR(colour[1].y, 1.05, 1e-15);
   EXPECT_NEAR(colour[0].y, 1, 1e-15);
 }
@@ -118,7 +121,8 @@ TEST(SmoothRadiosity, ReproducesALinearRampInside) {
   SmoothRadiosity smooth(m, b);
   for (int i = 0; i < m.size(); ++i) {
     const Vec3 c = m.patches[i].centroid;
-    if (c.x < 1 || c.y < 1 || c.x > n - 1 || c.y > n - 1) continue;  // boundary corners see fewer patches
+    if (c.x < 1 || c.y < 1 || c.x > n - 1 || c.y > n - 1)
+      continue;  // boundary corners see fewer patches
     for (const Vec3& x : {c, c + Vec3{0.3, -0.4, 0}, c + Vec3{-0.5, 0.5, 0}})
       EXPECT_NEAR(smooth.at(i, x).y, ramp(x), 1e-12) << "patch " << i;
   }

@@ -9,10 +9,14 @@ namespace radkit::test {
 
 std::string storageLabel(Storage s) {
   switch (s) {
-    case Storage::DenseDouble: return "dense-double";
-    case Storage::DenseFloat: return "dense-float";
-    case Storage::CsrDouble: return "csr-double";
-    default: return "csr-float";
+    case Storage::DenseDouble:
+      return "dense-double";
+    case Storage::DenseFloat:
+      return "dense-float";
+    case Storage::CsrDouble:
+      return "csr-double";
+    default:
+      return "csr-float";
   }
 }
 
@@ -50,10 +54,18 @@ Problem makeProblem(const std::vector<double>& f, std::vector<double> area, Chan
   if (f.size() != std::size_t(n) * n) throw std::invalid_argument("makeProblem: F size");
   Problem p;
   switch (s) {
-    case Storage::DenseDouble: p.f = std::make_shared<FormFactorMatrix>(dense<double>(f, n)); break;
-    case Storage::DenseFloat: p.f = std::make_shared<FormFactorMatrix>(dense<float>(f, n)); break;
-    case Storage::CsrDouble: p.f = std::make_shared<FormFactorMatrix>(csr<double>(f, n)); break;
-    case Storage::CsrFloat: p.f = std::make_shared<FormFactorMatrix>(csr<float>(f, n)); break;
+    case Storage::DenseDouble:
+      p.f = std::make_shared<FormFactorMatrix>(dense<double>(f, n));
+      break;
+    case Storage::DenseFloat:
+      p.f = std::make_shared<FormFactorMatrix>(dense<float>(f, n));
+      break;
+    case Storage::CsrDouble:
+      p.f = std::make_shared<FormFactorMatrix>(csr<double>(f, n));
+      break;
+    case Storage::CsrFloat:
+      p.f = std::make_shared<FormFactorMatrix>(csr<float>(f, n));
+      break;
   }
   p.system.formFactors = p.f.get();
   p.system.area = std::move(area);
@@ -89,7 +101,8 @@ Problem randomReciprocal(int n, unsigned seed, Storage s) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<double> sym(std::size_t(n) * n, 0.0), area(n);
   for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j) sym[std::size_t(i) * n + j] = sym[std::size_t(j) * n + i] = unit(rng);
+    for (int j = i + 1; j < n; ++j)
+      sym[std::size_t(i) * n + j] = sym[std::size_t(j) * n + i] = unit(rng);
   for (double& a : area) a = 0.5 + 1.5 * unit(rng);
   double largest = 0.0;
   for (int i = 0; i < n; ++i) {
@@ -100,7 +113,8 @@ Problem randomReciprocal(int n, unsigned seed, Storage s) {
   const double c = 0.98 / largest;  // one common factor keeps A_i F_ij = c S_ij symmetric
   std::vector<double> f(sym.size());
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) f[std::size_t(i) * n + j] = c * sym[std::size_t(i) * n + j] / area[i];
+    for (int j = 0; j < n; ++j)
+      f[std::size_t(i) * n + j] = c * sym[std::size_t(i) * n + j] / area[i];
   Channels rho = makeChannels(n), e = makeChannels(n);
   for (int i = 0; i < n; ++i)
     for (int ch = 0; ch < 3; ++ch) {
@@ -117,9 +131,8 @@ Channels directSolve(const RadiositySystem& system) {
     std::vector<long double> a(std::size_t(n) * (n + 1));
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
-        const long double fij =
-            std::visit([&](const auto& m) { return static_cast<long double>(m(i, j)); },
-                       system.matrix());
+        const long double fij = std::visit(
+            [&](const auto& m) { return static_cast<long double>(m(i, j)); }, system.matrix());
         a[std::size_t(i) * (n + 1) + j] = (i == j ? 1.0L : 0.0L) - system.reflectance[c][i] * fij;
       }
       a[std::size_t(i) * (n + 1) + n] = system.emission[c][i];

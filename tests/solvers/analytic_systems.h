@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "solvers/registry.h"
 #include "solvers/radiosity_system.h"
+#include "solvers/registry.h"
 
 namespace radkit::test {
 
@@ -69,8 +69,8 @@ inline SolveResult runSolver(const std::string& name, const RadiositySystem& sys
 inline Problem cubeOneEmitter(double rho, Storage s = Storage::DenseDouble) {
   std::vector<double> e(6, 0.0);
   e[0] = 1.0;
-  return makeProblem(cubeFormFactors(), std::vector<double>(6, 1.0), grey(std::vector<double>(6, rho)),
-                     grey(e), s);
+  return makeProblem(cubeFormFactors(), std::vector<double>(6, 1.0),
+                     grey(std::vector<double>(6, rho)), grey(e), s);
 }
 
 /// Ten equal patches of a sphere interior, ρ = 0.7, E = (1, 0, ..., 0).

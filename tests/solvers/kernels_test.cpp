@@ -11,7 +11,9 @@ using namespace radkit::test;
 TEST(Kernels, Construct) {
   const Channels x = makeChannels(4, 2.5);
   for (const auto& channel : x) EXPECT_EQ(channel, std::vector<double>(4, 2.5));
-  EXPECT_EQ(maxAbs({std::vector<double>{1, -3}, std::vector<double>{2, 0}, std::vector<double>{0, 0}}), 3.0);
+  EXPECT_EQ(
+      maxAbs({std::vector<double>{1, -3}, std::vector<double>{2, 0}, std::vector<double>{0, 0}}),
+      3.0);
 }
 
 // y = F x on every storage against a naive long-double product; sizes straddle the serial and
@@ -33,7 +35,8 @@ TEST(Kernels, ExactMultiplyEveryStorage) {
         for (int i = 0; i < n; ++i) {
           long double expect = 0;
           for (int j = 0; j < n; ++j)
-            expect += std::visit([&](const auto& m) { return (long double)m(i, j); }, *p.f) * x[c][j];
+            expect +=
+                std::visit([&](const auto& m) { return (long double)m(i, j); }, *p.f) * x[c][j];
           EXPECT_NEAR(y[c][i], double(expect), 1e-13 * n) << storageLabel(s) << " n " << n;
         }
     }
@@ -79,8 +82,11 @@ TEST(Kernels, ExactRowGroupsMatchSingleRows) {
     });
     EXPECT_EQ(visited, rowEnd - rowBegin);
   };
-  for (auto [rowBegin, rowEnd, begin, end] :
-       {std::array<int, 4>{0, 23, 0, 23}, {1, 22, 3, 20}, {5, 8, 0, 7}, {2, 2, 0, 23}, {0, 16, 9, 9}}) {
+  for (auto [rowBegin, rowEnd, begin, end] : {std::array<int, 4>{0, 23, 0, 23},
+                                              {1, 22, 3, 20},
+                                              {5, 8, 0, 7},
+                                              {2, 2, 0, 23},
+                                              {0, 16, 9, 9}}) {
     check(d, rowBegin, rowEnd, begin, end);
     check(f, rowBegin, rowEnd, begin, end);
   }
@@ -93,7 +99,8 @@ TEST(Kernels, ExactDotIsDeterministic) {
     b[i] = std::cos(0.5 * double(i));
   }
   const double first = dot(a, b);
-  for (int k = 0; k < 5; ++k) EXPECT_EQ(std::memcmp(&first, &(const double&)dot(a, b), sizeof first), 0);
+  for (int k = 0; k < 5; ++k)
+    EXPECT_EQ(std::memcmp(&first, &(const double&)dot(a, b), sizeof first), 0);
   long double naive = 0;
   for (std::size_t i = 0; i < a.size(); ++i) naive += (long double)a[i] * b[i];
   EXPECT_NEAR(first, double(naive), 1e-10);

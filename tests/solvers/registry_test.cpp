@@ -23,7 +23,8 @@ TEST(Registry, Construct) {
     FAIL() << "unknown name accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("jacobi, gauss-seidel, sor, southwell, cg"),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(makeSolver("jacobi", SolverParams({{"omega", 1.0}})), std::invalid_argument);
 }
@@ -38,7 +39,8 @@ TEST(Registry, ExactSameBitsForOneAndTwoThreads) {
     tbb::task_arena(2).execute([&] { two = runSolver(name, p.system, 1e-11); });
     EXPECT_EQ(one.iterations, two.iterations) << name;
     for (int c = 0; c < 3; ++c)
-      EXPECT_EQ(0, std::memcmp(one.radiosity[c].data(), two.radiosity[c].data(), 400 * sizeof(double)))
+      EXPECT_EQ(0,
+                std::memcmp(one.radiosity[c].data(), two.radiosity[c].data(), 400 * sizeof(double)))
           << name;
   }
 }
@@ -53,7 +55,8 @@ TEST(Registry, ExactFurnaceEveryStorage) {
     const double bound = 2 * tol / (1 - rho) + (isFloat ? rho * FLT_EPSILON / (1 - rho) : 1e-14);
     std::vector<Problem> problems;
     problems.push_back(makeProblem(cubeFormFactors(), std::vector<double>(6, 1.0),
-                                   grey(std::vector<double>(6, rho)), grey(std::vector<double>(6, 1.0)), s));
+                                   grey(std::vector<double>(6, rho)),
+                                   grey(std::vector<double>(6, 1.0)), s));
     problems.push_back(makeProblem(sphereFormFactors(area), area, grey(std::vector<double>(7, rho)),
                                    grey(std::vector<double>(7, 1.0)), s));
     for (const Problem& p : problems)
@@ -71,7 +74,8 @@ TEST(Registry, ExactEnergyBalanceClosedEnclosure) {
   const std::vector<double> area = {0.3, 1.0, 2.5, 0.7, 4.0, 1.1};
   const std::vector<double> e = {0.0, 2.0, 0.0, 0.5, 0.0, 1.0};
   const double rho = 0.6;
-  Problem p = makeProblem(sphereFormFactors(area), area, grey(std::vector<double>(6, rho)), grey(e));
+  Problem p =
+      makeProblem(sphereFormFactors(area), area, grey(std::vector<double>(6, rho)), grey(e));
   double emitted = 0.0;
   for (int i = 0; i < 6; ++i) emitted += area[i] * e[i];
   for (const std::string& name : solverNames()) {
@@ -161,9 +165,11 @@ TEST(Registry, ExactFloatAndDoubleAccuracyFloors) {
     e[3] = 1.0;
     e[17] = 0.25;
     const Channels direct = directSolve(
-        makeProblem(sphereFormFactors(area), area, grey(std::vector<double>(40, rho)), grey(e)).system);
+        makeProblem(sphereFormFactors(area), area, grey(std::vector<double>(40, rho)), grey(e))
+            .system);
     for (Storage s : kAllStorages) {
-      Problem p = makeProblem(sphereFormFactors(area), area, grey(std::vector<double>(40, rho)), grey(e), s);
+      Problem p = makeProblem(sphereFormFactors(area), area, grey(std::vector<double>(40, rho)),
+                              grey(e), s);
       const SolveResult r = runSolver("gauss-seidel", p.system, 1e-14);
       const double err = relativeError(r.radiosity, direct);
       const bool isFloat = s == Storage::DenseFloat || s == Storage::CsrFloat;

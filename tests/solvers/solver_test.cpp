@@ -28,7 +28,8 @@ TEST(Solve, ExactMaxIterationsSaysNotConvergedAndWhy) {
     EXPECT_FALSE(r.converged) << name;
     EXPECT_EQ(r.iterations, 3) << name;
     EXPECT_EQ(r.history.size(), 4u) << name;  // iteration 0 and three steps
-    EXPECT_NE(r.reason.find("not converged: maximum iterations (3)"), std::string::npos) << r.reason;
+    EXPECT_NE(r.reason.find("not converged: maximum iterations (3)"), std::string::npos)
+        << r.reason;
   }
 }
 
@@ -117,15 +118,16 @@ TEST(Solve, ExactHistoryIsDecimatedLogarithmically) {
   ASSERT_GT(r.iterations, 100000);
   EXPECT_LT(r.history.size(), 1000u + 900u * 3 + 20u) << r.iterations << " iterations";
   for (std::size_t k = 0; k < 1000; ++k) EXPECT_EQ(r.history[k].iteration, long(k));
-  for (std::size_t k = 1; k < r.history.size(); ++k) EXPECT_GT(r.history[k].iteration, r.history[k - 1].iteration);
+  for (std::size_t k = 1; k < r.history.size(); ++k)
+    EXPECT_GT(r.history[k].iteration, r.history[k - 1].iteration);
   EXPECT_EQ(r.history.back().iteration, r.iterations);
   EXPECT_EQ(r.history.back().residual, r.residual);
   // Milestones at powers of ten stay exact: one iteration earlier the residual was above.
   const Milestone m = milestones(r, {1e-6})[0];
   ASSERT_TRUE(m.reached);
   ASSERT_GT(m.iterations, 1000);
-  const SolveResult before = runSolver("jacobi", cubeOneEmitter(0.9999).system, 1e-9, ResidualNorm::Relative,
-                                       m.iterations - 1);
+  const SolveResult before = runSolver("jacobi", cubeOneEmitter(0.9999).system, 1e-9,
+                                       ResidualNorm::Relative, m.iterations - 1);
   EXPECT_GT(before.residual, 1e-6);
 }
 
@@ -144,7 +146,8 @@ TEST(Solve, ExactNearSingularClosedBoxStopsWithAReason) {
     EXPECT_LE(r.iterations, settings.maxIterations) << name;
     // 1000 rows, 900 per further decade of iterations (at most 6 up to 1e8), the residual's
     // decades and the last row.
-    EXPECT_LT(r.history.size(), 1000u + 900u * 6 + 40u) << name << ": " << r.iterations << " iterations";
+    EXPECT_LT(r.history.size(), 1000u + 900u * 6 + 40u)
+        << name << ": " << r.iterations << " iterations";
     if (r.iterations > 2 * kRateWindowSweeps && name == "jacobi") {
       EXPECT_NEAR(r.spectralRadius, 0.999999, 1e-6);
     }

@@ -13,7 +13,7 @@ TEST(SouthwellSolver, Construct) {
   Problem p = tenPatchSphere();
   solver->start(p.system, SolverSettings{});
   EXPECT_EQ(solver->radiosity(), p.system.emission);  // progressive refinement starts at B = E
-  EXPECT_DOUBLE_EQ(solver->unshotPower(), 3.0);        // A·ΔB summed over channels
+  EXPECT_DOUBLE_EQ(solver->unshotPower(), 3.0);       // A·ΔB summed over channels
 }
 
 TEST(SouthwellSolver, ExactSphere) {

@@ -102,11 +102,14 @@ TEST_F(RunFolderTest, OptionalFilesMayBeMissing) {
 }
 
 TEST_F(RunFolderTest, MissingRequiredFilesAreNamed) {
-  EXPECT_NE(inputError([&] { readRunFolder(file("nowhere")); }).find("nowhere: no such run folder"), std::string::npos);
+  EXPECT_NE(inputError([&] { readRunFolder(file("nowhere")); }).find("nowhere: no such run folder"),
+            std::string::npos);
   std::filesystem::remove(file("radiosity.vtp"));
-  EXPECT_NE(inputError([&] { readRunFolder(folder()); }).find("radiosity.vtp: missing"), std::string::npos);
+  EXPECT_NE(inputError([&] { readRunFolder(folder()); }).find("radiosity.vtp: missing"),
+            std::string::npos);
   std::filesystem::remove(file("report.json"));
-  EXPECT_NE(inputError([&] { readRunFolder(folder()); }).find("report.json: cannot be opened"), std::string::npos);
+  EXPECT_NE(inputError([&] { readRunFolder(folder()); }).find("report.json: cannot be opened"),
+            std::string::npos);
 }
 
 TEST_F(RunFolderTest, MalformedFilesNameFileAndLine) {
@@ -116,25 +119,33 @@ TEST_F(RunFolderTest, MalformedFilesNameFileAndLine) {
     test::writeTestRun(folder());  // repair for the next case
     return e;
   };
-  EXPECT_NE(errorAfter("formfactors.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 1\n4 1 0.5\n")
+  EXPECT_NE(errorAfter("formfactors.mtx",
+                       "%%MatrixMarket matrix coordinate real general\n3 3 1\n4 1 0.5\n")
                 .find("formfactors.mtx:3: expected 'row column value'"),
             std::string::npos);
   EXPECT_NE(errorAfter("formfactors.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 0\n")
                 .find("is 2×2 but radiosity.vtp has 3 patches"),
             std::string::npos);
   EXPECT_NE(errorAfter("formfactors.mtx", "hello\n").find("formfactors.mtx:1"), std::string::npos);
-  EXPECT_NE(errorAfter("convergence.csv", "solver,iteration,seconds,residual,unshot_power\njacobi,0,0,x,1\n")
+  EXPECT_NE(errorAfter("convergence.csv",
+                       "solver,iteration,seconds,residual,unshot_power\njacobi,0,0,x,1\n")
                 .find("convergence.csv:2: column 'residual': 'x' is not a number"),
             std::string::npos);
-  EXPECT_NE(errorAfter("convergence.csv", "solver,iteration\n").find("convergence.csv: header has no column 'seconds'"),
+  EXPECT_NE(errorAfter("convergence.csv", "solver,iteration\n")
+                .find("convergence.csv: header has no column 'seconds'"),
             std::string::npos);
-  EXPECT_NE(errorAfter("surfaces.csv", "surface,area,b_r,b_g,b_b\nfloor,1,2\n").find("surfaces.csv:2: 3 fields"),
+  EXPECT_NE(errorAfter("surfaces.csv", "surface,area,b_r,b_g,b_b\nfloor,1,2\n")
+                .find("surfaces.csv:2: 3 fields"),
             std::string::npos);
-  EXPECT_NE(errorAfter("report.json", "{\"scene\": ").find("report.json: is not valid JSON"), std::string::npos);
-  EXPECT_NE(errorAfter("report.json", "{}").find("report.json: has no \"scene\" object"), std::string::npos);
-  EXPECT_NE(errorAfter("report.json", R"({"scene": {"surfaces": ["only one"]}})").find("surface index 1"),
+  EXPECT_NE(errorAfter("report.json", "{\"scene\": ").find("report.json: is not valid JSON"),
             std::string::npos);
-  EXPECT_NE(errorAfter("radiosity.vtp", "<VTKFile type=\"PolyData\"><broken").find("radiosity.vtp: not a readable"),
+  EXPECT_NE(errorAfter("report.json", "{}").find("report.json: has no \"scene\" object"),
+            std::string::npos);
+  EXPECT_NE(
+      errorAfter("report.json", R"({"scene": {"surfaces": ["only one"]}})").find("surface index 1"),
+      std::string::npos);
+  EXPECT_NE(errorAfter("radiosity.vtp", "<VTKFile type=\"PolyData\"><broken")
+                .find("radiosity.vtp: not a readable"),
             std::string::npos);
 }
 
@@ -148,16 +159,21 @@ TEST_F(RunFolderTest, HostileCountsAreRefusedBeforeAllocating) {
     return e;
   };
   for (const char* size : {"3 3 4000000000", "2000000000 2000000000 1", "3 3 10"}) {
-    const std::string e =
-        errorAfter("formfactors.mtx", std::string("%%MatrixMarket matrix coordinate real general\n") + size + "\n1 1 0.5\n");
-    EXPECT_NE(e.find("formfactors.mtx:2: the size line says"), std::string::npos) << size << ": " << e;
+    const std::string e = errorAfter(
+        "formfactors.mtx",
+        std::string("%%MatrixMarket matrix coordinate real general\n") + size + "\n1 1 0.5\n");
+    EXPECT_NE(e.find("formfactors.mtx:2: the size line says"), std::string::npos)
+        << size << ": " << e;
   }
   for (const char* iteration : {"nan", "1e20", "-1"}) {
-    const std::string e = errorAfter("convergence.csv", std::string("solver,iteration,seconds,residual,unshot_power\n"
-                                                                     "jacobi,") + iteration + ",0,1,1\n");
+    const std::string e =
+        errorAfter("convergence.csv", std::string("solver,iteration,seconds,residual,unshot_power\n"
+                                                  "jacobi,") +
+                                          iteration + ",0,1,1\n");
     EXPECT_NE(e.find("convergence.csv:2: column 'iteration': '" + std::string(iteration) +
                      "' is not an iteration count >= 0"),
-              std::string::npos) << e;
+              std::string::npos)
+        << e;
   }
 }
 
@@ -184,9 +200,9 @@ TEST(FormFactorBinary, RoundTripsAndPrefersTheBinary) {
   radkit::test::TempDir dir;
   const int n = 5;
   DenseMatrix<double> m(n);
-  m(0, 3) = 0.25;                                     // sparse row
+  m(0, 3) = 0.25;                                       // sparse row
   for (int j = 0; j < n; ++j) m(2, j) = 0.1 * (j + 1);  // dense row
-  m(4, 0) = 1.0 / 3;                                  // row 1 and 3 empty
+  m(4, 0) = 1.0 / 3;                                    // row 1 and 3 empty
   const FormFactorMatrix f = m;
   writeFormFactorBinary(dir.path("formfactors.bin"), f);
   writeMatrixMarket(dir.path("formfactors.mtx"), f, {"test"});
@@ -195,7 +211,8 @@ TEST(FormFactorBinary, RoundTripsAndPrefersTheBinary) {
   ASSERT_EQ(bin.n, n);
   ASSERT_EQ(bin.rowStart, mtx.rowStart);
   ASSERT_EQ(bin.column, mtx.column);
-  for (std::size_t k = 0; k < bin.value.size(); ++k) EXPECT_FLOAT_EQ(float(bin.value[k]), float(mtx.value[k]));
+  for (std::size_t k = 0; k < bin.value.size(); ++k)
+    EXPECT_FLOAT_EQ(float(bin.value[k]), float(mtx.value[k]));
   EXPECT_EQ(bin.row(2)[4], float(0.5));
   EXPECT_FALSE(std::filesystem::exists(dir.path("formfactors.bin.tmp")));
 
@@ -205,7 +222,8 @@ TEST(FormFactorBinary, RoundTripsAndPrefersTheBinary) {
     readFormFactorsBin(dir.path("formfactors.bin"));
     ADD_FAILURE() << "a truncated file was read";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("formfactors.bin: ends inside"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("formfactors.bin: ends inside"), std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("Fix:"), std::string::npos) << e.what();
   }
 }

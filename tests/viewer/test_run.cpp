@@ -10,7 +10,8 @@
 namespace radkit::viewer::test {
 
 const Vec3 TestRun::kRadiosity[3] = {{0.9, 0.1, 0.08}, {0.6, 0.07, 0.05}, {0.1, 0.8, 0.12}};
-const double TestRun::kFormFactors[3][3] = {{0, 0.25, 0.125}, {0.25, 0, 0.0625}, {0.125, 0.0625, 0}};
+const double TestRun::kFormFactors[3][3] = {
+    {0, 0.25, 0.125}, {0.25, 0, 0.0625}, {0.125, 0.0625, 0}};
 
 namespace {
 
@@ -59,15 +60,18 @@ void writeTestRun(const std::string& folder, bool rightFacesAway) {
   mtx << "%%MatrixMarket matrix coordinate real general\n% test\n3 3 6\n";
   for (int j = 0; j < 3; ++j)  // column order: the reader must not rely on row order
     for (int i = 0; i < 3; ++i)
-      if (TestRun::kFormFactors[i][j] > 0) mtx << i + 1 << ' ' << j + 1 << ' ' << TestRun::kFormFactors[i][j] << '\n';
-  std::ofstream(folder + "/convergence.csv") << "solver,iteration,seconds,residual,unshot_power\n"
-                                                "jacobi,0,0.001,0.5,0.2\njacobi,1,0.002,0.05,0.1\n"
-                                                "jacobi,2,0.003,0.005,0.05\njacobi,3,0.004,0.0005,0.02\n"
-                                                "gauss-seidel,0,0.001,0.3,0.2\ngauss-seidel,1,0.002,0.01,0.1\n"
-                                                "gauss-seidel,2,0.003,0.0002,0.01\n";
-  std::ofstream(folder + "/surfaces.csv") << "surface,area,b_r,b_g,b_b,luminance_cd_m2,illuminance_lux\n"
-                                             "left wall,0.95,0.75,0.085,0.065,30.5,100.25\n"
-                                             "\"right wall\",0.95,0.1,0.8,0.12,140,300\n";
+      if (TestRun::kFormFactors[i][j] > 0)
+        mtx << i + 1 << ' ' << j + 1 << ' ' << TestRun::kFormFactors[i][j] << '\n';
+  std::ofstream(folder + "/convergence.csv")
+      << "solver,iteration,seconds,residual,unshot_power\n"
+         "jacobi,0,0.001,0.5,0.2\njacobi,1,0.002,0.05,0.1\n"
+         "jacobi,2,0.003,0.005,0.05\njacobi,3,0.004,0.0005,0.02\n"
+         "gauss-seidel,0,0.001,0.3,0.2\ngauss-seidel,1,0.002,0.01,0.1\n"
+         "gauss-seidel,2,0.003,0.0002,0.01\n";
+  std::ofstream(folder + "/surfaces.csv")
+      << "surface,area,b_r,b_g,b_b,luminance_cd_m2,illuminance_lux\n"
+         "left wall,0.95,0.75,0.085,0.065,30.5,100.25\n"
+         "\"right wall\",0.95,0.1,0.8,0.12,140,300\n";
 }
 
 void projectToPixel(const Vec3& p, int width, int height, double& x, double& y) {

@@ -32,8 +32,10 @@ TEST(ViewSettings, ParsesModesAndChannels) {
 }
 
 TEST(ViewSettings, TrueColourIsExposedSrgbOfRadiance) {
-  // L = B/π; sRGB (IEC 61966-2-1): 1 -> 255, 0.5 -> 0.7354 -> 188, 0.002 (linear part) -> 0.02584 -> 7.
-  EXPECT_EQ(trueColour({M_PI, M_PI / 2, 0.002 * M_PI}, 1), (std::array<std::uint8_t, 3>{255, 188, 7}));
+  // L = B/π; sRGB (IEC 61966-2-1): 1 -> 255, 0.5 -> 0.7354 -> 188, 0.002 (linear part) -> 0.02584
+  // -> 7.
+  EXPECT_EQ(trueColour({M_PI, M_PI / 2, 0.002 * M_PI}, 1),
+            (std::array<std::uint8_t, 3>{255, 188, 7}));
   EXPECT_EQ(trueColour({M_PI, M_PI, M_PI}, 0.5), trueColour({M_PI / 2, M_PI / 2, M_PI / 2}, 1));
   EXPECT_EQ(trueColour({100, 0, 0}, 1)[0], 255);  // clamped
 }
@@ -154,7 +156,8 @@ TEST(Viewer, BadInputFailsWithoutWriting) {
 /// `radkit view` on bad input: non-zero exit, a message naming what and how to fix it, no
 /// file. Skips until apps/ registers the view command in the radkit binary.
 TEST(ViewCommand, BadInputExitsNonZeroWithoutWriting) {
-  if (!std::filesystem::exists(RADKIT_BINARY) || radkit::test::runRadkit("view --help").exitCode != 0)
+  if (!std::filesystem::exists(RADKIT_BINARY) ||
+      radkit::test::runRadkit("view --help").exitCode != 0)
     GTEST_SKIP() << "radkit binary without the view command";
   radkit::test::TempDir dir;
   test::writeTestRun(dir.path(""));
@@ -163,11 +166,12 @@ TEST(ViewCommand, BadInputExitsNonZeroWithoutWriting) {
   struct Case {
     std::string args, message;
   };
-  for (const Case& c : {Case{"view '" + dir.path("nope") + "'" + shot, "no such run folder"},
-                        Case{"view " + run + shot + " --mode sideways", "unknown mode"},
-                        Case{"view " + run + shot + " --mode formfactors-row:99", "no such patch"},
-                        Case{"view " + run + shot + " --size 100", "WIDTHxHEIGHT"},
-                        Case{"view " + run + shot + " --channel q --mode false-colour", "unknown channel"}}) {
+  for (const Case& c :
+       {Case{"view '" + dir.path("nope") + "'" + shot, "no such run folder"},
+        Case{"view " + run + shot + " --mode sideways", "unknown mode"},
+        Case{"view " + run + shot + " --mode formfactors-row:99", "no such patch"},
+        Case{"view " + run + shot + " --size 100", "WIDTHxHEIGHT"},
+        Case{"view " + run + shot + " --channel q --mode false-colour", "unknown channel"}}) {
     const radkit::test::RunResult r = radkit::test::runRadkit(c.args);
     EXPECT_NE(r.exitCode, 0) << c.args;
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;

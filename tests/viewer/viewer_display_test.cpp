@@ -26,7 +26,8 @@ class ViewerDisplay : public ::testing::Test {
   void SetUp() override {
     const char* display = std::getenv("DISPLAY");
     if (!display || !*display) {
-      if (std::getenv("RADKIT_REQUIRE_DISPLAY")) FAIL() << "RADKIT_REQUIRE_DISPLAY is set but DISPLAY is not";
+      if (std::getenv("RADKIT_REQUIRE_DISPLAY"))
+        FAIL() << "RADKIT_REQUIRE_DISPLAY is set but DISPLAY is not";
       GTEST_SKIP() << "no X display (ctest runs these under xvfb-run as viewer_screenshots)";
     }
     test::writeTestRun(folder());
@@ -44,7 +45,8 @@ class ViewerDisplay : public ::testing::Test {
     o.smooth = smooth;
     const auto start = std::chrono::steady_clock::now();
     EXPECT_EQ(runViewer(o), 0);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_LT(seconds, 5.0) << mode << " took " << seconds << " s";
     EXPECT_FALSE(std::filesystem::exists(o.screenshot + ".tmp"));
     return readPng(o.screenshot);
@@ -83,7 +85,8 @@ Vec3 meanColour(const Canvas& c, double x, double y, int r = 4) {
 
 TEST_F(ViewerDisplay, EveryModeFillsAnImageOfTheRequestedSize) {
   const int w = 333, h = 222;  // odd sizes: exactly these, not a power of two or the screen
-  for (const std::string mode : {"radiosity", "false-colour", "formfactors-row:0", "matrix", "convergence"}) {
+  for (const std::string mode :
+       {"radiosity", "false-colour", "formfactors-row:0", "matrix", "convergence"}) {
     const Canvas c = shot(mode, w, h);
     ASSERT_EQ(c.width(), w) << mode;
     ASSERT_EQ(c.height(), h) << mode;
@@ -120,7 +123,8 @@ TEST_F(ViewerDisplay, MatrixOfAHierarchicalRunShowsItsLinksImage) {
     runViewer(o);
     FAIL() << "a links.png that is not a PNG should be refused";
   } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("links.png: not a PNG image"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("links.png: not a PNG image"), std::string::npos)
+        << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(o.screenshot));
   // Without either file the mode is refused, naming what is missing.
@@ -196,7 +200,8 @@ TEST_F(ViewerDisplay, BackOfAPatchIsNotDrawnOrPicked) {
 // as render.png does, and not through the back of the back wall.
 TEST_F(ViewerDisplay, RunWithoutCameraIsSeenThroughItsOpenSide) {
   for (bool plusZ : {true, false}) {
-    const Scene scene = loadScene(radkit::test::writeOpenBoxObj(m_dir, plusZ, plusZ ? "plus" : "minus"));
+    const Scene scene =
+        loadScene(radkit::test::writeOpenBoxObj(m_dir, plusZ, plusZ ? "plus" : "minus"));
     const PatchMesh mesh = subdivide(scene, {0, 100});
     const std::vector<Vec3> b(mesh.size(), Vec3{1, 1, 1});
     const std::string run = m_dir.path(plusZ ? "run-plus" : "run-minus");
@@ -215,7 +220,8 @@ TEST_F(ViewerDisplay, RunWithoutCameraIsSeenThroughItsOpenSide) {
       ASSERT_TRUE(cam.project(point, x, y));
       const int picked = pickPatchAt(run, w, h, int(x), int(y));
       ASSERT_GE(picked, 0) << "nothing under " << x << ", " << y;
-      EXPECT_EQ(mesh.patches[picked].surface, surface) << (plusZ ? "+z" : "-z") << " box, pixel " << x << ", " << y;
+      EXPECT_EQ(mesh.patches[picked].surface, surface)
+          << (plusZ ? "+z" : "-z") << " box, pixel " << x << ", " << y;
     }
   }
 }
