@@ -124,32 +124,6 @@ std::string csvField(const std::string& text) {
   return quoted + "\"";
 }
 
-void writeFileAtomically(const std::string& path, const std::string& text) {
-  // Renaming onto a folder fails only after the whole file is written, with an OS message.
-  if (fs::is_directory(path))
-    throw std::runtime_error(
-        path + " is a folder, not a file. Fix: give a file name inside it or another path");
-  std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out)
-      throw std::runtime_error("cannot write " + tmp +
-                               ". Fix: check that its folder exists and is writable");
-    out << text;
-    if (!out) {
-      out.close();
-      fs::remove(tmp);
-      throw std::runtime_error("error while writing " + tmp + " (disk full?)");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp);
-    throw std::runtime_error("cannot replace " + path + ": " + ec.message());
-  }
-}
-
 void writeFileStreaming(const std::string& path, const std::function<void(std::ostream&)>& write) {
   if (fs::is_directory(path))
     throw std::runtime_error(
@@ -183,6 +157,10 @@ void writeFileStreaming(const std::string& path, const std::function<void(std::o
     fs::remove(tmp);
     throw std::runtime_error("cannot replace " + path + ": " + ec.message());
   }
+}
+
+void writeFileAtomically(const std::string& path, const std::string& text) {
+  writeFileStreaming(path, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace radkit
