@@ -57,7 +57,8 @@ double BsdfParams::number(const std::string& key, double defaultValue) {
   const Value* v = find(key);
   if (!v) return defaultValue;
   if (v->isText || v->numbers.size() != 1 || !std::isfinite(v->numbers[0]))
-    throw BsdfParamError("\"" + key + "\" must be one finite number");
+    throw BsdfParamError("\"" + key +
+                         "\" must be one finite number. Fix: write it as a plain number");
   return v->numbers[0];
 }
 
@@ -68,7 +69,8 @@ double BsdfParams::number(const std::string& key, double defaultValue, double lo
   if (!ok)
     throw BsdfParamError("\"" + key + "\" " + formatNumber(x) + " is outside " +
                          (openLo ? "(" : "[") + formatNumber(lo) + ", " + formatNumber(hi) +
-                         (openHi ? ")" : "]") + "." + (fix.empty() ? "" : " Fix: " + fix));
+                         (openHi ? ")" : "]") +
+                         ". Fix: " + (fix.empty() ? "use a value in that range" : fix));
   return x;
 }
 
@@ -79,7 +81,9 @@ Vec3 BsdfParams::rgb(const std::string& key, const Vec3& defaultValue) {
   bool finite = shape;
   for (double d : v->numbers) finite = finite && std::isfinite(d);
   if (!finite)
-    throw BsdfParamError("\"" + key + "\" must be an RGB triple [r, g, b] of finite numbers");
+    throw BsdfParamError("\"" + key +
+                         "\" must be an RGB triple [r, g, b] of finite numbers. Fix: write [r, g, "
+                         "b], or one number for grey");
   if (v->numbers.size() == 1) return Vec3{1, 1, 1} * v->numbers[0];
   return {v->numbers[0], v->numbers[1], v->numbers[2]};
 }
@@ -100,7 +104,7 @@ Vec3 BsdfParams::rgb(std::initializer_list<const char*> keys, const Vec3& defaul
 std::string BsdfParams::text(const std::string& key, const std::string& defaultValue) {
   const Value* v = find(key);
   if (!v) return defaultValue;
-  if (!v->isText) throw BsdfParamError("\"" + key + "\" must be a name");
+  if (!v->isText) throw BsdfParamError("\"" + key + "\" must be a name. Fix: write it as a string");
   return v->text;
 }
 
@@ -117,7 +121,7 @@ void BsdfParams::checkUnit(const std::string& key, const Vec3& value) {
   for (int c = 0; c < 3; ++c)
     if (!(value[c] >= 0 && value[c] <= 1))
       throw BsdfParamError("\"" + key + "\" " + formatNumber(value[c]) + " (" + kChannel[c] +
-                           ") is outside [0, 1].");
+                           ") is outside [0, 1]. Fix: use a value between 0 and 1");
 }
 
 void BsdfParams::rejectUnused(const std::string& bsdfName) const {
