@@ -5,9 +5,9 @@
 
 #include "apps/common.h"
 #include "apps/report.h"
-#include "geometry/patch_io.h"
 #include "hierarchy/link_matrix.h"
 #include "hierarchy/refine.h"
+#include "output/run_files.h"
 #include "render/radiosity_image.h"
 #include "util/output_folder.h"
 
@@ -164,7 +164,8 @@ void runHierarchicalJob(HierarchicalJob job) {
   }
   writePatchesVtp(folder.path("radiosity.vtp"), scene, r.leaves, &r.radiosity, extra);
   writeSurfacesCsv(folder.path("surfaces.csv"), scene, r.surfaces, job.photometric);
-  writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), {r.solve});
+  writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), {r.solve},
+                   scene.metresPerUnit());
   LinkMatrixSettings matrix;
   matrix.colour = job.linkColour;
   matrix.title = scene.name + ": links as blocks of F, " + std::to_string(r.leaves.size()) +

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "apps/common.h"
-#include "geometry/patch_io.h"
+#include "output/run_files.h"
 #include "util/format.h"
 #include "util/output_folder.h"
 

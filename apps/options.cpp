@@ -64,9 +64,10 @@ void addFormFactorOptions(CLI::App& c, FormFactorOptions& o) {
   c.add_option("--ff", o.settings.method, "Form-factor method:" + methods)
       ->check(CLI::IsMember(formFactorMethodNames()))
       ->capture_default_str();
-  c.add_option("--ff-samples", o.settings.samples, "Rays (or point pairs) per patch pair, K >= 1")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  c.add_option("--ff-samples", o.settings.samples,
+               "Rays (or point pairs) per patch pair, K >= 1; hemisphere: rays per "
+               "patch. Default: the method's own (see --ff)")
+      ->check(CLI::PositiveNumber);
   c.add_option("--seed", o.settings.seed, "Seed of every random stream (same seed, same output)")
       ->check(Unsigned)
       ->capture_default_str();

@@ -12,9 +12,9 @@
 
 #include "apps/common.h"
 #include "apps/report.h"
-#include "geometry/patch_io.h"
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
+#include "output/run_files.h"
 #include "photon/benchmark.h"
 #include "photon/comparison.h"
 #include "photon/estimate.h"
@@ -132,6 +132,7 @@ json statsJson(const PhotonTrace& t, const EmitterSampler& emitters) {
 /// Everything one run computes, in the order it is computed.
 struct PhotonRun {
   Scene scene;
+  LoadReport loaded;  ///< the loader's warnings, for report.json
   PatchMesh mesh;
   std::unique_ptr<RayScene> rays;
   std::unique_ptr<EmitterSampler> emitters;
@@ -194,7 +195,7 @@ void traceAndEstimate(PhotonsCommand& cmd, PhotonRun& r) {
     throw InputError("--compare " + cmd.compare +
                      ": no surfaces.csv there. Fix: give the --out folder of a "
                      "`radkit run` of the same scene");
-  r.scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, nullptr, cmd.camera);
+  r.scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &r.loaded, cmd.camera);
   auto t = Clock::now();
   r.mesh = meshScene(r.scene, cmd.mesh);
   r.rays = std::make_unique<RayScene>(r.mesh);
@@ -292,7 +293,8 @@ json reportJson(const PhotonsCommand& cmd, const PhotonRun& r, const json& rates
                {{"photon_map_bytes", r.global->memoryBytes()},
                 {"caustic_map_bytes", r.caustic->memoryBytes()},
                 {"peak_memory_bytes", peakMemoryBytes()}}},
-              {"surfaces", surfacesJson(r.estimate.surfaces)}};
+              {"surfaces", surfacesJson(r.estimate.surfaces)},
+              {"load", loadJson(r.loaded)}};
   if (!r.reference.surfaces.empty())
     report["comparison"] = {{"radiosity", r.reference.source},
                             {"per_patch", !r.reference.patches.empty()}};
@@ -340,7 +342,7 @@ void run(PhotonsCommand& cmd) {
   }
   if (!r.reference.surfaces.empty()) {
     r.seconds["radiosity"] = r.reference.seconds;
-    writeComparisonCsv(folder.path("comparison.csv"), r.rows);
+    writeComparisonCsv(folder.path("comparison.csv"), r.rows, r.scene.metresPerUnit());
     writeDifference(folder, r.scene, r.mesh, *r.rays, r.estimate, r.reference, r.rows, cmd);
   }
   writePatchesCsv(folder.path("patches.csv"), r.scene, r.mesh, &r.estimate.radiosity);

@@ -8,11 +8,11 @@
 #include "apps/hierarchical_command.h"
 #include "apps/options.h"
 #include "apps/report.h"
-#include "geometry/patch_io.h"
+#include "output/run_files.h"
 #include "radiosity/adaptive.h"
 #include "radiosity/form_factor_heat_map.h"
-#include "radiosity/form_factor_writers.h"
 #include "radiosity/presets.h"
+#include "radiosity/surface_form_factors.h"
 #include "render/radiosity_image.h"
 #include "util/output_folder.h"
 
@@ -52,6 +52,10 @@ PipelineSettings pipelineSettings(const PipelineCommand& cmd) {
   explicitSettings.solvers =
       cmd.job == Job::FormFactors ? std::vector<SolverChoice>{} : cmd.solver.choices;
   explicitSettings.stopping = cmd.solver.stopping;
+  // Each method has its own K; a preset's K is for its own method.
+  if (!given(cmd.samplesFlag) && (cmd.preset.empty() || given(cmd.methodFlag)))
+    explicitSettings.formFactors.samples =
+        defaultFormFactorSamples(explicitSettings.formFactors.method);
   if (cmd.preset.empty()) return explicitSettings;
   PipelineSettings s = explicitSettings;
   applyPreset(cmd.preset, s);
@@ -106,7 +110,10 @@ void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCom
                                  " rays (" + std::to_string(d.raysSaved) + " saved), " +
                                  fmt("%.3g rays/s", d.raysPerSecond));
   printField("row sums", fmt("%.6f", d.rowSumMin) + " .. " + fmt("%.6f", d.rowSumMax) +
-                             ", reciprocity error " + fmt("%.2e", d.maxRelativeReciprocityError));
+                             ", reciprocity error " + fmt("%.2e", d.maxRelativeReciprocityError) +
+                             (r.formFactorNoise > 0 ? ", gathered-light noise " +
+                                                          fmt("%.2g %%", 100 * r.formFactorNoise)
+                                                    : ""));
   printField("seconds",
              "mesh " + fmt("%.2f", r.seconds.mesh) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
                  ", form factors " + fmt("%.2f", r.seconds.formFactors) + ", solve " +
@@ -216,13 +223,15 @@ void runJob(PipelineCommand& cmd) {
   if (!cmd.preset.empty())
     report["preset"] = {{"name", cmd.preset}, {"description", describePreset(cmd.preset)}};
   if (cmd.adaptive) report["adaptive"] = adaptiveJson;
+  if (r.formFactorNoise > 0) report["form_factors"]["gathered_light_noise"] = r.formFactorNoise;
   writePatchesCsv(folder.path("patches.csv"), scene, r.mesh,
                   r.solves.empty() ? nullptr : &r.radiosity);
   double matrixSeconds = 0;
   if (cmd.job != Job::Solvers)
     matrixSeconds = writeFormFactorFiles(folder, scene, r, cmd.writeMatrix);
   if (!r.solves.empty()) {
-    writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), r.solves);
+    writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), r.solves,
+                     scene.metresPerUnit());
     nlohmann::json solves = nlohmann::json::array();
     for (const SolveResult& s : r.solves) solves.push_back(solveJson(s));
     report["solvers"] = solves;

@@ -83,6 +83,7 @@ struct ModeImage {
   std::string what;
   std::vector<bool> emits;
   std::vector<int> surfaces;
+  std::vector<std::string> warnings;  ///< what the mode found doubtful, for --report
 };
 
 ModeImage finish(RadianceImage img, const Scene& scene, const PatchMesh& mesh, std::string what) {
@@ -201,9 +202,20 @@ ModeImage renderTwoPassMode(const ModeInput& in, GlossyModel glossy) {
   s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed,
   s.sampler = in.sampler;
   MonteCarloImage img = renderTwoPass(shading, in.camera, radiosityLighting(r), s);
-  return finish(std::move(img.image), in.scene, r.mesh,
-                std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) +
-                    " camera samples in " + std::to_string(img.seconds) + " s");
+  ModeImage out = finish(std::move(img.image), in.scene, r.mesh,
+                         std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) +
+                             " camera samples in " + std::to_string(img.seconds) + " s");
+  out.warnings = r.warnings;
+  // The two modes differ only in how glossy materials are shaded.
+  if (!hasGlossyMaterial(in.scene, in.bsdf)) {
+    out.warnings.push_back(
+        in.scene.file +
+        ": no surface has a glossy (phong or cook-torrance) material, so "
+        "--shading phong and --shading cook-torrance give the same image. Fix: give materials "
+        "\"brdf\": \"phong\" or \"cook-torrance\" (data/cornell-box-glossy.json has both)");
+    std::fprintf(stderr, "radkit: warning: %s\n", out.warnings.back().c_str());
+  }
+  return out;
 }
 
 ModeImage renderPhongMode(const ModeInput& in) { return renderTwoPassMode(in, GlossyModel::Phong); }
@@ -250,9 +262,12 @@ ModeImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, in
 }
 
 /// Region errors against the reference renders: printed, and written as JSON with --report.
-void compareWithReference(const RenderCommand& cmd, const Scene& scene, const RadianceImage& img,
-                          const std::vector<int>& surfaces, double seconds,
+void compareWithReference(const RenderCommand& cmd, const Scene& scene, const LoadReport& loaded,
+                          const ModeImage& mode, double seconds,
                           const std::vector<RadianceImage>& refs) {
+  const RadianceImage& img = mode.image;
+  const std::vector<int>& surfaces = mode.surfaces;
+  const std::vector<std::string>& warnings = mode.warnings;
   std::vector<std::string> names;
   for (const Surface& s : scene.surfaces) names.push_back(s.name);
   names.push_back("edges");
@@ -291,6 +306,8 @@ void compareWithReference(const RenderCommand& cmd, const Scene& scene, const Ra
     printField("note", "one reference: its own noise is not subtracted (give --reference twice)");
   if (cmd.report.empty()) return;
   const nlohmann::json j{{"shading", cmd.shading},
+                         {"load", loadJson(loaded)},
+                         {"warnings", warnings},
                          {"smooth", cmd.smooth},
                          {"sampler", cmd.sampler},
                          {"light_sampling", cmd.lightSampling},
@@ -338,13 +355,13 @@ void runRender(RenderCommand& cmd) {
                        ". Fix: render at the reference's --size");
   }
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
-  const Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, nullptr, cmd.camera);
+  LoadReport loaded;
+  const Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded, cmd.camera);
   const auto start = std::chrono::steady_clock::now();
   ModeImage mode = renderMode(cmd, scene, width, height);
   const RadianceImage& img = mode.image;
   const std::string& what = mode.what;
   const std::vector<bool>& emits = mode.emits;
-  const std::vector<int>& surfaces = mode.surfaces;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double exposure = cmd.exposure > 0 ? cmd.exposure : autoExposure(img, emits);
@@ -360,7 +377,7 @@ void runRender(RenderCommand& cmd) {
   if (ext == ".png") printField("exposure", std::to_string(exposure));
   printField("wrote", cmd.out);
   printField("seconds", std::to_string(seconds));
-  if (!cmd.references.empty()) compareWithReference(cmd, scene, img, surfaces, seconds, refs);
+  if (!cmd.references.empty()) compareWithReference(cmd, scene, loaded, mode, seconds, refs);
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "geometry/patch_io.h"
+#include "output/run_files.h"
 #include "solvers/convergence.h"
 #include "util/line_chart.h"
 #include "util/output_folder.h"
@@ -119,9 +119,8 @@ void writeJson(const std::string& path, const json& j) {
 }
 
 void writeConvergence(const std::string& csvPath, const std::string& pngPath,
-                      const std::vector<SolveResult>& solves) {
-  std::ostringstream csv;
-  writeConvergenceHeader(csv);
+                      const std::vector<SolveResult>& solves, double metresPerUnit) {
+  writeConvergenceCsv(csvPath, solves, metresPerUnit);
   // Work, not iterations, on x: a Southwell shot updates one row (1/n of a sweep), so its
   // thousands of shots would squash the sweeping solvers against x = 0.
   ChartPanel byIteration{"Residual against work",
@@ -132,7 +131,6 @@ void writeConvergence(const std::string& csvPath, const std::string& pngPath,
                          {}};
   ChartPanel bySeconds{"Residual against time", "seconds", "relative residual", true, true, {}};
   for (const SolveResult& s : solves) {
-    writeConvergenceRows(csv, s);
     ChartSeries it{s.solver, {}, {}}, sec{s.solver, {}, {}};
     for (const HistoryRow& h : s.history) {
       it.x.push_back(h.sweeps);
@@ -143,14 +141,7 @@ void writeConvergence(const std::string& csvPath, const std::string& pngPath,
     byIteration.series.push_back(it);
     bySeconds.series.push_back(sec);
   }
-  writeFileAtomically(csvPath, csv.str());
   writeLineChartPng(pngPath, {byIteration, bySeconds});
-}
-
-void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
-                      const SolveResult& solve) {
-  std::vector<Vec3> b = toVec3(solve.radiosity);
-  writePatchesCsv(path, scene, mesh, &b);
 }
 
 void Progress::operator()(const std::string& stage, double fraction) {

@@ -24,13 +24,10 @@ std::size_t peakMemoryBytes();
 /// Pretty-printed JSON, written atomically.
 void writeJson(const std::string& path, const nlohmann::json& j);
 
-/// Writes convergence.csv and convergence.png (residual against iteration and against seconds).
+/// Writes convergence.csv (output/run_files.h) and convergence.png (residual against work and
+/// against seconds).
 void writeConvergence(const std::string& csvPath, const std::string& pngPath,
-                      const std::vector<SolveResult>& solves);
-
-/// Writes `solution-<solver>.csv` style patch files for one solve.
-void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
-                      const SolveResult& solve);
+                      const std::vector<SolveResult>& solves, double metresPerUnit);
 
 /// Shows a stage's progress: a redrawn bar when stderr is a terminal, else a line per 10 %.
 class Progress {

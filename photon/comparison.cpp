@@ -14,24 +14,6 @@ namespace radkit {
 
 namespace {
 
-/// Splits one CSV line, honouring double-quoted fields ("" is a quote).
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> out(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"')
-      out.back() += '"', ++i;
-    else if (c == '"')
-      quoted = !quoted;
-    else if (c == ',' && !quoted)
-      out.emplace_back();
-    else if (c != '\r')
-      out.back() += c;
-  }
-  return out;
-}
-
 double ratioOrZero(double a, double b) { return b != 0 ? a / b : 0.0; }
 
 Rgb8 diverging(double z) {
@@ -42,39 +24,6 @@ Rgb8 diverging(double z) {
 }
 
 }  // namespace
-
-std::vector<SurfaceRadiosity> readSurfacesCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in)
-    throw std::runtime_error(
-        path + ": cannot open. Fix: give the folder of a `radkit run` (it holds surfaces.csv)");
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = splitCsv(line);
-  if (header.size() < 5 || header[0] != "surface" || header[2] != "b_r" || header[4] != "b_b")
-    throw std::runtime_error(
-        path +
-        ": line 1 is not the header surface,area,b_r,b_g,b_b. Fix: give the folder of a "
-        "`radkit run` of this scene");
-  std::vector<SurfaceRadiosity> rows;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
-    const std::vector<std::string> f = splitCsv(line);
-    SurfaceRadiosity r;
-    try {
-      if (f.size() < 5) throw std::invalid_argument("short");
-      r.name = f[0];
-      r.area = std::stod(f[1]);
-      r.radiosity = {std::stod(f[2]), std::stod(f[3]), std::stod(f[4])};
-    } catch (const std::exception&) {
-      throw std::runtime_error(
-          path + ": line " + std::to_string(number) +
-          " is not `surface,area,b_r,b_g,b_b` with numbers. Fix: rerun `radkit run`");
-    }
-    rows.push_back(r);
-  }
-  return rows;
-}
 
 std::vector<SurfaceComparison> compareSurfaces(const std::vector<SurfaceEstimate>& photon,
                                                const std::vector<SurfaceRadiosity>& radiosity) {
@@ -99,22 +48,6 @@ std::vector<SurfaceComparison> compareSurfaces(const std::vector<SurfaceEstimate
     rows.push_back(c);
   }
   return rows;
-}
-
-void writeComparisonCsv(const std::string& path, const std::vector<SurfaceComparison>& rows) {
-  std::ostringstream o;
-  o << std::setprecision(10) << "surface,area";
-  for (const char* col : {"photon_b", "radiosity_b", "rel_diff", "photon_se", "z"})
-    for (const char* c : {"_r", "_g", "_b"}) o << ',' << col << c;
-  o << '\n';
-  for (const SurfaceComparison& r : rows) {
-    o << csvField(r.name) << ',' << r.area;
-    for (const Vec3* v :
-         {&r.photon, &r.radiosity, &r.relativeDifference, &r.photonError, &r.zScore})
-      o << ',' << v->x << ',' << v->y << ',' << v->z;
-    o << '\n';
-  }
-  writeFileAtomically(path, o.str());
 }
 
 Canvas differenceImage(const RadianceImage& seen, const std::vector<Vec3>& photon,

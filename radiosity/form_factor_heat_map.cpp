@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "radiosity/form_factor_storage.h"
-#include "radiosity/form_factor_writers.h"
+#include "radiosity/surface_form_factors.h"
 #include "util/canvas.h"
 
 namespace radkit {

@@ -80,7 +80,9 @@ std::unique_ptr<FormFactorMethod> makeFormFactorMethod(const PatchMesh& mesh,
 
 /// \brief The registered names, default first.
 std::vector<std::string> formFactorMethodNames();
-/// \brief One help line per method: "name: summary".
+/// \brief K for a method when --ff-samples is not given (each method has its own).
+int defaultFormFactorSamples(const std::string& method);
+/// \brief One help line per method: "name: summary (default K = N)".
 std::vector<std::string> formFactorMethodHelp();
 
 /// \brief Throws std::invalid_argument naming the flag when a setting is out of range.

@@ -100,6 +100,49 @@ std::vector<SolverChoice> parseSolverList(const std::string& text) {
   return out;
 }
 
+/// The median relative noise above which hemisphere's image shows its patches (a 5 % step
+/// between neighbours is visible on a smooth wall).
+constexpr double kHemisphereNoiseLimit = 0.05;
+
+std::string hemisphereNoiseWarning(double noise, int samples) {
+  // SE falls as 1/sqrt(K): the K that brings the median to the limit, to a power of two.
+  const double need = samples * (noise / kHemisphereNoiseLimit) * (noise / kHemisphereNoiseLimit);
+  long k = 1;
+  while (k < need) k *= 2;
+  return "hemisphere form factors are noisy: the median patch's gathered light has a standard "
+         "error of " +
+         sci(100 * noise) + " % at K = " + std::to_string(samples) +
+         " rays per patch (the image will be a patchwork). Fix: --ff-samples " + std::to_string(k) +
+         " or more, or --ff point-polygon";
+}
+
+double gatheredLightNoise(const FormFactorMatrix& f, const PatchMesh& mesh,
+                          const std::vector<Vec3>& b, int samples, std::vector<double>* variance) {
+  const std::size_t n = mesh.size();
+  std::vector<double> first(n, 0.0), second(n, 0.0);
+  auto sum = [](const Vec3& v) { return v.x + v.y + v.z; };
+  forEachNonZero(f, [&](int i, int j, double fij) {
+    const double bj = sum(b[j]);
+    first[i] += fij * bj, second[i] += fij * bj * bj;
+  });
+  if (variance) variance->assign(n, 0.0);
+  std::vector<std::pair<double, double>> relative;  // (SE/H, area) of lit patches
+  double lit = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double var = std::max(0.0, second[i] - first[i] * first[i]) / samples;
+    if (variance) (*variance)[i] = var;
+    if (!(first[i] > 0)) continue;
+    relative.push_back({std::sqrt(var) / first[i], mesh.patches[i].area});
+    lit += mesh.patches[i].area;
+  }
+  if (relative.empty()) return 0;
+  std::sort(relative.begin(), relative.end());
+  double area = 0;
+  for (const auto& [rel, a] : relative)
+    if ((area += a) >= lit / 2) return rel;
+  return relative.back().first;
+}
+
 SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system,
                       const SolverSettings& stopping, const PipelineLog& log) {
   std::unique_ptr<Solver> solver = makeSolver(choice.name, SolverParams::parse(choice.parameters));
@@ -161,6 +204,14 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
   r.irradiance = irradiance(r.formFactors->matrix, r.solves.front().radiosity);
   r.surfaces = surfaceResults(scene, r.mesh, r.radiosity, r.irradiance);
   r.energy = energyBalance(scene, r.mesh, r.formFactors->matrix, r.radiosity, r.irradiance);
+  if (settings.formFactors.method == "hemisphere") {
+    r.formFactorNoise = gatheredLightNoise(r.formFactors->matrix, r.mesh, r.radiosity,
+                                           settings.formFactors.samples);
+    if (r.formFactorNoise > kHemisphereNoiseLimit) {
+      r.warnings.push_back(hemisphereNoiseWarning(r.formFactorNoise, settings.formFactors.samples));
+      say("warning: " + r.warnings.back());
+    }
+  }
   r.seconds.results = since(t);
   return r;
 }

@@ -55,6 +55,9 @@ struct PipelineResult {
   StageSeconds seconds;
   std::vector<std::string>
       warnings;  ///< numerical limits met by this run (also sent to log.message)
+  /// hemisphere only: area-weighted median relative standard error of the gathered light
+  /// Σ_j F_ij B_j over lit patches (0 for other methods, whose noise is in visibility alone).
+  double formFactorNoise = 0;
 };
 
 /// \brief Runs every stage on an already loaded scene. Throws std::invalid_argument for bad
@@ -66,6 +69,14 @@ PipelineResult runPipeline(const Scene& scene, const PipelineSettings& settings,
 /// settings.mesh is not used.
 PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSettings& settings,
                            const PipelineLog& log = {});
+
+/// \brief For a method whose row i is the mean of K draws (hemisphere: B of the patch a ray
+/// hits, 0 for a miss), the gathered light H_i = Σ_j F_ij B_j (channels summed) has variance
+/// (Σ_j F_ij B_j² − H_i²)/K. Returns the area-weighted median of SE(H_i)/H_i over patches with
+/// H_i > 0, and each patch's variance in `variance` if given.
+double gatheredLightNoise(const FormFactorMatrix& f, const PatchMesh& mesh,
+                          const std::vector<Vec3>& b, int samples,
+                          std::vector<double>* variance = nullptr);
 
 /// \brief Solves one system with one solver from B = E, reporting progress after each step.
 SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system,

@@ -75,21 +75,6 @@ std::vector<SurfaceResult> surfaceResults(const Scene& scene, const PatchMesh& m
   return out;
 }
 
-void writeSurfacesCsv(const std::string& path, const Scene& scene,
-                      const std::vector<SurfaceResult>& results, bool photometric) {
-  const double m2 = scene.metresPerUnit() * scene.metresPerUnit();
-  std::ostringstream o;
-  o << std::setprecision(17) << "surface,area,b_r,b_g,b_b"
-    << (photometric ? ",luminance_cd_m2,illuminance_lux" : "") << '\n';
-  for (const SurfaceResult& r : results) {
-    o << csvField(r.name) << ',' << r.area / m2 << ',' << r.radiosity.x << ',' << r.radiosity.y
-      << ',' << r.radiosity.z;
-    if (photometric) o << ',' << r.luminance << ',' << r.illuminance;
-    o << '\n';
-  }
-  writeFileAtomically(path, o.str());
-}
-
 EnergyBalance energyBalance(const Scene& scene, const PatchMesh& mesh, const FormFactorMatrix& f,
                             const std::vector<Vec3>& b, const std::vector<Vec3>& h) {
   const double m2 = scene.metresPerUnit() * scene.metresPerUnit();

@@ -39,11 +39,6 @@ std::vector<SurfaceResult> surfaceResults(const Scene& scene, const PatchMesh& m
                                           const std::vector<Vec3>& radiosity,
                                           const std::vector<Vec3>& irradiance);
 
-/// \brief Writes `surface,area,b_r,b_g,b_b` (+ `luminance_cd_m2,illuminance_lux` when
-/// photometric); area in scene units² as in patches.csv.
-void writeSurfacesCsv(const std::string& path, const Scene& scene,
-                      const std::vector<SurfaceResult>& results, bool photometric);
-
 /// Power bookkeeping of a solution, in W per channel. Emitted light is either absorbed
 /// (A_i(1-ρ_i)H_i) or leaves the scene (A_i B_i (1 − Σ_j F_ij)); the relative imbalance
 /// measures how far the solution and F are from conserving energy.

@@ -391,6 +391,7 @@ StudyResult runStudy(const Scene& scene, const StudySettings& st, const Pipeline
     StudyRow row;
     row.config = c;
     row.estimatedSeconds = est[k];
+    row.neededSeconds = need, row.secondsLeft = left;
     if (need > left) {
       row.note = "skipped: estimated " + format("%.0f s", est[k]) + " plus the reference " +
                  format("%.0f s", need - est[k]) + ", " + format("%.0f s", std::max(0.0, left)) +
@@ -411,6 +412,7 @@ StudyResult runStudy(const Scene& scene, const StudySettings& st, const Pipeline
     if (rung) finestRung = std::max(finestRung, c.settings.mesh.targetPatches);
     if (knobRung) {  // the baseline as a member of the form-factor knob, at no cost
       StudyRow copy = row;
+      copy.neededSeconds = copy.secondsLeft = std::numeric_limits<double>::quiet_NaN();
       copy.config.knob = StudyKnob::FormFactors;
       result.rows.push_back(copy);
       sols.push_back(sols.back());

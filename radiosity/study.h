@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ struct StudyRow {
   bool ran = false;
   std::string note;             ///< why it was skipped, or the solver's stop reason
   double estimatedSeconds = 0;  ///< the planner's estimate before running
+  /// What the planner weighed against the budget: the estimate plus what must still follow it
+  /// (the reference), and the budget left then. It runs when neededSeconds <= secondsLeft;
+  /// NaN for rows that came with another run (the solver knob, the baseline's copy).
+  double neededSeconds = std::numeric_limits<double>::quiet_NaN();
+  double secondsLeft = std::numeric_limits<double>::quiet_NaN();
   int patches = 0;
   StageSeconds seconds;
   double totalSeconds = 0;  ///< what this configuration would cost run alone

@@ -27,6 +27,15 @@ std::unique_ptr<Bsdf> makeShadingBsdf(const Material& m, const BsdfSettings& set
   return substitute ? std::move(substitute) : std::move(bsdf);
 }
 
+bool hasGlossyMaterial(const Scene& scene, const BsdfSettings& settings) {
+  for (const Surface& s : scene.surfaces) {
+    const Material& m = scene.materials[s.material];
+    const std::unique_ptr<Bsdf> bsdf = makeBsdf(m.bsdf, m.params, settings);
+    if (bsdf->asPhong() || bsdf->asCookTorrance(settings)) return true;
+  }
+  return false;
+}
+
 ShadingScene::ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
                            const BsdfSettings& bsdf, GlossyModel glossy, LightSampling light)
     : m_mesh(mesh), m_rays(rays), m_emitters(scene, mesh), m_lightSampling(light) {

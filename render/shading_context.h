@@ -30,6 +30,10 @@ enum class GlossyModel {
   CookTorrance,  ///< Phong materials as Cook-Torrance: α = √(2/(n + 2)), f0 = ks, metallic 0
 };
 
+/// \brief Whether a surface's material has a glossy lobe that GlossyModel can swap (phong or
+/// cook-torrance); without one the Phong and Cook-Torrance two-pass images are the same.
+bool hasGlossyMaterial(const Scene& scene, const BsdfSettings& settings);
+
 /// How next-event estimation picks a point on the chosen emitter.
 enum class LightSampling {
   Area,        ///< uniformly by area (density ∝ cos θ'/r² per steradian)

@@ -6,5 +6,5 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DRADKIT_TESTS=ON \
   -DRADKIT_WERROR="${RADKIT_WERROR:-OFF}" \
-  -DRADKIT_TEST_FOLDERS="solvers;bsdf;geometry;radiosity;hierarchy;render;photon;viewer;apps;extending" >/dev/null
+  -DRADKIT_TEST_FOLDERS="solvers;bsdf;geometry;radiosity;output;hierarchy;render;photon;viewer;apps;extending" >/dev/null
 cmake --build build -j"${RADKIT_JOBS:-2}"

@@ -1,5 +1,5 @@
-// Convergence output that knows nothing of geometry: convergence.csv rows and the table of
-// iterations and seconds to reach 1e-3, 1e-6 and 1e-9 for report.json.
+// The table of iterations and seconds to reach 1e-3, 1e-6 and 1e-9 for report.json
+// (convergence.csv itself is written by output/run_files.h).
 #pragma once
 
 #include <ostream>
@@ -8,12 +8,6 @@
 #include "solvers/solver.h"
 
 namespace radkit {
-
-/// \brief Writes the header "solver,iteration,seconds,residual,unshot_power" and a newline.
-void writeConvergenceHeader(std::ostream& out);
-
-/// \brief One line per history row of result, 17 significant digits, no header.
-void writeConvergenceRows(std::ostream& out, const SolveResult& result);
 
 /// When a run first reached one residual level.
 struct Milestone {

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "geometry/scene_loader.h"
+#include "output/run_files.h"
 
 namespace radkit::viewer {
 
@@ -31,26 +32,6 @@ std::ifstream openOrFail(const std::string& path) {
   if (!in)
     fail(path, "cannot be opened (missing or unreadable); write it with `radkit run --out DIR`");
   return in;
-}
-
-/// Splits one CSV line, honouring "quoted, fields" with "" for a quote (RFC 4180).
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t k = 0; k < line.size(); ++k) {
-    char c = line[k];
-    if (quoted && c == '"' && k + 1 < line.size() && line[k + 1] == '"') {
-      fields.back() += '"';
-      ++k;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else if (c != '\r') {
-      fields.back() += c;
-    }
-  }
-  return fields;
 }
 
 double toNumber(const std::string& text, const std::string& path, long long line,
@@ -80,10 +61,10 @@ CsvTable readCsv(const std::string& path) {
   CsvTable t;
   std::string line;
   if (!std::getline(in, line)) fail(path, "is empty (expected a header line)");
-  t.header = splitCsv(line);
+  t.header = splitCsvLine(line);
   for (long long n = 2; std::getline(in, line); ++n) {
     if (line.empty() || line == "\r") continue;
-    t.rows.push_back(splitCsv(line));
+    t.rows.push_back(splitCsvLine(line));
     if (t.rows.back().size() != t.header.size())
       failLine(path, n,
                std::to_string(t.rows.back().size()) + " fields, header has " +
@@ -213,7 +194,7 @@ FormFactorRows readFormFactorsMtx(const std::string& path) {
 }
 
 FormFactorRows readFormFactorsBin(const std::string& path) {
-  // The layout is radiosity/form_factor_writers.h's writeFormFactorBinary (little-endian).
+  // The layout is output/run_files.h's writeFormFactorBinary (little-endian).
   std::ifstream in = openOrFail(path);
   const std::uintmax_t bytes = std::filesystem::file_size(path);
   const std::string fix = ". Fix: write the folder again with `radkit run`";
@@ -272,15 +253,16 @@ FormFactorRows readFormFactorsBin(const std::string& path) {
 }
 
 std::vector<SolverHistory> readConvergenceCsv(const std::string& path) {
+  namespace c = convergence_csv;
   CsvTable t = readCsv(path);
-  const int cSolver = t.column("solver", path), cIter = t.column("iteration", path);
-  const int cSec = t.column("seconds", path), cRes = t.column("residual", path);
-  const int cUnshot = t.column("unshot_power", path);
+  const int cSolver = t.column(c::kSolver, path), cIter = t.column(c::kIteration, path);
+  const int cSec = t.column(c::kSeconds, path), cRes = t.column(c::kResidual, path);
+  const int cUnshot = t.column(c::kUnshotPower, path);
   std::vector<SolverHistory> runs;
   for (std::size_t k = 0; k < t.rows.size(); ++k) {
     const auto& r = t.rows[k];
     const long long line = static_cast<long long>(k) + 2;
-    const double it = toNumber(r[cIter], path, line, "iteration");
+    const double it = toNumber(r[cIter], path, line, c::kIteration);
     if (!(it >= 0 && it <= 2147483647))  // converting NaN or 1e20 to int is undefined
       failLine(path, line, "column 'iteration': '" + r[cIter] + "' is not an iteration count >= 0");
     const int iteration = int(it);
@@ -290,33 +272,36 @@ std::vector<SolverHistory> readConvergenceCsv(const std::string& path) {
       runs.push_back(SolverHistory{r[cSolver], {}, {}, {}, {}});
     SolverHistory& h = runs.back();
     h.iteration.push_back(iteration);
-    h.seconds.push_back(toNumber(r[cSec], path, line, "seconds"));
-    h.residual.push_back(toNumber(r[cRes], path, line, "residual"));
-    h.unshotPower.push_back(toNumber(r[cUnshot], path, line, "unshot_power"));
+    h.seconds.push_back(toNumber(r[cSec], path, line, c::kSeconds));
+    h.residual.push_back(toNumber(r[cRes], path, line, c::kResidual));
+    h.unshotPower.push_back(toNumber(r[cUnshot], path, line, c::kUnshotPower));
   }
   return runs;
 }
 
 std::vector<SurfaceSummary> readSurfacesCsv(const std::string& path) {
+  namespace c = surfaces_csv;
   CsvTable t = readCsv(path);
-  const int cName = t.column("surface", path), cArea = t.column("area", path);
-  const int cR = t.column("b_r", path), cG = t.column("b_g", path), cB = t.column("b_b", path);
+  const int cName = t.column(c::kSurface, path), cArea = t.column(c::kArea, path);
+  int cB[3];
+  for (int k = 0; k < 3; ++k) cB[k] = t.column(c::kRadiosity[k], path);
   auto optional = [&](const char* name) {
     auto it = std::find(t.header.begin(), t.header.end(), name);
     return it == t.header.end() ? -1 : int(it - t.header.begin());
   };
-  const int cLum = optional("luminance_cd_m2"), cLux = optional("illuminance_lux");
+  const int cLum = optional(c::kLuminance), cLux = optional(c::kIlluminance);
   std::vector<SurfaceSummary> out;
   for (std::size_t k = 0; k < t.rows.size(); ++k) {
     const auto& r = t.rows[k];
     const long long line = static_cast<long long>(k) + 2;
     SurfaceSummary s;
     s.name = r[cName];
-    s.area = toNumber(r[cArea], path, line, "area");
-    s.radiosity = {toNumber(r[cR], path, line, "b_r"), toNumber(r[cG], path, line, "b_g"),
-                   toNumber(r[cB], path, line, "b_b")};
-    if (cLum >= 0) s.luminance = toNumber(r[cLum], path, line, "luminance_cd_m2");
-    if (cLux >= 0) s.illuminance = toNumber(r[cLux], path, line, "illuminance_lux");
+    s.area = toNumber(r[cArea], path, line, c::kArea);
+    s.radiosity = {toNumber(r[cB[0]], path, line, c::kRadiosity[0]),
+                   toNumber(r[cB[1]], path, line, c::kRadiosity[1]),
+                   toNumber(r[cB[2]], path, line, c::kRadiosity[2])};
+    if (cLum >= 0) s.luminance = toNumber(r[cLum], path, line, c::kLuminance);
+    if (cLux >= 0) s.illuminance = toNumber(r[cLux], path, line, c::kIlluminance);
     out.push_back(s);
   }
   return out;

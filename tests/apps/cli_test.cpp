@@ -99,7 +99,7 @@ TEST(FormFactorsCli, BadInput) {
     "surfaces": [{"name": "only", "material": "m", "polygon": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}]})");
   r = runRadkit("run '" + one + "' --max-area 10 --no-render --out '" + dir.path("d") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NEAR(std::stod(readCsv(dir.path("d/surfaces.csv"))[0]["b_r"]), 1.0, 1e-12);  // B = E
+  EXPECT_NEAR(std::stod(readCsv(dir.path("d/surfaces.csv"))[0]["b_r_W_m2"]), 1.0, 1e-12);  // B = E
 }
 
 TEST(SolversCli, FurnaceEverySolver) {
@@ -117,12 +117,12 @@ TEST(SolversCli, FurnaceEverySolver) {
     for (const json& m : s["milestones"]) EXPECT_TRUE(m["reached"].get<bool>());
     // Cube form factors are exact to ~1e-6 in row sums, which bounds B's error by ~2e-6·B/(1-rho).
     for (auto& row : readCsv(dir.path("f/solution-" + name + ".csv")))
-      EXPECT_NEAR(std::stod(row["b_g"]), 2.0, 1e-4);
+      EXPECT_NEAR(std::stod(row["b_g_W_m2"]), 2.0, 1e-4);
   }
   EXPECT_TRUE(fs::exists(dir.path("f/convergence.png")));
   auto rows = readCsv(dir.path("f/convergence.csv"));
   ASSERT_FALSE(rows.empty());
-  EXPECT_EQ(rows.front().size(), 5u);
+  EXPECT_EQ(rows.front().size(), 6u);
 }
 
 TEST(RunCli, CornellBoxEveryOutput) {
@@ -138,7 +138,7 @@ TEST(RunCli, CornellBoxEveryOutput) {
     EXPECT_TRUE(fs::exists(dir.path(std::string("run/") + f))) << f;
   EXPECT_FALSE(fs::exists(dir.path("run/formfactors.mtx")));
   for (auto& row : readCsv(dir.path("run/patches.csv")))
-    for (const char* c : {"b_r", "b_g", "b_b"}) {
+    for (const char* c : {"b_r_W_m2", "b_g_W_m2", "b_b_W_m2"}) {
       double b = std::stod(row[c]);
       ASSERT_TRUE(std::isfinite(b) && b >= 0) << row["id"];
     }

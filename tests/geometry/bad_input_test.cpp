@@ -270,7 +270,10 @@ TEST(MeshCli, WritesPatchesAndSummary) {
   std::ifstream csv(dir.path("o/patches.csv"));
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header, "id,surface,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,e_r,e_g,e_b,b_r,b_g,b_b");
+  EXPECT_EQ(
+      header,
+      "id,surface,area_m2,cx_m,cy_m,cz_m,nx,ny,nz,rho_r,rho_g,rho_b,e_r_W_m2,e_g_W_m2,e_b_W_m2,"
+      "b_r_W_m2,b_g_W_m2,b_b_W_m2");
   int rows = 0;
   for (std::string line; std::getline(csv, line);) ++rows;
   EXPECT_GT(rows, 400);

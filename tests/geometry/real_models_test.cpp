@@ -31,7 +31,7 @@ struct SurfacePatches {
 SurfacePatches surfacePatches(const std::string& csv) {
   SurfacePatches out;
   for (auto& row : test::readCsv(csv)) {
-    out.area[row["surface"]] += std::stod(row["area"]);
+    out.area[row["surface"]] += std::stod(row["area_m2"]);
     out.count[row["surface"]] += 1;
   }
   return out;

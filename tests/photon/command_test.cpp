@@ -49,8 +49,11 @@ TEST(PhotonsCommand, ConstructWritesEveryFile) {
   for (const char* f : {"patches.csv", "surfaces.csv", "photonmap.png", "caustics.png",
                         "comparison.csv", "difference.png", "report.json"})
     EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
-  EXPECT_EQ(readText(out + "/patches.csv").rfind("id,surface,area,cx,cy,cz,nx,ny,nz,rho_r", 0), 0u);
-  EXPECT_EQ(readText(out + "/surfaces.csv").rfind("surface,area,b_r,b_g,b_b\n", 0), 0u);
+  EXPECT_EQ(
+      readText(out + "/patches.csv").rfind("id,surface,area_m2,cx_m,cy_m,cz_m,nx,ny,nz,rho_r", 0),
+      0u);
+  EXPECT_EQ(
+      readText(out + "/surfaces.csv").rfind("surface,area_m2,b_r_W_m2,b_g_W_m2,b_b_W_m2\n", 0), 0u);
   nlohmann::json report = nlohmann::json::parse(readText(out + "/report.json"));
   EXPECT_EQ(report["photons"]["emitted"], 100000);
   EXPECT_GT(report["photons"]["caustic"].get<double>(), 0);
@@ -87,14 +90,15 @@ TEST(PhotonsCommand, ExactCompareReadsRunFolder) {
   test::TempDir dir;
   fs::create_directories(dir.path("run"));
   dir.file("run/surfaces.csv",
-           "surface,area,b_r,b_g,b_b\nlamp,0.0001,10000,10000,10000\nmirror,0.04,0,0,0\ntarget,0."
+           "surface,area_m2,b_r_W_m2,b_g_W_m2,b_b_W_m2\nlamp,0.0001,10000,10000,10000\nmirror,0.04,"
+           "0,0,0\ntarget,0."
            "01,0.25,0.25,0.25\n"
            "wall,2.39,0,0,0\n");
   auto r = runRadkit("photons '" + dataPath("mirror-spot.json") + "'" + kQuick + " --compare '" +
                      dir.path("run") + "' --out '" + dir.path("out") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   auto rows = readCsvByKey(dir.path("out/comparison.csv"));
-  EXPECT_EQ(std::stod(rows["target"]["radiosity_b_g"]), 0.25);
+  EXPECT_EQ(std::stod(rows["target"]["radiosity_b_g_W_m2"]), 0.25);
   EXPECT_EQ(std::stod(rows["mirror"]["rel_diff_r"]), 0);  // zero reference: reported as 0
 }
 
@@ -114,7 +118,8 @@ TEST(PhotonsCommand, ConstructBadInputFailsWithoutOutput) {
        "emission"},
   };
   fs::create_directories(dir.path("other"));
-  dir.file("other/surfaces.csv", "surface,area,b_r,b_g,b_b\nfloor,1,0.1,0.1,0.1\n");
+  dir.file("other/surfaces.csv",
+           "surface,area_m2,b_r_W_m2,b_g_W_m2,b_b_W_m2\nfloor,1,0.1,0.1,0.1\n");
   for (const Case& c : cases) {
     auto r = runRadkit("photons" + c.args + " --out '" + dir.path("out") + "'");
     EXPECT_NE(r.exitCode, 0) << c.args;

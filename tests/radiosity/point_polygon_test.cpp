@@ -5,8 +5,9 @@
 #include <cstdio>
 
 #include "geometry/ray_scene.h"
-#include "radiosity/form_factor_writers.h"
+#include "output/run_files.h"
 #include "radiosity/form_factors.h"
+#include "radiosity/surface_form_factors.h"
 #include "test_scenes.h"
 
 namespace radkit {

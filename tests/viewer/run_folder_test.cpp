@@ -7,7 +7,8 @@
 #include <fstream>
 
 #include "geometry/scene_loader.h"
-#include "radiosity/form_factor_writers.h"
+#include "output/run_files.h"
+#include "radiosity/surface_form_factors.h"
 #include "tests/common/test_util.h"
 #include "tests/viewer/test_run.h"
 
@@ -84,7 +85,7 @@ TEST_F(RunFolderTest, ReadsBackReportMatrixHistoryAndSurfaces) {
 
 TEST_F(RunFolderTest, SameSolverTwiceIsTwoRuns) {
   overwrite("convergence.csv",
-            "solver,iteration,seconds,residual,unshot_power\n"
+            "solver,iteration,time_s,residual,unshot_power_W\n"
             "sor,0,0,1,1\nsor,1,0,0.1,1\nsor,0,0,1,1\nsor,1,0,0.2,1\nsor,2,0,0.02,1\n");
   const auto runs = readConvergenceCsv(file("convergence.csv"));
   ASSERT_EQ(runs.size(), 2u);
@@ -128,13 +129,13 @@ TEST_F(RunFolderTest, MalformedFilesNameFileAndLine) {
             std::string::npos);
   EXPECT_NE(errorAfter("formfactors.mtx", "hello\n").find("formfactors.mtx:1"), std::string::npos);
   EXPECT_NE(errorAfter("convergence.csv",
-                       "solver,iteration,seconds,residual,unshot_power\njacobi,0,0,x,1\n")
+                       "solver,iteration,time_s,residual,unshot_power_W\njacobi,0,0,x,1\n")
                 .find("convergence.csv:2: column 'residual': 'x' is not a number"),
             std::string::npos);
   EXPECT_NE(errorAfter("convergence.csv", "solver,iteration\n")
-                .find("convergence.csv: header has no column 'seconds'"),
+                .find("convergence.csv: header has no column 'time_s'"),
             std::string::npos);
-  EXPECT_NE(errorAfter("surfaces.csv", "surface,area,b_r,b_g,b_b\nfloor,1,2\n")
+  EXPECT_NE(errorAfter("surfaces.csv", "surface,area_m2,b_r_W_m2,b_g_W_m2,b_b_W_m2\nfloor,1,2\n")
                 .find("surfaces.csv:2: 3 fields"),
             std::string::npos);
   EXPECT_NE(errorAfter("report.json", "{\"scene\": ").find("report.json: is not valid JSON"),
@@ -166,10 +167,10 @@ TEST_F(RunFolderTest, HostileCountsAreRefusedBeforeAllocating) {
         << size << ": " << e;
   }
   for (const char* iteration : {"nan", "1e20", "-1"}) {
-    const std::string e =
-        errorAfter("convergence.csv", std::string("solver,iteration,seconds,residual,unshot_power\n"
-                                                  "jacobi,") +
-                                          iteration + ",0,1,1\n");
+    const std::string e = errorAfter("convergence.csv",
+                                     std::string("solver,iteration,time_s,residual,unshot_power_W\n"
+                                                 "jacobi,") +
+                                         iteration + ",0,1,1\n");
     EXPECT_NE(e.find("convergence.csv:2: column 'iteration': '" + std::string(iteration) +
                      "' is not an iteration count >= 0"),
               std::string::npos)

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <fstream>
 
-#include "geometry/patch_io.h"
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
+#include "output/run_files.h"
 
 namespace radkit::viewer::test {
 
@@ -63,13 +63,13 @@ void writeTestRun(const std::string& folder, bool rightFacesAway) {
       if (TestRun::kFormFactors[i][j] > 0)
         mtx << i + 1 << ' ' << j + 1 << ' ' << TestRun::kFormFactors[i][j] << '\n';
   std::ofstream(folder + "/convergence.csv")
-      << "solver,iteration,seconds,residual,unshot_power\n"
+      << "solver,iteration,time_s,residual,unshot_power_W\n"
          "jacobi,0,0.001,0.5,0.2\njacobi,1,0.002,0.05,0.1\n"
          "jacobi,2,0.003,0.005,0.05\njacobi,3,0.004,0.0005,0.02\n"
          "gauss-seidel,0,0.001,0.3,0.2\ngauss-seidel,1,0.002,0.01,0.1\n"
          "gauss-seidel,2,0.003,0.0002,0.01\n";
   std::ofstream(folder + "/surfaces.csv")
-      << "surface,area,b_r,b_g,b_b,luminance_cd_m2,illuminance_lux\n"
+      << "surface,area_m2,b_r_W_m2,b_g_W_m2,b_b_W_m2,luminance_cd_m2,illuminance_lux\n"
          "left wall,0.95,0.75,0.085,0.065,30.5,100.25\n"
          "\"right wall\",0.95,0.1,0.8,0.12,140,300\n";
 }

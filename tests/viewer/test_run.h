@@ -17,7 +17,7 @@ struct TestRun {
   static const double kFormFactors[3][3];
 };
 
-/// \brief Writes radiosity.vtp (through geometry/patch_io), report.json, formfactors.mtx,
+/// \brief Writes radiosity.vtp (through output/run_files.h), report.json, formfactors.mtx,
 /// convergence.csv and surfaces.csv into `folder` (which must exist).
 /// \param rightFacesAway wind the right patch the other way, so the camera sees its back
 void writeTestRun(const std::string& folder, bool rightFacesAway = false);

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <set>
 
-#include "geometry/patch_io.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
+#include "output/run_files.h"
 #include "render/camera.h"
 #include "tests/common/open_box.h"
 #include "tests/common/test_util.h"

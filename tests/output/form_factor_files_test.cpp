@@ -6,10 +6,11 @@
 #include <sstream>
 
 #include "geometry/ray_scene.h"
+#include "output/run_files.h"
 #include "radiosity/form_factor_heat_map.h"
-#include "radiosity/form_factor_writers.h"
 #include "radiosity/form_factors.h"
-#include "test_scenes.h"
+#include "radiosity/surface_form_factors.h"
+#include "tests/radiosity/test_scenes.h"
 
 namespace radkit {
 namespace {

@@ -1,0 +1,350 @@
+#include "output/run_files.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+
+#include "radiosity/form_factor_storage.h"
+#include "radiosity/surface_form_factors.h"
+#include "util/output_folder.h"  // writeFileAtomically, writeFileStreaming, csvField
+
+namespace radkit {
+
+namespace {
+// Enough digits that a double read back is the same double.
+constexpr int kDigits = 17;
+
+void writeTriple(std::ostream& o, const Vec3& v) { o << ',' << v.x << ',' << v.y << ',' << v.z; }
+
+}  // namespace
+
+std::vector<std::string> splitCsvLine(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+      out.back() += '"', ++i;
+    else if (c == '"')
+      quoted = !quoted;
+    else if (c == ',' && !quoted)
+      out.emplace_back();
+    else if (c != '\r')
+      out.back() += c;
+  }
+  return out;
+}
+
+void writePatchesCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+                     const std::vector<Vec3>* radiosity) {
+  const double m = scene.metresPerUnit();
+  std::ostringstream o;
+  o << std::setprecision(kDigits);
+  o << kPatchesCsvHeader << '\n';
+  for (int i = 0; i < mesh.size(); ++i) {
+    const Patch& p = mesh.patches[i];
+    const Material& mat = scene.materials[scene.surfaces[p.surface].material];
+    o << i << ',' << csvField(scene.surfaces[p.surface].name) << ',' << p.area * m * m;
+    writeTriple(o, p.centroid * m);
+    writeTriple(o, p.normal);
+    writeTriple(o, mat.diffuseAlbedo());
+    writeTriple(o, mat.emission);
+    writeTriple(o, radiosity ? (*radiosity)[i] : Vec3{});
+    o << '\n';
+  }
+  writeFileAtomically(path, o.str());
+}
+
+void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+                      const SolveResult& solve) {
+  const std::vector<Vec3> b = toVec3(solve.radiosity);
+  writePatchesCsv(path, scene, mesh, &b);
+}
+
+void writePatchesVtp(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+                     const std::vector<Vec3>* radiosity, const std::vector<CellArray>& extra) {
+  std::ostringstream o;
+  o << std::setprecision(kDigits);
+  o << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n<PolyData>\n"
+    << "<Piece NumberOfPoints=\"" << mesh.vertices.size() << "\" NumberOfPolys=\"" << mesh.size()
+    << "\">\n"
+    << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const Vec3& v : mesh.vertices) o << v.x << ' ' << v.y << ' ' << v.z << '\n';
+  o << "</DataArray></Points>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
+       "format=\"ascii\">\n";
+  for (const Patch& p : mesh.patches) {
+    for (int k = 0; k < p.vertexCount; ++k) o << p.vertex[k] << ' ';
+    o << '\n';
+  }
+  o << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  long long offset = 0;
+  for (const Patch& p : mesh.patches) o << (offset += p.vertexCount) << '\n';
+  o << "</DataArray>\n</Polys>\n<CellData Scalars=\"surface\">\n";
+  o << "<DataArray type=\"Int32\" Name=\"surface\" format=\"ascii\">\n";
+  for (const Patch& p : mesh.patches) o << p.surface << '\n';
+  o << "</DataArray>\n<DataArray type=\"Float64\" Name=\"area\" format=\"ascii\">\n";
+  for (const Patch& p : mesh.patches) o << p.area << '\n';
+  o << "</DataArray>\n";
+  auto triples = [&](const char* name, auto value) {
+    o << "<DataArray type=\"Float64\" Name=\"" << name
+      << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (int i = 0; i < mesh.size(); ++i) {
+      Vec3 v = value(i);
+      o << v.x << ' ' << v.y << ' ' << v.z << '\n';
+    }
+    o << "</DataArray>\n";
+  };
+  auto material = [&](int i) -> const Material& {
+    return scene.materials[scene.surfaces[mesh.patches[i].surface].material];
+  };
+  triples("reflectance", [&](int i) { return material(i).diffuseAlbedo(); });
+  triples("emission", [&](int i) { return material(i).emission; });
+  if (radiosity) triples("radiosity", [&](int i) { return (*radiosity)[i]; });
+  for (const CellArray& a : extra) {
+    o << "<DataArray type=\"Float64\" Name=\"" << a.name << "\" format=\"ascii\">\n";
+    for (double v : a.values) o << v << '\n';
+    o << "</DataArray>\n";
+  }
+  o << "</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  writeFileAtomically(path, o.str());
+}
+
+void writeSurfacesCsv(const std::string& path, const Scene& scene,
+                      const std::vector<SurfaceResult>& results, bool photometric) {
+  (void)scene;  // SurfaceResult areas are in m² already
+  namespace c = surfaces_csv;
+  std::ostringstream o;
+  o << std::setprecision(kDigits) << c::kSurface << ',' << c::kArea << ',' << c::kRadiosity[0]
+    << ',' << c::kRadiosity[1] << ',' << c::kRadiosity[2];
+  if (photometric) o << ',' << c::kLuminance << ',' << c::kIlluminance;
+  o << '\n';
+  for (const SurfaceResult& r : results) {
+    o << csvField(r.name) << ',' << r.area;
+    writeTriple(o, r.radiosity);
+    if (photometric) o << ',' << r.luminance << ',' << r.illuminance;
+    o << '\n';
+  }
+  writeFileAtomically(path, o.str());
+}
+
+std::vector<SurfaceRadiosity> readSurfacesCsv(const std::string& path) {
+  namespace c = surfaces_csv;
+  std::ifstream in(path);
+  if (!in)
+    throw std::runtime_error(
+        path + ": cannot open. Fix: give the folder of a `radkit run` (it holds surfaces.csv)");
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = splitCsvLine(line);
+  auto column = [&](const char* name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end())
+      throw std::runtime_error(path + ": line 1 has no column " + name +
+                               ". Fix: give the folder of a `radkit run` of this radkit version");
+    return std::size_t(it - header.begin());
+  };
+  const std::size_t name = column(c::kSurface), area = column(c::kArea);
+  const std::size_t rgb[3] = {column(c::kRadiosity[0]), column(c::kRadiosity[1]),
+                              column(c::kRadiosity[2])};
+  const std::size_t need = std::max({name, area, rgb[0], rgb[1], rgb[2]}) + 1;
+  std::vector<SurfaceRadiosity> rows;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty() || line == "\r") continue;
+    const std::vector<std::string> f = splitCsvLine(line);
+    SurfaceRadiosity r;
+    try {
+      if (f.size() < need) throw std::invalid_argument("short");
+      std::size_t used = 0;
+      auto parse = [&](std::size_t k) {
+        const double v = std::stod(f[k], &used);
+        if (used != f[k].size() || !std::isfinite(v)) throw std::invalid_argument("not a number");
+        return v;
+      };
+      r.name = f[name];
+      r.area = parse(area);
+      r.radiosity = {parse(rgb[0]), parse(rgb[1]), parse(rgb[2])};
+    } catch (const std::exception&) {
+      throw std::runtime_error(path + ": line " + std::to_string(number) +
+                               " does not give a name and finite numbers in the columns of line "
+                               "1. Fix: rerun `radkit run`");
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+void writeConvergenceCsv(const std::string& path, const std::vector<SolveResult>& solves,
+                         double metresPerUnit) {
+  namespace c = convergence_csv;
+  const double m2 = metresPerUnit * metresPerUnit;
+  std::ostringstream o;
+  o << std::setprecision(kDigits) << c::kSolver << ',' << c::kIteration << ',' << c::kSweeps << ','
+    << c::kSeconds << ',' << c::kResidual << ',' << c::kUnshotPower << '\n';
+  for (const SolveResult& s : solves)
+    for (const HistoryRow& row : s.history)
+      o << csvField(s.solver) << ',' << row.iteration << ',' << row.sweeps << ',' << row.seconds
+        << ',' << row.residual << ',' << row.unshotPower * m2 << '\n';
+  writeFileAtomically(path, o.str());
+}
+
+void writeComparisonCsv(const std::string& path, const std::vector<SurfaceComparison>& rows,
+                        double metresPerUnit) {
+  const double m2 = metresPerUnit * metresPerUnit;
+  std::ostringstream o;
+  o << std::setprecision(10) << "surface,area_m2";
+  const std::pair<const char*, const char*> columns[] = {{"photon_b", "_W_m2"},
+                                                         {"radiosity_b", "_W_m2"},
+                                                         {"rel_diff", ""},
+                                                         {"photon_se", "_W_m2"},
+                                                         {"z", ""}};
+  for (const auto& [col, unit] : columns)
+    for (const char* ch : {"_r", "_g", "_b"}) o << ',' << col << ch << unit;
+  o << '\n';
+  for (const SurfaceComparison& r : rows) {
+    o << csvField(r.name) << ',' << r.area * m2;
+    for (const Vec3* v :
+         {&r.photon, &r.radiosity, &r.relativeDifference, &r.photonError, &r.zScore})
+      writeTriple(o, *v);
+    o << '\n';
+  }
+  writeFileAtomically(path, o.str());
+}
+
+void writeSurfaceFormFactors(const std::string& path, const PatchMesh& mesh,
+                             const std::vector<std::string>& names, const FormFactorMatrix& f) {
+  DenseMatrix<double> s = surfaceFormFactors(mesh, f);
+  if (int(names.size()) != s.rows())
+    throw std::invalid_argument("writeSurfaceFormFactors: " + std::to_string(names.size()) +
+                                " names for " + std::to_string(s.rows()) + " surfaces");
+  std::ostringstream out;
+  out << "from,to,F\n";
+  char value[32];
+  for (int a = 0; a < s.rows(); ++a)
+    for (int b = 0; b < s.cols(); ++b) {
+      std::snprintf(value, sizeof value, "%.10g", s(a, b));
+      out << csvField(names[a]) << ',' << csvField(names[b]) << ',' << value << '\n';
+    }
+  writeFileAtomically(path, out.str());
+}
+
+void writeMatrixMarket(const std::string& path, const FormFactorMatrix& f,
+                       const std::vector<std::string>& comments) {
+  const bool single = f.index() == 1 || f.index() == 3;
+  std::size_t nonZeros = 0;
+  forEachNonZero(f, [&](int, int, double) { ++nonZeros; });
+  // Streamed: at 5 400 patches the text is 789 MB, and building it in memory peaked at 1.7 GiB.
+  writeFileStreaming(path, [&](std::ostream& out) {
+    out << "%%MatrixMarket matrix coordinate real general\n";
+    for (const std::string& c : comments) out << "% " << c << "\n";
+    const int n = matrixSize(f);
+    out << n << " " << n << " " << nonZeros << "\n";
+    // to_chars: the shortest text that reads back to the same value, several times faster
+    // than printf's %.17g, which dominated the write.
+    char line[80];
+    forEachNonZero(f, [&](int i, int j, double v) {
+      char* p = std::to_chars(line, line + 16, i + 1).ptr;
+      *p++ = ' ';
+      p = std::to_chars(p, p + 16, j + 1).ptr;
+      *p++ = ' ';
+      p = single ? std::to_chars(p, line + 78, float(v)).ptr : std::to_chars(p, line + 78, v).ptr;
+      *p++ = '\n';
+      out.write(line, p - line);
+    });
+  });
+}
+
+namespace {
+
+template <typename T>
+void putLittleEndian(std::ostream& out, T value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  if constexpr (__BYTE_ORDER__ == __ORDER_BIG_ENDIAN__) std::reverse(bytes, bytes + sizeof(T));
+  out.write(reinterpret_cast<const char*>(bytes), sizeof(T));
+}
+
+/// An array at once (one write per row, not per number) on little-endian machines.
+template <typename T>
+void putArray(std::ostream& out, const std::vector<T>& a) {
+  if constexpr (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
+    out.write(reinterpret_cast<const char*>(a.data()), std::streamsize(a.size() * sizeof(T)));
+  else
+    for (const T& v : a) putLittleEndian(out, v);
+}
+
+}  // namespace
+
+void writeFormFactorBinary(const std::string& path, const FormFactorMatrix& f) {
+  const int n = matrixSize(f);
+  long long nonZeros = 0;
+  forEachNonZero(f, [&](int, int, double) { ++nonZeros; });
+  writeFileStreaming(path, [&](std::ostream& out) {
+    out.write(kFormFactorBinaryMagic, 8);
+    putLittleEndian<std::int64_t>(out, n);
+    putLittleEndian<std::int64_t>(out, nonZeros);
+    std::vector<std::uint32_t> columns;
+    std::vector<float> values;
+    int row = 0;
+    auto flush = [&] {
+      if (2 * columns.size() > std::size_t(n)) {  // sparse would be larger: a dense row
+        putLittleEndian<std::int32_t>(out, -1);
+        std::vector<float> dense(n, 0.0f);
+        for (std::size_t k = 0; k < columns.size(); ++k) dense[columns[k]] = values[k];
+        putArray(out, dense);
+      } else {
+        putLittleEndian<std::int32_t>(out, std::int32_t(columns.size()));
+        putArray(out, columns);
+        putArray(out, values);
+      }
+      columns.clear(), values.clear();
+      ++row;
+    };
+    forEachNonZero(f, [&](int i, int j, double v) {
+      while (row < i) flush();
+      columns.push_back(std::uint32_t(j));
+      values.push_back(float(v));
+    });
+    while (row < n) flush();
+  });
+}
+
+void writeStudyCsv(const std::string& path, const StudyResult& r) {
+  std::ostringstream o;
+  o << "knob,config,status,patches,ff_method,ff_samples,solver,tolerance,mesh_s,ray_scene_s,"
+       "formfactors_s,solve_s,"
+       "results_s,total_s,estimated_s,ff_bytes,peak_bytes,iterations,converged,surface_error,patch_"
+       "error,field_error,"
+       "pareto_surface,pareto_patch,needed_s,left_s\n";
+  auto line = [&](const StudyRow& w, const std::string& knob) {
+    const PipelineSettings& s = w.config.settings;
+    o << knob << ",\"" << w.config.label() << "\"," << (w.ran ? "ran" : "skipped") << ','
+      << w.patches << ',' << s.formFactors.method << ',' << s.formFactors.samples << ','
+      << s.solvers.front().name << ',' << s.stopping.tolerance << ',' << w.seconds.mesh << ','
+      << w.seconds.rayScene << ',' << w.seconds.formFactors << ',' << w.seconds.solve << ','
+      << w.seconds.results << ',' << w.totalSeconds << ',' << w.estimatedSeconds << ','
+      << w.formFactorBytes << ',' << w.peakBytes << ',' << w.iterations << ',' << w.converged << ','
+      << w.surfaceError << ',' << w.patchError << ',' << w.fieldError << ',' << w.paretoSurface
+      << ',' << w.paretoPatch << ',';
+    if (!std::isnan(w.neededSeconds))
+      o << w.neededSeconds << ',' << w.secondsLeft;
+    else
+      o << ',';
+    o << '\n';
+  };
+  o.precision(6);
+  for (const StudyRow& w : r.rows) line(w, studyKnobName(w.config.knob));
+  line(r.reference.row, "reference");
+  writeFileAtomically(path, o.str());
+}
+
+}  // namespace radkit
