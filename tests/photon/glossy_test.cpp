@@ -1,8 +1,10 @@
 // Photon mapping through every BSDF: on the glossy Cornell box the final-gather image must
 // agree with the path tracer, an independent unbiased estimator, on the Cook-Torrance gold
-// block (no diffuse part at all: before photons scattered through Bsdf::sample it was black)
-// and the Cook-Torrance floor. The Phong tall block is printed, not asserted: there the photon
-// map's density-estimation bias is −2 % on the all-Lambertian box too (docs/photon-mapping.md).
+// block (no diffuse part at all: before photons scattered through Bsdf::sample it was black),
+// the Phong tall block and the Cook-Torrance floor. On the tall block the photon map reads
+// about 2 % low, as it does on the all-Lambertian box (density-estimation bias,
+// docs/photon-mapping.md); that is within this test's standard errors (about 1.3 %), so a
+// more precise test would resolve it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -75,7 +77,6 @@ TEST(PhotonGlossy, StatisticalFinalGatherMatchesPathTracer) {
   const EmitterSampler emitters(scene, mesh);
   const Camera camera = *scene.camera;
   const std::vector<std::string> glossy = {"short block", "tall block", "floor"};
-  const std::vector<std::string> asserted = {"short block", "floor"};
 
   // Path tracer: per-surface mean with its standard error from the per-pixel variances of
   // the means (pixels are independent streams).
@@ -110,10 +111,10 @@ TEST(PhotonGlossy, StatisticalFinalGatherMatchesPathTracer) {
       sumSq[name] += mul(v, v);
     }
   }
-  // Šidák over 2 surfaces × 3 channels at family level 0.01. The photon mean's variance is
+  // Šidák over 3 surfaces × 3 channels at family level 0.01. The photon mean's variance is
   // estimated from `runs` runs, the reference's from thousands of paths: Student's t with
   // Welch–Satterthwaite's degrees of freedom.
-  const double alpha = test::sidakAlpha(0.01, 6);
+  const double alpha = test::sidakAlpha(0.01, 9);
   for (const std::string& name : glossy) {
     ASSERT_GT(pixels[name], 20) << name;
     for (int c = 0; c < 3; ++c) {
@@ -131,7 +132,6 @@ TEST(PhotonGlossy, StatisticalFinalGatherMatchesPathTracer) {
           "%s channel %d: photons %.6g path tracer %.6g, difference %.2f standard errors (bound "
           "%.2f)\n",
           name.c_str(), c, m, ref.at(name)[c], (m - ref.at(name)[c]) / se, z);
-      if (std::find(asserted.begin(), asserted.end(), name) == asserted.end()) continue;
       EXPECT_NEAR(m, ref.at(name)[c], z * se)
           << name << " channel " << c << ": photons " << m << " path tracer " << ref.at(name)[c]
           << " se " << se << " (photon se " << std::sqrt(varMean) << ")";
