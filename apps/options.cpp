@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "apps/common.h"
+#include "hierarchy/hierarchical.h"
 #include "solvers/registry.h"
 
 namespace radkit::app {
@@ -95,7 +96,9 @@ void addSolverOptions(CLI::App& c, SolverOptions& o, const std::string& defaultS
       ->check(FinitePositive)
       ->capture_default_str();
   c.add_option("--max-iterations", o.stopping.maxIterations,
-               "Stop after this many iterations (shots for southwell)")
+               "Stop after this many iterations (shots for southwell; default " +
+                   std::to_string(SolverSettings{}.maxIterations) + "; hierarchical: sweeps, " +
+                   "default " + std::to_string(kDefaultHierarchicalSweeps) + ")")
       ->check(CLI::PositiveNumber);
   c.add_option("--max-seconds", o.stopping.maxSeconds, "Stop a solver after this many seconds")
       ->check(FinitePositive);

@@ -35,7 +35,7 @@ struct PipelineCommand {
   AdaptiveSettings adaptiveSettings;
   HierarchicalOptions hierarchical;
   /// Options a preset must not override when the user gave them.
-  std::vector<CLI::Option*> meshFlags, methodFlag, samplesFlag, tolFlag;
+  std::vector<CLI::Option*> meshFlags, methodFlag, samplesFlag, tolFlag, maxIterationsFlag;
 };
 
 bool given(const std::vector<CLI::Option*>& flags) {
@@ -154,6 +154,9 @@ void runHierarchical(PipelineCommand& cmd) {
   job.settings.seed = cmd.ff.settings.seed;
   job.settings.memoryBudget = cmd.ff.settings.memoryBudget;
   job.settings.stopping = cmd.solver.stopping;
+  // The dense default (10⁸ steps) is no bound on a gather's sweeps: the hierarchy has its own.
+  if (!given(cmd.maxIterationsFlag))
+    job.settings.stopping.maxIterations = kDefaultHierarchicalSweeps;
   job.linkColour =
       cmd.hierarchical.linkColour == "power" ? LinkColour::Power : LinkColour::FormFactor;
   job.noRender = cmd.noRender, job.photometric = cmd.photometric, job.smooth = cmd.smooth;
@@ -280,6 +283,7 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
     addSolverOptions(*sub, cmd->solver,
                      job == Job::Solvers ? "jacobi,gauss-seidel,sor,southwell,cg" : "gauss-seidel");
     cmd->tolFlag = {sub->get_option("--tol")};
+    cmd->maxIterationsFlag = {sub->get_option("--max-iterations")};
   }
   if (job != Job::Solvers)
     sub->add_flag("--write-matrix", cmd->writeMatrix,

@@ -73,6 +73,7 @@ json solveJson(const SolveResult& r) {
           {"iterations", r.iterations},
           {"seconds", r.seconds},
           {"spectral_radius_estimate", r.spectralRadius},
+          {"predicted_sweeps", r.predictedSweeps},
           {"residual", r.residual},
           {"checked_residual", r.checkedResidual},
           {"milestones", milestonesJson},

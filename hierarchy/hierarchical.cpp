@@ -354,6 +354,8 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     const double tolerance =
         last ? settings.stopping.tolerance : std::max(settings.stopping.tolerance, kRoundTolerance);
     const long maxSweeps = last ? settings.stopping.maxIterations : 1000;
+    // New links, a new system: its rate is measured afresh.
+    monitor.restart(double(iteration), since(solveStart));
     for (long sweep = 0;; ++sweep) {
       const std::string after = " after " + std::to_string(iteration) + " sweeps";
       if (sweep >= maxSweeps) {
@@ -373,8 +375,9 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
       ++iteration, ++info.sweeps;
       const double residual = c.max / emissionNorm;
       r.solve.residual = residual;
-      monitor.update(residual, double(iteration));
-      lastRow = {iteration, since(solveStart), residual, c.power, double(iteration)};
+      const double seconds = since(solveStart);
+      monitor.update(residual, double(iteration), seconds);
+      lastRow = {iteration, seconds, residual, c.power, double(iteration)};
       if (log.progress)
         log.progress("solve, epsilon " + num(info.epsilon),
                      std::clamp(std::log(residual) / std::log(tolerance), 0.0, 1.0));
@@ -390,6 +393,13 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
                               std::to_string(iteration) + " sweeps" + monitor.rateText() +
                               " (rounding error: tolerance " + num(tolerance) +
                               " is below what this system reaches; raise --tol)");
+      } else if (last && monitor.overBudget(residual, tolerance, double(maxSweeps - sweep - 1),
+                                            settings.stopping.maxSeconds - seconds)) {
+        // Only the last round: the earlier ones are capped at 1000 sweeps anyway, and their
+        // light steers the next round's threshold.
+        r.solve.predictedSweeps = monitor.predicted;
+        stop("predicted_over_budget",
+             monitor.overBudgetText(residual, tolerance, settings.stopping, iteration));
       }
       const bool done = residual <= tolerance || !r.solve.exit.empty();
       lastKept = monitor.keep(iteration, residual) || done;

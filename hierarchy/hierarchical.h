@@ -20,6 +20,12 @@ namespace radkit {
 /// any run should (1e-7 ran past 40 s and 270 MB on the six-face furnace; 1e-300 was accepted).
 constexpr double kMinEpsilon = 1e-6;
 
+/// Sweeps the last round may take unless --max-iterations says otherwise. The dense solvers'
+/// default (10⁸ steps over a small matrix) is no bound for a gather over 10⁵ links; this one
+/// also makes an over-budget prediction (ConvergenceMonitor::overBudget) stop a closed box at
+/// ρ = 0.999999 after a few hundred sweeps instead of millions.
+constexpr long kDefaultHierarchicalSweeps = 100000;
+
 struct HierarchicalSettings {
   /// A link may carry an estimated error of at most ε times the power the scene emits.
   double epsilon = 1e-4;
@@ -32,7 +38,12 @@ struct HierarchicalSettings {
   GatherOrder order = GatherOrder::Jacobi;
   std::uint64_t seed = 1;
   std::size_t memoryBudget = std::size_t(8) << 30;
-  SolverSettings stopping;  ///< tolerance on max|ΔB|/‖E‖∞ and the sweep limit of the last round
+  /// Tolerance on max|ΔB|/‖E‖∞ and the sweep limit of the last round.
+  SolverSettings stopping = [] {
+    SolverSettings s;
+    s.maxIterations = kDefaultHierarchicalSweeps;
+    return s;
+  }();
 };
 
 /// The default smallest element, as a fraction of the scene's surface area.

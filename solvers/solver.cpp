@@ -58,7 +58,7 @@ std::string rateText(double rate) {
 
 /// Empty when the run goes on; otherwise why it stops (and result.exit, result.converged).
 std::string stopReason(const Solver& solver, const SolverSettings& settings, long iteration,
-                       double seconds, double emissionNorm, const ConvergenceMonitor& p,
+                       double seconds, double emissionNorm, ConvergenceMonitor& p,
                        SolveResult& result) {
   const double r = solver.residual();
   const std::string tail = " after " + std::to_string(iteration) + " iterations";
@@ -101,24 +101,87 @@ std::string stopReason(const Solver& solver, const SolverSettings& settings, lon
            " sweeps" + tail + rateText(p.rate) + " (rounding error: tolerance " +
            number(settings.tolerance) + " is below what this system reaches; raise --tol)";
   }
+  // Southwell's steps are shots: the iterations left count at the sweeps per step so far.
+  const double sweepsPerStep = iteration > 0 ? solver.sweeps() / double(iteration) : 1.0;
+  if (p.overBudget(r, settings.tolerance,
+                   double(settings.maxIterations - iteration) * sweepsPerStep,
+                   settings.maxSeconds - seconds)) {
+    result.exit = "predicted_over_budget";
+    result.predictedSweeps = p.predicted;
+    return p.overBudgetText(r, settings.tolerance, settings, iteration);
+  }
   return {};
 }
 
 }  // namespace
 
-void ConvergenceMonitor::update(double r, double sweeps) {
+void ConvergenceMonitor::update(double r, double sweeps, double seconds) {
   if (r < best * (1 - 1e-9)) {
     best = r;
     bestSweeps = sweeps;
   }
-  if (sweeps - windowSweeps >= kRateWindowSweeps || std::isnan(rate)) {
-    if (sweeps > windowSweeps && windowResidual > 0 && r >= 0)
-      rate = std::pow(r / windowResidual, 1 / (sweeps - windowSweeps));
-    if (sweeps - windowSweeps >= kRateWindowSweeps) {
+  const double span = sweeps - windowSweeps;
+  windowEnded = span >= kRateWindowSweeps;
+  if (windowEnded || std::isnan(rate)) {
+    const bool measured = span > 0 && windowResidual > 0 && r >= 0;
+    if (measured) rate = std::pow(r / windowResidual, 1 / span);
+    if (windowEnded) {
+      previousRate = windowRate;
+      windowRate = measured ? rate : kNaN;
+      secondsPerSweep = (seconds - windowSeconds) / span;
+      ++windows;
       windowSweeps = sweeps;
       windowResidual = r;
+      windowSeconds = seconds;
     }
   }
+}
+
+void ConvergenceMonitor::restart(double sweeps, double seconds) {
+  windowSweeps = sweeps, windowSeconds = seconds, windowResidual = 0.0;
+  windowRate = previousRate = kNaN;
+  windows = 0;
+  windowEnded = false;
+}
+
+double ConvergenceMonitor::sweepsToTolerance(double r, double tolerance) const {
+  if (windows < 3 || !(r > tolerance) || !(tolerance > 0)) return kNaN;
+  const double a = -std::log(windowRate), b = -std::log(previousRate);
+  // NaN rates fail these tests too; a rising or flat window predicts nothing (a residual may
+  // rise for a long while and still converge: Gauss-Seidel and Southwell at ρ near 1).
+  if (!(a > 0) || !(b > 0) || !(std::max(a, b) <= kRateAgreement * std::min(a, b))) return kNaN;
+  return std::log(r / tolerance) / std::max(a, b);
+}
+
+bool ConvergenceMonitor::overBudget(double r, double tolerance, double sweepsLeft,
+                                    double secondsLeft) {
+  if (!windowEnded) return false;
+  predicted = sweepsToTolerance(r, tolerance);
+  if (std::isnan(predicted)) return false;
+  affordable = std::max(sweepsLeft, 0.0);
+  timeBound = false;
+  if (std::isfinite(secondsLeft) && secondsPerSweep > 0 &&
+      std::max(secondsLeft, 0.0) / secondsPerSweep < affordable) {
+    affordable = std::max(secondsLeft, 0.0) / secondsPerSweep;
+    timeBound = true;
+  }
+  return predicted > kPredictionMargin * affordable;
+}
+
+std::string ConvergenceMonitor::overBudgetText(double r, double tolerance,
+                                               const SolverSettings& limits, long iteration) const {
+  const std::string budget =
+      timeBound ? "--max-seconds " + number(limits.maxSeconds) + " leaves at " +
+                      number(secondsPerSweep) + " s per sweep"
+                : "--max-iterations " + std::to_string(limits.maxIterations) + " leaves";
+  return "predicted over budget: at estimated spectral radius " +
+         formatNumber(std::min(windowRate, previousRate), 7) + " the residual " + number(r) +
+         " needs about " + number(predicted) + " more sweeps to reach tolerance " +
+         number(tolerance) + ", over twice the " +
+         std::to_string(static_cast<long long>(affordable)) + " sweeps that " + budget +
+         " (stopped after " + std::to_string(iteration) +
+         " iterations). Fix: raise --max-iterations or --max-seconds, loosen --tol, or lower the "
+         "reflectance (a closed scene with reflectance near 1 converges slowly)";
 }
 
 bool ConvergenceMonitor::keep(long iteration, double r) {
@@ -155,7 +218,7 @@ SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSet
     const double seconds = secondsSince(t0);
     const HistoryRow row{iteration, seconds, solver.residual(), solver.unshotPower(),
                          solver.sweeps()};
-    progress.update(row.residual, row.sweeps);
+    progress.update(row.residual, row.sweeps, row.seconds);
     result.reason =
         stopReason(solver, settings, iteration, seconds, emissionNorm, progress, result);
     if (progress.keep(iteration, row.residual) || !result.reason.empty())

@@ -93,9 +93,13 @@ struct SolveResult {
   Channels radiosity;
   Rgb ambient{};
   /// Why it stopped, for report.json: "converged", "max_iterations", "time_limit",
-  /// "stagnated" (at the rounding floor, no new lowest residual for kStagnationSweeps sweeps)
-  /// or "diverged".
+  /// "stagnated" (at the rounding floor, no new lowest residual for kStagnationSweeps sweeps),
+  /// "predicted_over_budget" (the estimated spectral radius predicts more sweeps to the
+  /// tolerance than the limits leave, see ConvergenceMonitor::overBudget) or "diverged".
   std::string exit;
+  /// Sweeps still needed to reach the tolerance, predicted from the spectral-radius estimate
+  /// when the run stopped as "predicted_over_budget"; NaN otherwise.
+  double predictedSweeps = std::numeric_limits<double>::quiet_NaN();
   /// Mean factor by which the residual fell per sweep over the last kRateWindowSweeps sweeps
   /// (or since the start): an estimate of the iteration's spectral radius; NaN before a sweep.
   double spectralRadius = std::numeric_limits<double>::quiet_NaN();
@@ -110,20 +114,59 @@ struct SolveResult {
 constexpr double kStagnationSweeps = 1000;
 /// Sweeps over which SolveResult::spectralRadius is measured.
 constexpr double kRateWindowSweeps = 50;
+/// A run stops as "predicted_over_budget" only when the prediction exceeds this many times the
+/// sweeps it can still afford: a rate that later improves must not cost a run that would have
+/// converged.
+constexpr double kPredictionMargin = 2;
+/// Two consecutive windows' rates count as one stable estimate when their convergence speeds
+/// (−log rate per sweep) differ by at most this factor.
+constexpr double kRateAgreement = 1.25;
 
 /// What solve() tracks across iterations beyond the solver's own state; the hierarchical gather
 /// (hierarchy/hierarchical.cpp) uses it too, so both stop, estimate ρ and keep history alike.
 struct ConvergenceMonitor {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   double startResidual = 0.0;
-  double best = std::numeric_limits<double>::infinity();   ///< lowest residual so far
-  double bestSweeps = 0.0;                                 ///< sweeps when it was reached
-  double windowSweeps = 0.0, windowResidual = 0.0;         ///< start of the rate window
-  double rate = std::numeric_limits<double>::quiet_NaN();  ///< see SolveResult::spectralRadius
+  double best = std::numeric_limits<double>::infinity();  ///< lowest residual so far
+  double bestSweeps = 0.0;                                ///< sweeps when it was reached
+  double windowSweeps = 0.0, windowResidual = 0.0;        ///< start of the rate window
+  double windowSeconds = 0.0;                             ///< its wall-clock time
+  double rate = kNaN;                                     ///< see SolveResult::spectralRadius
+  /// Rates of the last two completed windows (NaN where a window had no starting residual),
+  /// the windows completed since the start (or restart()) and the last one's seconds per sweep.
+  double windowRate = kNaN, previousRate = kNaN;
+  int windows = 0;
+  double secondsPerSweep = kNaN;
+  /// Whether the last update() completed a window. overBudget() decides only then: the rate
+  /// changes no more often, and a cheap step (a Southwell shot) pays nothing for the test.
+  bool windowEnded = false;
+  /// Set by overBudget(): sweeps still needed, and the sweeps the limits leave (the smaller of
+  /// the iteration and the time budget; timeBound says which).
+  double predicted = kNaN, affordable = kNaN;
+  bool timeBound = false;
   int decade =
       std::numeric_limits<int>::max();  ///< floor(log10) of the last kept residual's decade
 
-  /// Records residual r after `sweeps` sweep-equivalents: the lowest so far and the rate.
-  void update(double r, double sweeps);
+  /// Records residual r after `sweeps` sweep-equivalents at `seconds` on the run's clock: the
+  /// lowest so far and the rate.
+  void update(double r, double sweeps, double seconds);
+  /// Starts the rate windows afresh at `sweeps` (the system changed: a new hierarchical round).
+  /// The first window after it gives no rate, as it has no starting residual.
+  void restart(double sweeps, double seconds);
+  /// Sweeps from residual r down to `tolerance` at the estimated rate; NaN until the rate is
+  /// stable: two completed windows after the first (whose fast start misleads) that agree
+  /// within kRateAgreement, both falling. The faster of the two is used, so the prediction is
+  /// never more than either window's.
+  double sweepsToTolerance(double r, double tolerance) const;
+  /// Whether, at the end of a window, the stable rate predicts more than kPredictionMargin
+  /// times the sweeps the run can still afford: `sweepsLeft` under the iteration limit and, when
+  /// `secondsLeft` is finite, as many as fit in it at the last window's seconds per sweep. Sets
+  /// predicted and affordable.
+  bool overBudget(double r, double tolerance, double sweepsLeft, double secondsLeft);
+  /// The console sentence after overBudget() returned true, ending in a Fix; `limits` names the
+  /// binding limit's value, `iteration` the steps done.
+  std::string overBudgetText(double r, double tolerance, const SolverSettings& limits,
+                             long iteration) const;
   /// Whether history row `iteration` is kept: every row up to 1000, then 900 per decade of
   /// iterations, and the first row of each new decade of the residual.
   bool keep(long iteration, double r);
@@ -135,7 +178,8 @@ struct ConvergenceMonitor {
 };
 
 /// \brief Runs solver from B = E until residual <= tolerance, maxIterations steps, maxSeconds,
-///        stagnation or divergence, recording the history. Throws what start() throws.
+///        stagnation, a prediction over the budget or divergence, recording the history. Throws
+///        what start() throws.
 SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSettings& settings);
 
 }  // namespace radkit

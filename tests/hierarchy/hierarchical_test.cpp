@@ -209,6 +209,40 @@ TEST(Hierarchical, NearSingularBoxRefinesBoundedly) {
               hr.leaves.size(), hr.solve.exit.c_str(), hr.threshold);
 }
 
+/// The solve after that refinement needs log(1e-6)/log(0.999999) ≈ 13.8 M sweeps: every leaf of
+/// the furnace is closed and normalised to a row sum of 1, so B stays uniform and the Jacobi
+/// gather's change falls by exactly ρ per sweep (spectral radius 0.999999). It used to sweep
+/// to the limit; now, once the rate is stable (three windows of kRateWindowSweeps after the
+/// round's links are made, the first without a rate), it stops as predicted_over_budget with a
+/// prediction within 1 % of log(tol/change)/log(ρ). Gauss-Seidel blocks stop alike.
+TEST(Hierarchical, NearSingularBoxStopsWhenPredictedOverBudget) {
+  const double rho = 0.999999;
+  SceneBuilder b;
+  int glow = b.material("glow", {rho, rho, rho}, {1, 1, 1});
+  b.cube(2, glow, glow);
+  HierarchicalSettings s;
+  s.rounds = 1;
+  s.epsilon = 1e-2;
+  s.raysPerLink = 4;
+  s.stopping.maxIterations = 20000;  // the default, 10⁵, would be no faster; 10⁸ used to be it
+  HierarchicalResult hr = solveHierarchical(b.scene, s);
+  EXPECT_EQ(hr.solve.exit, "predicted_over_budget") << hr.solve.reason;
+  EXPECT_FALSE(hr.solve.converged);
+  EXPECT_EQ(hr.solve.iterations, 3 * kRateWindowSweeps);
+  EXPECT_NEAR(hr.solve.spectralRadius, rho, 1e-9);
+  const double analytic = std::log(s.stopping.tolerance / hr.solve.residual) / std::log(rho);
+  EXPECT_NEAR(hr.solve.predictedSweeps / analytic, 1.0, 0.01) << hr.solve.predictedSweeps;
+  EXPECT_NE(hr.solve.reason.find("--max-iterations 20000 leaves"), std::string::npos)
+      << hr.solve.reason;
+  EXPECT_EQ(hr.solve.history.back().iteration, hr.solve.iterations);
+  for (const Vec3& v : hr.radiosity) EXPECT_TRUE(std::isfinite(v.y) && v.y > 1.0);
+
+  s.order = GatherOrder::GaussSeidel;
+  hr = solveHierarchical(b.scene, s);
+  EXPECT_EQ(hr.solve.exit, "predicted_over_budget") << hr.solve.reason;
+  EXPECT_LT(hr.solve.iterations, 1000);
+}
+
 /// An open scene: nothing is normalised, and a row sum far above 1 (a coarse ε between nearby
 /// clusters) is capped so the solve still converges at ρ = 0.99.
 TEST(Hierarchical, OpenSceneNearUnitReflectanceConverges) {

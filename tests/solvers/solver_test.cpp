@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
 #include <set>
 
 #include "analytic_systems.h"
@@ -152,6 +154,129 @@ TEST(Solve, ExactNearSingularClosedBoxStopsWithAReason) {
       EXPECT_NEAR(r.spectralRadius, 0.999999, 1e-6);
     }
   }
+}
+
+// Two infinite parallel plates (F12 = F21 = 1, docs/oracles.md), plate 1 emitting 1, both at
+// reflectance rho: every method's rate is known in closed form. Jacobi iterates ρF, whose
+// eigenvalues are ±ρ, and from B = E the residual is exactly ρ^(k+1) after k sweeps: spectral
+// radius ρ. Gauss-Seidel: B1 = E1 + ρB2 then B2 = ρB1 leaves residual ρ^(2k), radius ρ² per
+// sweep. Southwell: each shot hands ρ of the unshot radiosity to the other plate, and a shot is
+// one row of two, half a sweep: radius ρ² per sweep too.
+Problem plates(double rho) {
+  return makeProblem(platesFormFactors(), {1.0, 1.0}, grey({rho, rho}), grey({1.0, 0.0}));
+}
+
+const std::map<std::string, int> kPlateRadiusPower{
+    {"jacobi", 1}, {"gauss-seidel", 2}, {"southwell", 2}};
+
+// At ρ = 0.999999 reaching 1e-6 takes 13.8 M Jacobi sweeps (6.9 M for the others), far beyond
+// a budget of 10⁶ iterations. Each method used to sweep silently to that limit; it now stops as
+// soon as its rate is stable (three windows of kRateWindowSweeps, the first never trusted),
+// with a prediction that matches the closed form log(tol/r)/log(radius) within 1 %.
+TEST(Solve, ExactNearSingularStopsWhenPredictedOverBudget) {
+  const double rho = 0.999999, tol = 1e-6;
+  const Problem p = plates(rho);
+  for (const auto& [name, power] : kPlateRadiusPower) {
+    const double radius = std::pow(rho, power);
+    const SolveResult r = runSolver(name, p.system, tol, ResidualNorm::Relative, 1000000);
+    EXPECT_EQ(r.exit, "predicted_over_budget") << name << ": " << r.reason;
+    EXPECT_FALSE(r.converged) << name;
+    EXPECT_EQ(r.history.back().sweeps, 3 * kRateWindowSweeps) << name;
+    EXPECT_NEAR(r.spectralRadius, radius, 1e-9) << name;
+    const double analytic = std::log(tol / r.residual) / std::log(radius);
+    EXPECT_GT(analytic, 1e6) << name;
+    EXPECT_NEAR(r.predictedSweeps / analytic, 1.0, 0.01) << name << ": " << r.predictedSweeps;
+    EXPECT_EQ(r.reason.rfind("predicted over budget: at estimated spectral radius", 0), 0u)
+        << r.reason;
+    for (const char* part : {"--max-iterations 1000000 leaves", "Fix: raise --max-iterations"})
+      EXPECT_NE(r.reason.find(part), std::string::npos) << name << ": " << r.reason;
+    // A valid partial solution: more light than emitted, all of it finite.
+    EXPECT_TRUE(allFinite(r.radiosity)) << name;
+    EXPECT_GT(r.radiosity[0][1], 0.0) << name;
+  }
+}
+
+// No false positives. The plates at ρ = 0.99 reach 1e-6 after ceil(ln 1e-6 / ln 0.99) - 1 =
+// 1374 Jacobi sweeps, 688 Gauss-Seidel sweeps and 1375 Southwell shots: given exactly that many
+// iterations every method converges (the prediction is checked every window up to the end).
+// Given a few too few it does not; once the need exceeds kPredictionMargin times what is left,
+// the prediction may stop it before the limit, and is then right.
+TEST(Solve, ExactPredictionNeverStopsARunThatFitsItsBudget) {
+  const Problem p = plates(0.99);
+  const std::map<std::string, long> needed{
+      {"jacobi", 1374}, {"gauss-seidel", 688}, {"southwell", 1375}};
+  for (const auto& [name, iterations] : needed) {
+    SolveResult r = runSolver(name, p.system, 1e-6, ResidualNorm::Relative, iterations);
+    EXPECT_EQ(r.exit, "converged") << name << ": " << r.reason;
+    EXPECT_EQ(r.iterations, iterations) << name;
+    for (const long shorter : {iterations - 1, iterations * 8 / 11}) {
+      r = runSolver(name, p.system, 1e-6, ResidualNorm::Relative, shorter);
+      EXPECT_FALSE(r.converged) << name;
+      EXPECT_TRUE(r.exit == "max_iterations" || r.exit == "predicted_over_budget")
+          << name << ": " << r.reason;
+      // Not before its rate was stable, and with the sweeps it really still needed (to 1 %).
+      if (r.exit == "predicted_over_budget") {
+        EXPECT_GE(r.history.back().sweeps, 3 * kRateWindowSweeps) << name;
+        const double sweepsPerStep = r.history.back().sweeps / double(r.iterations);
+        EXPECT_NEAR(r.predictedSweeps / (double(iterations - r.iterations) * sweepsPerStep), 1.0,
+                    0.01)
+            << name << ": " << r.reason;
+      }
+    }
+  }
+  // The well-conditioned systems of the other tests, every solver, default limits.
+  for (const std::string& name : solverNames()) {
+    for (const Problem& q : {cubeOneEmitter(0.9), cubeOneEmitter(0.99), randomReciprocal(40, 21)})
+      EXPECT_EQ(runSolver(name, q.system, 1e-10).exit, "converged") << name;
+  }
+}
+
+// The rules of the prediction on a synthetic residual r_k = 0.999^k (a sweep per 0.01 s).
+TEST(Solve, ExactPredictionNeedsAStableRateAndCountsTheTimeLeft) {
+  const double rate = 0.999, tol = 1e-6;
+  ConvergenceMonitor m;
+  m.windowResidual = 1.0;
+  double r = 1.0;
+  for (int k = 1; k <= 149; ++k) {
+    r *= rate;
+    m.update(r, k, 0.01 * k);
+    EXPECT_FALSE(m.overBudget(r, tol, 1, INFINITY)) << "sweep " << k << ": window not stable";
+  }
+  r *= rate;
+  m.update(r, 150, 1.5);
+  const double analytic = std::log(tol / r) / std::log(rate);  // 13 659 sweeps
+  EXPECT_NEAR(m.sweepsToTolerance(r, tol), analytic, 1e-6 * analytic);
+  // The iteration budget: stopped only beyond kPredictionMargin times what is left.
+  EXPECT_FALSE(m.overBudget(r, tol, analytic / kPredictionMargin + 1, INFINITY));
+  EXPECT_TRUE(m.overBudget(r, tol, analytic / kPredictionMargin - 1, INFINITY));
+  EXPECT_FALSE(m.timeBound);
+  // The time budget at 0.01 s per sweep: 10 s leave 1000 sweeps.
+  EXPECT_TRUE(m.overBudget(r, tol, 1e9, 10.0));
+  EXPECT_TRUE(m.timeBound);
+  EXPECT_NEAR(m.affordable, 1000.0, 1e-6);
+  EXPECT_FALSE(m.overBudget(r, tol, 1e9, 0.01 * analytic));
+  EXPECT_NE(m.overBudgetText(r, tol, SolverSettings{}, 150).find("--max-seconds"),
+            std::string::npos);
+
+  // A rate that changes between windows (here halving its speed) predicts nothing; neither does
+  // a rising residual (Gauss-Seidel and Southwell at ρ near 1 can rise and then converge).
+  for (const double second : {std::sqrt(rate), 1.0001}) {
+    ConvergenceMonitor n;
+    n.windowResidual = r = 1.0;
+    for (int k = 1; k <= 200; ++k) {
+      r *= k <= 150 ? rate : second;
+      n.update(r, k, 0.01 * k);
+    }
+    EXPECT_TRUE(std::isnan(n.sweepsToTolerance(r, tol))) << second;
+    EXPECT_FALSE(n.overBudget(r, tol, 1, INFINITY)) << second;
+  }
+  // restart() (a new hierarchical round): three windows again, the first without a rate.
+  r = 0.5;
+  m.restart(150, 1.5);
+  for (int k = 151; k <= 299; ++k) m.update(r *= rate, k, 0.01 * k);
+  EXPECT_TRUE(std::isnan(m.sweepsToTolerance(r, tol)));
+  m.update(r *= rate, 300, 3.0);
+  EXPECT_FALSE(std::isnan(m.sweepsToTolerance(r, tol)));
 }
 
 }  // namespace radkit
