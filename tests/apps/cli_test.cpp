@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/common/read_json.h"
 #include "tests/common/test_util.h"
 #include "util/canvas.h"
 
@@ -20,12 +21,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using test::dataPath;
 using test::readCsv;
+using test::readJson;
 using test::runRadkit;
-
-json readJson(const std::string& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
 
 double surfaceFactor(const std::string& csv, const std::string& from, const std::string& to) {
   for (auto& row : readCsv(csv))

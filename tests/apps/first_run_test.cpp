@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/common/read_json.h"
 #include "tests/common/test_util.h"
 
 namespace radkit {
@@ -16,12 +17,8 @@ namespace {
 
 using nlohmann::json;
 using test::dataPath;
+using test::readJson;
 using test::runRadkit;
-
-json readJson(const std::string& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
 
 bool mentions(const json& lines, const std::string& text) {
   for (const json& l : lines)

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/common/read_json.h"
 #include "tests/common/test_util.h"
 
 namespace radkit {
@@ -17,11 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-json readJson(const std::string& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
+using test::readJson;
 
 /// Sum of patch areas per surface in a patches.csv, and the patch counts.
 struct SurfacePatches {
