@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -154,9 +155,9 @@ void Progress::operator()(const std::string& stage, double fraction) {
   }
   int tenth = int(fraction * 10 + 1e-9);
   if (terminal) {
-    int filled = int(fraction * 30 + 0.5);
+    const int filled = int(std::lround(fraction * 30));
     std::fprintf(stderr, "\r%-14s [%s%s] %3d%%", stage.c_str(), std::string(filled, '#').c_str(),
-                 std::string(30 - filled, '.').c_str(), int(fraction * 100 + 0.5));
+                 std::string(30 - filled, '.').c_str(), int(std::lround(fraction * 100)));
     m_open = true;
   } else if (tenth > m_lastTenth) {
     std::fprintf(stderr, "%s: %d%%\n", stage.c_str(), tenth * 10);

@@ -122,7 +122,7 @@ ChartPanel panel(const std::vector<const StudyRow*>& rows, Pick x, Pick y,
   std::vector<std::pair<double, double>> fp;
   for (std::size_t k = 0; k < xs.size(); ++k)
     if (front[k]) fp.push_back({xs[k], ys[k]});
-  if (groups.size() > 0) add("Pareto front", fp);
+  if (!groups.empty()) add("Pareto front", fp);
   return p;
 }
 

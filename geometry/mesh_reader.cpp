@@ -261,7 +261,7 @@ Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) 
   Scene scene;
   scene.file = path;
   scene.name = fs::path(path).stem().string();
-  const std::string mtlWarning = reader.Warning();
+  const std::string& mtlWarning = reader.Warning();
   if (reader.GetMaterials().empty() && mtlWarning.find("not found") != std::string::npos)
     throw InputError(path + ": its MTL file was not found (" +
                      mtlWarning.substr(0, mtlWarning.find('\n')) +

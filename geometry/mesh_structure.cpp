@@ -36,7 +36,7 @@ long long checkBinaryOff(const Fail& fail, const std::string& text, const Lines&
     for (int k = 0; k < 2; ++k) {
       std::uint32_t v = 0;
       for (int b = 0; b < 4; ++b)
-        v |= std::uint32_t(static_cast<unsigned char>(text[at + 4 * k + b]))
+        v |= std::uint32_t(static_cast<unsigned char>(text[at + 4 * std::size_t(k) + b]))
              << (big ? 24 - 8 * b : 8 * b);
       c[k] = v;
     }

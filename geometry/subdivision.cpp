@@ -171,7 +171,7 @@ void emitPatches(const SurfaceTopology& t, const std::vector<int>& n, int surfac
       const int a = n[t.edgeClass[m.edge_handle(h[0]).idx()]];
       const int b = n[t.edgeClass[m.edge_handle(h[1]).idx()]];
       // Grid index (i along h0, j along h1); the border comes from the shared edge points.
-      std::vector<int> grid((a + 1) * (b + 1));
+      std::vector<int> grid(std::size_t(a + 1) * std::size_t(b + 1));
       auto g = [&](int i, int j) -> int& { return grid[j * (a + 1) + i]; };
       Vec3 c[4];
       for (int k = 0; k < 4; ++k) c[k] = toVec3(m.point(m.from_vertex_handle(h[k])));
@@ -195,7 +195,7 @@ void emitPatches(const SurfaceTopology& t, const std::vector<int>& n, int surfac
     } else {
       const int k = n[t.edgeClass[m.edge_handle(h[0]).idx()]];
       // Barycentric lattice P(i,j) = c0 + i/k (c1-c0) + j/k (c2-c0), i + j <= k.
-      std::vector<int> lattice((k + 1) * (k + 1), -1);
+      std::vector<int> lattice(std::size_t(k + 1) * std::size_t(k + 1), -1);
       auto l = [&](int i, int j) -> int& { return lattice[j * (k + 1) + i]; };
       Vec3 c0 = toVec3(m.point(m.from_vertex_handle(h[0])));
       Vec3 c1 = toVec3(m.point(m.from_vertex_handle(h[1])));

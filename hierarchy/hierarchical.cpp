@@ -49,6 +49,8 @@ PatchMesh leafMesh(const Hierarchy& h, const std::vector<int>& leaves) {
   mesh.surfaceBegin.assign(surfaces + 1, 0);
   struct Key {
     double x, y, z;
+    // Bitwise, as Hash is: equal keys must hash alike (== on doubles would merge −0 and 0).
+    // NOLINTNEXTLINE(bugprone-suspicious-memory-comparison,cert-exp42-c,cert-flp37-c)
     bool operator==(const Key& o) const { return std::memcmp(this, &o, sizeof(Key)) == 0; }
   };
   struct Hash {
@@ -341,6 +343,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     r.system.reset();
     r.system =
         std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed, hidden);
+    links.clear();  // moved from; the next round starts from the system's links
     r.system->setVisibleArea(state);
     pull(h, state);
     info.refineSeconds = since(t);

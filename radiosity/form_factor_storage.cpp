@@ -110,7 +110,7 @@ StoragePlan planStorage(const PatchMesh& mesh, const FormFactorSettings& setting
                     "use fewer patches (--max-area larger or --patches smaller)";
   if (settings.precision == FormFactorPrecision::Double)
     msg += ", or store F in single precision (--ff-storage float: dense " +
-           formatBytes(double(plan.denseBytes / 2)) + ", sparse " +
+           formatBytes(double(plan.denseBytes) / 2) + ", sparse " +
            (estimated ? "at least " : "up to ") +
            formatBytes(double(sparseBytes(n, plan.facingPairs, 4))) + ")";
   throw MemoryBudgetError(msg);

@@ -66,8 +66,8 @@ long long frontCells(const std::vector<Triangle>& triangles, const Bounds3& b, i
   const double u0 = b.lo[ua], v0 = b.lo[va];
   const double du = std::max(b.hi[ua] - u0, 1e-300) / kGrid,
                dv = std::max(b.hi[va] - v0, 1e-300) / kGrid;
-  std::vector<double> depth(kGrid * kGrid, -INFINITY);
-  std::vector<char> front(kGrid * kGrid, 0);
+  std::vector<double> depth(std::size_t(kGrid) * kGrid, -INFINITY);
+  std::vector<char> front(std::size_t(kGrid) * kGrid, 0);
   for (const Triangle& t : triangles) {
     const double facing = cross(t[1] - t[0], t[2] - t[0])[axis] * sign;
     if (facing == 0) continue;  // edge-on: covers no cell

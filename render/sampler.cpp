@@ -93,7 +93,8 @@ class StratifiedSampler : public PaddedSampler {
     const double jx = toUnit(std::uint32_t(bits)), jy = toUnit(std::uint32_t(bits >> 32));
     if (m_index >= m_side * m_side) return {jx, jy};
     const std::uint32_t cell = shuffleIndex(m_index, m_side * m_side, key);
-    return {(cell % m_side + jx) / m_side, (cell / m_side + jy) / m_side};
+    const std::uint32_t column = cell % m_side, row = cell / m_side;  // the jittered cell
+    return {(column + jx) / m_side, (row + jy) / m_side};
   }
 
  private:

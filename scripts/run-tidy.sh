@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# clang-tidy with the repository's .clang-tidy over every source file of radkit's libraries,
-# the command line and the fuzz targets (not tests/: gtest's macros trip checks the library
-# code is held to). Uses build-tidy/compile_commands.json; prints findings, exits 1 on any.
+# clang-tidy with the repository's .clang-tidy over every source file of radkit's libraries
+# and the command line (not tests/, whose gtest macros trip checks the library code is held
+# to, nor fuzz/, built only by clang with RADKIT_FUZZ). Uses build-tidy/compile_commands.json; prints findings, exits 1 on any.
 # Takes about 10 minutes on 2 cores, so CI does not run it; docs/development.md says when to.
 set -euo pipefail
 cd "$(dirname "$0")/.."

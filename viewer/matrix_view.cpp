@@ -241,7 +241,8 @@ void MatrixView::fit() {
 void MatrixView::setPickedRow(int row) {
   m_rowActor->SetVisibility(row >= 0 && m_cells.cells > 0);
   if (row < 0 || m_cells.cells == 0) return;
-  const double n = m_cells.cells, r = row / m_cells.block, pad = 0.004 * n;
+  const int block = row / m_cells.block;  // the row's cell in the (possibly binned) matrix
+  const double n = m_cells.cells, r = block, pad = 0.004 * n;
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> lines;
   addSegment(points, lines, -pad, n - r + pad, n + pad, n - r + pad);
