@@ -16,8 +16,6 @@ namespace radkit {
 
 namespace {
 
-double mean(const Vec3& v) { return (v.x + v.y + v.z) / 3; }
-
 class CookTorranceBsdf final : public Bsdf {
  public:
   CookTorranceBsdf(const Vec3& base, double metallic, double roughness, const Vec3& f0,
@@ -79,9 +77,9 @@ class CookTorranceBsdf final : public Bsdf {
   /// Chance of sampling visible normals: the specular lobe's share of an albedo estimate
   /// (Schlick F at μo against the diffuse and multiple-scattering albedos).
   double specularChance(const Vec3& wo) const {
-    const double specular = mean(fresnelSchlick(m_f0, wo.z));
-    double rest = mean(m_diffuse);
-    if (m_table) rest += mean(m_msColour) * (1 - m_table->albedo(wo.z));
+    const double specular = meanComponent(fresnelSchlick(m_f0, wo.z));
+    double rest = meanComponent(m_diffuse);
+    if (m_table) rest += meanComponent(m_msColour) * (1 - m_table->albedo(wo.z));
     return specular + rest > 0 ? std::clamp(specular / (specular + rest), 0.05, 1.0) : 1.0;
   }
 

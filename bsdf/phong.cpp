@@ -15,13 +15,11 @@ namespace radkit {
 
 namespace {
 
-double mean(const Vec3& v) { return (v.x + v.y + v.z) / 3; }
-
 class PhongBsdf final : public Bsdf {
  public:
   PhongBsdf(const Vec3& kd, const Vec3& ks, double shininess)
       : m_kd(kd), m_ks(ks), m_n(std::max(0.0, shininess)) {
-    const double d = mean(kd), s = mean(ks);
+    const double d = meanComponent(kd), s = meanComponent(ks);
     m_diffuseChance = d + s > 0 ? d / (d + s) : 1.0;
   }
 

@@ -25,6 +25,12 @@ struct Frame {
 
 /// \brief Cosine-weighted direction on the hemisphere z > 0 (polar map of the unit disk,
 /// lifted by Malley's method). u in [0,1)².
+/// The local direction with cos θ = mu and azimuth phi (z is the normal).
+inline Vec3 localDirection(double mu, double phi) {
+  const double s = std::sqrt(std::max(0.0, 1 - mu * mu));
+  return {s * std::cos(phi), s * std::sin(phi), mu};
+}
+
 inline Vec3 sampleCosineHemisphere(double u0, double u1) {
   // Uniform on the unit disk (r = √u0, φ = 2πu1), projected up: density cos θ/π (Malley).
   const double r = std::sqrt(u0), phi = 2 * M_PI * u1;

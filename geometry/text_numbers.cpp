@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "geometry/scene_loader.h"
+#include "geometry/structure_text.h"
 
 namespace radkit {
 
@@ -55,11 +56,6 @@ class Checker {
   std::string m_path;
 };
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
 /// Strips a '#' comment.
 std::string uncommented(const std::string& line) { return line.substr(0, line.find('#')); }
 
@@ -85,9 +81,9 @@ void checkOff(std::istream& in, const Checker& check) {
     std::size_t first = 0;
     if (header) {  // OFF, COFF, NOFF, STOFF, 4OFF, ... optionally followed by the counts
       header = false;
-      const std::string key = lower(t[0]);
+      const std::string key = structure::lower(t[0]);
       if (key.size() >= 3 && key.compare(key.size() - 3, 3, "off") == 0) {
-        if (t.size() > 1 && lower(t[1]) == "binary") return;
+        if (t.size() > 1 && structure::lower(t[1]) == "binary") return;
         first = 1;
       }
     }
@@ -135,7 +131,7 @@ void checkStl(std::istream& in, const Checker& check) {
 }  // namespace
 
 void checkTextMeshNumbers(const std::string& path) {
-  std::string ext = lower(fs::path(path).extension().string());
+  std::string ext = structure::lower(fs::path(path).extension().string());
   if (ext == ".stl" && isBinaryStl(path)) return;
   std::ifstream in(path, std::ios::binary);
   if (!in) return;  // a missing or unreadable file is the reader's to report

@@ -58,6 +58,13 @@ constexpr double luminance(const Vec3& rgb) {
   return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z;
 }
 inline double maxComponent(const Vec3& v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
+constexpr double meanComponent(const Vec3& v) { return (v.x + v.y + v.z) / 3; }
+/// Angle between two unit vectors, robust to |a·b| rounding past 1.
+inline double angleBetween(const Vec3& a, const Vec3& b) {
+  return std::acos(std::fmin(1.0, std::fmax(-1.0, dot(a, b))));
+}
+
+constexpr double kPi = 3.14159265358979323846;
 
 /// Axis-aligned bounding box.
 struct Bounds3 {

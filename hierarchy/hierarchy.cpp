@@ -12,12 +12,6 @@ namespace radkit {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-double angleBetween(const Vec3& a, const Vec3& b) {
-  return std::acos(std::clamp(dot(a, b), -1.0, 1.0));
-}
-
 /// Faces per subtree below which the cluster build stops spawning tasks.
 constexpr int kSerialBuild = 4096;
 /// |Σ A n| / Σ A below this: the faces' normals disagree enough to part them by normal.

@@ -4,7 +4,6 @@ namespace radkit {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// A cluster whose normals lie within this angle of their axis is estimated as one (its
 /// error is below 1 − cos 0.35 ≈ 6 %); a wider one is summed over its children, at most
 /// kSplitLevels levels down (8 terms), which separates the walls of a room's corner.

@@ -13,7 +13,6 @@ namespace radkit {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// Relative accuracy of an element-to-element form factor's cubature.
 constexpr double kFormFactorTolerance = 1e-3;
 /// Nodes of the 2-point Gauss-Legendre rule on [0, 1]: where F is sampled over a receiver.
@@ -28,10 +27,6 @@ constexpr int kConfirmRays = 16;
 /// at ε = 1e-4, weight 16 instead of 4 took the ceiling from −0.43 % to −0.29 % of the photon
 /// reference and the short block from −0.87 % to −0.82 %, for a quarter more CPU time.
 constexpr double kSourceSpreadWeight = 16.0;
-
-double angleBetween(const Vec3& a, const Vec3& b) {
-  return std::acos(std::clamp(dot(a, b), -1.0, 1.0));
-}
 
 /// Largest and smallest max(0, n·w) over normals within `cone` of `axis` and directions within
 /// `spread` of w: the cosine bounds of a node seen along directions near w.

@@ -8,15 +8,11 @@
 #include <numeric>
 
 #include "geometry/refine.h"
+#include "util/format.h"
 
 namespace radkit {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 const Material& materialOf(const Scene& scene, const PatchMesh& mesh, int i) {
   return scene.materials[scene.surfaces[mesh.patches[i].surface].material];
@@ -113,7 +109,7 @@ AdaptiveResult solveAdaptive(const Scene& scene, const PipelineSettings& setting
   AdaptiveResult r;
   auto t = Clock::now();
   PatchMesh mesh = subdivide(scene, settings.mesh);
-  double meshSeconds = since(t);
+  double meshSeconds = secondsSince(t);
   for (int round = 0;; ++round) {
     AdaptiveRound info;
     info.patches = mesh.size();
@@ -148,10 +144,10 @@ AdaptiveResult solveAdaptive(const Scene& scene, const PipelineSettings& setting
       break;
     }
     mesh = refinePatches(mesh, split).mesh;
-    meshSeconds = since(t);
+    meshSeconds = secondsSince(t);
     r.rounds.push_back(info);
   }
-  r.seconds = since(start);
+  r.seconds = secondsSince(start);
   return r;
 }
 

@@ -1,4 +1,5 @@
 #include "radiosity/presets.h"
+#include "util/format.h"
 
 #include <stdexcept>
 
@@ -33,12 +34,6 @@ const Preset& findPreset(const std::string& name) {
   throw std::invalid_argument("unknown preset '" + name + "'; known presets: " + known);
 }
 
-std::string format(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 }  // namespace
 
 std::vector<std::string> presetNames() {
@@ -60,7 +55,7 @@ std::string describePreset(const std::string& name) {
   const Preset& p = findPreset(name);
   return std::string(p.name) + ": about " + std::to_string(p.patches) +
          " patches, point-polygon K = " + std::to_string(p.samples) + ", tolerance " +
-         format("%.0e", p.tolerance) + "; " + p.measured;
+         formatValue("%.0e", p.tolerance) + "; " + p.measured;
 }
 
 }  // namespace radkit

@@ -10,14 +10,11 @@
 #include "radiosity/form_factor_storage.h"
 #include "solvers/kernels.h"
 #include "solvers/registry.h"
+#include "util/format.h"
 
 namespace radkit {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 std::string sci(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2g", v);
@@ -156,7 +153,7 @@ PipelineResult runPipeline(const Scene& scene, const PipelineSettings& settings,
   auto t = Clock::now();
   std::vector<std::string> meshWarnings;
   PatchMesh mesh = subdivide(scene, settings.mesh, &meshWarnings);
-  double meshSeconds = since(t);
+  double meshSeconds = secondsSince(t);
   for (const std::string& w : meshWarnings)
     if (log.message) log.message("warning: " + w);
   PipelineResult r = runPipeline(scene, std::move(mesh), settings, log);
@@ -176,7 +173,7 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
 
   auto t = Clock::now();
   r.rays = std::make_unique<RayScene>(r.mesh);
-  r.seconds.rayScene = since(t);
+  r.seconds.rayScene = secondsSince(t);
 
   t = Clock::now();
   r.formFactors = std::make_unique<FormFactorResult>(computeFormFactors(
@@ -184,7 +181,7 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
       [&](double f) {
         if (log.progress) log.progress("form factors", f);
       }));
-  r.seconds.formFactors = since(t);
+  r.seconds.formFactors = secondsSince(t);
 
   r.system = makeRadiositySystem(scene, r.mesh, r.formFactors->matrix);
   r.warnings = numericalWarnings(scene, r);
@@ -197,7 +194,7 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
     const SolveResult& s = r.solves.back();
     say(s.solver + ": " + s.reason);
   }
-  r.seconds.solve = since(t);
+  r.seconds.solve = secondsSince(t);
 
   t = Clock::now();
   r.radiosity = toVec3(r.solves.front().radiosity);
@@ -212,7 +209,7 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
       say("warning: " + r.warnings.back());
     }
   }
-  r.seconds.results = since(t);
+  r.seconds.results = secondsSince(t);
   return r;
 }
 

@@ -1,4 +1,5 @@
 #include "radiosity/study.h"
+#include "util/format.h"
 #include "util/process_memory.h"
 
 #include <algorithm>
@@ -12,17 +13,6 @@
 namespace radkit {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-std::string format(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 double total(const StageSeconds& s) {
   return s.mesh + s.rayScene + s.formFactors + s.solve + s.results;
@@ -132,7 +122,7 @@ void runSolverKnob(const Scene& scene, const StudySettings& st, const PipelineRe
           surfaceResults(scene, r.mesh, b, irradiance(r.formFactors->matrix, s.radiosity));
       row.seconds = rung.seconds;
       row.seconds.solve = s.seconds;
-      row.seconds.results = since(t);
+      row.seconds.results = secondsSince(t);
       row.ran = true, row.patches = r.mesh.size(), row.totalSeconds = total(row.seconds);
       row.formFactorBytes = rung.formFactorBytes;
       row.iterations = s.iterations, row.converged = s.converged, row.note = s.reason;
@@ -195,10 +185,11 @@ void estimateReferenceError(const std::vector<StudyRow>& rows,
       std::to_string(ref.row.patches) +
       "); if the differences shrink geometrically by r = d1/d2 "
       "per doubling, the reference's own error is d2/(r - 1). Surface level: d1 = " +
-      format("%.3g", coarse.surfaceError) + ", d2 = " + format("%.3g", fine.surfaceError) +
+      formatValue("%.3g", coarse.surfaceError) +
+      ", d2 = " + formatValue("%.3g", fine.surfaceError) +
       (a1 ? "" : " (not shrinking: the estimate is d2 itself)") +
-      "; patch level: d1 = " + format("%.3g", coarse.patchError) +
-      ", d2 = " + format("%.3g", fine.patchError) +
+      "; patch level: d1 = " + formatValue("%.3g", coarse.patchError) +
+      ", d2 = " + formatValue("%.3g", fine.patchError) +
       (a2 ? "" : " (not shrinking: the estimate is d2 itself)") + ".";
 }
 
@@ -347,12 +338,13 @@ std::string StudyConfig::label() const {
     case StudyKnob::FormFactors:
       return settings.formFactors.method + " K=" + std::to_string(settings.formFactors.samples);
     case StudyKnob::Solver:
-      return settings.solvers.front().name + " tol=" + format("%.0e", settings.stopping.tolerance);
+      return settings.solvers.front().name +
+             " tol=" + formatValue("%.0e", settings.stopping.tolerance);
     case StudyKnob::Adaptive:
       return "adaptive " + std::to_string(settings.mesh.targetPatches) +
              " to <=" + std::to_string(adaptive.maxPatches);
     case StudyKnob::Hierarchical:
-      return "eps=" + format("%.0e", epsilon);
+      return "eps=" + formatValue("%.0e", epsilon);
   }
   return "?";
 }
@@ -389,23 +381,22 @@ StudyResult runStudy(const Scene& scene, const StudySettings& st, const Pipeline
     pending.erase(pending.begin() + k);
     bool rung = c.knob == StudyKnob::Mesh;
     int rungAfter = rung ? c.settings.mesh.targetPatches : finestRung;
-    double need =
-        calibration * (est[k] + estimateSeconds(referenceConfig(rungAfter), result.rows));
-    double left = st.maxSeconds - since(start);
+    double need = calibration * (est[k] + estimateSeconds(referenceConfig(rungAfter), result.rows));
+    double left = st.maxSeconds - secondsSince(start);
     StudyRow row;
     row.config = c;
     row.estimatedSeconds = est[k];
     row.neededSeconds = need, row.secondsLeft = left;
     if (need > left) {
-      row.note = "skipped: estimated " + format("%.0f s", est[k]) + " plus the reference " +
-                 format("%.0f s", need - est[k]) + ", " + format("%.0f s", std::max(0.0, left)) +
-                 " left";
+      row.note = "skipped: estimated " + formatValue("%.0f s", est[k]) + " plus the reference " +
+                 formatValue("%.0f s", need - est[k]) + ", " +
+                 formatValue("%.0f s", std::max(0.0, left)) + " left";
       say(c.label() + ": " + row.note);
       skipped.push_back(row);
       continue;
     }
     say(std::string(studyKnobName(c.knob)) + " " + c.label() + " (estimated " +
-        format("%.1f s", est[k]) + ")");
+        formatValue("%.1f s", est[k]) + ")");
     const auto runStart = Clock::now();
     bool knobRung = rung && c.settings.mesh.targetPatches == st.knobPatches;
     std::vector<StudyRow> solverRows;
@@ -416,7 +407,7 @@ StudyResult runStudy(const Scene& scene, const StudySettings& st, const Pipeline
     result.rows.push_back(row);
     // Short runs are mostly fixed costs the model leaves out, and the knob rung also ran the
     // solver knob, which its estimate does not include.
-    const double taken = since(runStart);
+    const double taken = secondsSince(runStart);
     if (est[k] > 0.3 && !knobRung)
       calibration = std::clamp(std::max(calibration, taken / est[k]), 1.0, 4.0);
     if (rung) finestRung = std::max(finestRung, c.settings.mesh.targetPatches);
@@ -435,14 +426,14 @@ StudyResult runStudy(const Scene& scene, const StudySettings& st, const Pipeline
   }
 
   StudyConfig refConfig = referenceConfig(finestRung);
-  say("reference " + refConfig.label() + " tol " + format("%.0e", st.referenceTolerance));
+  say("reference " + refConfig.label() + " tol " + formatValue("%.0e", st.referenceTolerance));
   StudyReference& ref = result.reference;
   ref.row.config = refConfig;
   ref.row.estimatedSeconds = estimateSeconds(refConfig, result.rows);
   ref.solution = runConfig(scene, refConfig, ref.row, log, {});
   estimateReferenceError(result.rows, sols, ref);
-  say("reference error estimate: surface " + format("%.2e", ref.surfaceErrorEstimate) + ", patch " +
-      format("%.2e", ref.patchErrorEstimate));
+  say("reference error estimate: surface " + formatValue("%.2e", ref.surfaceErrorEstimate) +
+      ", patch " + formatValue("%.2e", ref.patchErrorEstimate));
 
   std::vector<double> cost, surfaceErr, patchErr;
   for (std::size_t k = 0; k < result.rows.size(); ++k) {
@@ -455,7 +446,7 @@ StudyResult runStudy(const Scene& scene, const StudySettings& st, const Pipeline
   for (std::size_t k = 0; k < result.rows.size(); ++k)
     result.rows[k].paretoSurface = ps[k], result.rows[k].paretoPatch = pp[k];
   result.rows.insert(result.rows.end(), skipped.begin(), skipped.end());
-  result.seconds = since(start);
+  result.seconds = secondsSince(start);
   return result;
 }
 

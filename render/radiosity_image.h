@@ -30,6 +30,13 @@ struct RadianceImage {
   std::vector<Vec3> radiance;  ///< row-major, top row first
   std::vector<int> patch;      ///< -1 where the ray escapes
   double exposure = 1;         ///< the exposure used when this image is tone mapped
+
+  /// Mean over pixels and channels: a whole-image brightness (0 for an empty image).
+  double meanRadiance() const {
+    double sum = 0;
+    for (const Vec3& v : radiance) sum += v.x + v.y + v.z;
+    return radiance.empty() ? 0.0 : sum / (3.0 * double(radiance.size()));
+  }
 };
 
 /// \brief Renders L = B/π of each patch (Lambertian), front sides only (back sides black

@@ -12,7 +12,8 @@ bash scripts/install-deps.sh
 folders=${RADKIT_SANITIZE_FOLDERS:-solvers;bsdf;geometry;radiosity;output;hierarchy;render;photon;viewer;apps;extending}
 CC=clang CXX=clang++ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DRADKIT_TESTS=ON -DRADKIT_TEST_FOLDERS="$folders" \
-  -DRADKIT_WERROR="${RADKIT_WERROR:-OFF}" -DRADKIT_SANITIZE="address;undefined" -DRADKIT_FUZZ=ON >/dev/null
+  -DRADKIT_WERROR="${RADKIT_WERROR:-OFF}" -DRADKIT_SANITIZE="address;undefined" -DRADKIT_FUZZ=ON \
+  -DCMAKE_UNITY_BUILD="${RADKIT_UNITY:-ON}" -DCMAKE_UNITY_BUILD_BATCH_SIZE=8 >/dev/null
 cmake --build build-sanitize -j"${RADKIT_JOBS:-2}"
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp" UBSAN_OPTIONS=print_stacktrace=1
 ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize --output-on-failure -j"${RADKIT_JOBS:-2}" \

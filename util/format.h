@@ -15,6 +15,13 @@ inline std::string formatNumber(double v, int digits = 6) {
   return buf;
 }
 
+/// One number through a printf format with one conversion ("%.1f s"); for messages.
+inline std::string formatValue(const char* format, double v) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, format, v);  // NOLINT(cert-err33-c): the length is bounded
+  return buf;
+}
+
 using Clock = std::chrono::steady_clock;
 
 /// Wall seconds since t0.

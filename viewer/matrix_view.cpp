@@ -22,8 +22,7 @@ namespace radkit::viewer {
 
 namespace {
 
-constexpr double kBackground[3] = {0.11, 0.11, 0.13};
-constexpr double kZeroColour[3] = {0.22, 0.22, 0.25};
+constexpr double kMatrixZeroColour[3] = {0.22, 0.22, 0.25};
 constexpr double kBoundary[3] = {0.95, 0.33, 0.28};
 constexpr double kPicked[3] = {0.2, 0.95, 1.0};
 constexpr double kBarPixels = 110;  // room right of the matrix for the colour bar
@@ -118,7 +117,7 @@ void MatrixView::buildImage() {
   if (hi <= 0) hi = minPositive = 1;
   const double top = std::pow(10.0, std::ceil(std::log10(hi) - 1e-12));
   const double lo = std::max(std::pow(10.0, std::floor(std::log10(minPositive))), top * 1e-6);
-  fillLookupTable(m_lut, ColourMap::Viridis, lo, top, true, kZeroColour, kZeroColour);
+  fillLookupTable(m_lut, ColourMap::Viridis, lo, top, true, kMatrixZeroColour, kMatrixZeroColour);
 
   m_image->SetDimensions(n, n, 1);
   m_image->SetOrigin(0.5, 0.5, 0);  // cell (row r, column c) covers [c, c+1] × [n-1-r, n-r]

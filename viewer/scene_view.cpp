@@ -36,7 +36,6 @@ Camera framingCamera(const PatchData& patches) {
   return automaticCamera(triangles);
 }
 
-constexpr double kBackground[3] = {0.11, 0.11, 0.13};
 constexpr double kZeroColour[3] = {0.32, 0.32, 0.36};  // F_ij = 0: not seen from the picked patch
 constexpr double kAboveColour[3] = {1.0, 1.0, 1.0};    // emitters, above the false-colour range
 constexpr double kOutline[3] = {0.2, 0.95, 1.0};

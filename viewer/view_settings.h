@@ -12,6 +12,9 @@
 
 namespace radkit::viewer {
 
+/// Background of every view (RGB in [0, 1]).
+constexpr double kBackground[3] = {0.11, 0.11, 0.13};
+
 /// What fills the window: the scene coloured one of three ways, or the matrix, or the chart.
 enum class ViewMode { Radiosity, FalseColour, FormFactorRow, Matrix, Convergence };
 /// The quantity false colour shows: one radiosity channel or the luminance of B.

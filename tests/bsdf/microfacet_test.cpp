@@ -19,20 +19,15 @@ namespace {
 const MaskingShadowing kAllG[] = {MaskingShadowing::HeightCorrelated, MaskingShadowing::Separable,
                                   MaskingShadowing::SchlickGgx, MaskingShadowing::CookTorrance};
 
-Vec3 direction(double mu, double phi) {
-  const double s = std::sqrt(std::max(0.0, 1 - mu * mu));
-  return {s * std::cos(phi), s * std::sin(phi), mu};
-}
-
 /// ∫ f(ωo, ωi) μi dωi by the midpoint rule on n × 2n cells of (μi, φi): independent of the
 /// visible-normal warp that directionalAlbedo uses.
 double albedoByQuadrature(const GgxDistribution& d, MaskingShadowing g, double muO, int n) {
-  const Vec3 wo = direction(muO, 0);
+  const Vec3 wo = localDirection(muO, 0);
   double sum = 0;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < 2 * n; ++j) {
       const Vec3 wi =
-          direction((i + 0.5) / n, M_PI * (j + 0.5) / (2 * n));  // φ in (0, π): symmetric
+          localDirection((i + 0.5) / n, M_PI * (j + 0.5) / (2 * n));  // φ in (0, π): symmetric
       const Vec3 h = normalize(wo + wi);
       sum += d.D(h) * d.G(wo, wi, g) / (4 * wo.z);  // f μi with μi cancelled
     }
@@ -50,7 +45,8 @@ TEST(Microfacet, Construct) {
 TEST(Microfacet, ExactSingleEvaluation) {
   // docs/oracles.md: α = 0.5, ωo at θ = 45°, φ = 0, ωi at θ = 30°, φ = 180°, F0 = 0.04.
   const GgxDistribution d(0.5);
-  const Vec3 wo = direction(std::cos(M_PI / 4), 0), wi = direction(std::cos(M_PI / 6), M_PI);
+  const Vec3 wo = localDirection(std::cos(M_PI / 4), 0),
+             wi = localDirection(std::cos(M_PI / 6), M_PI);
   const Vec3 h = normalize(wo + wi);
   EXPECT_NEAR(d.D(h), 1.152425, 5e-7);
   EXPECT_NEAR(d.G(wo, wi, MaskingShadowing::HeightCorrelated), 0.926412, 5e-7);
@@ -89,12 +85,12 @@ TEST(Microfacet, ExactWeakWhiteFurnace) {
   for (double alpha : {0.2, 0.5, 1.0})
     for (double thetaDeg : {0.0, 30.0, 60.0, 80.0}) {
       const GgxDistribution d(alpha);
-      const Vec3 wo = direction(std::cos(thetaDeg * M_PI / 180), 0);
+      const Vec3 wo = localDirection(std::cos(thetaDeg * M_PI / 180), 0);
       const int nm = 1600, np = 800;
       double sum = 0;
       for (int i = 0; i < nm; ++i)
         for (int j = 0; j < np; ++j) {
-          const Vec3 m = direction((i + 0.5) / nm, M_PI * (j + 0.5) / np);
+          const Vec3 m = localDirection((i + 0.5) / nm, M_PI * (j + 0.5) / np);
           sum += std::max(0.0, dot(wo, m)) * d.D(m);
         }
       const double integral = d.G1(wo) * 2 * sum * (1.0 / nm) * (M_PI / np);
@@ -186,7 +182,7 @@ double chiSquareOfDirections(Sample sample, Pdf pdf, long long n, const std::str
       for (int a = 0; a < sub; ++a)
         for (int b = 0; b < sub; ++b) {
           const double z = zLo + (1 - zLo) * (i + (a + 0.5) / sub) / nt;
-          const double p = pdf(direction(z, 2 * M_PI * (j + (b + 0.5) / sub) / np));
+          const double p = pdf(localDirection(z, 2 * M_PI * (j + (b + 0.5) / sub) / np));
           EXPECT_GE(p, 0);
           cell += p;
         }
@@ -207,7 +203,7 @@ TEST(Microfacet, StatisticalVisibleNormals) {
   for (double a : {0.3, 0.7})
     for (double thetaDeg : {0.0, 45.0, 80.0}) {
       const GgxDistribution d(a);
-      const Vec3 wo = direction(std::cos(thetaDeg * M_PI / 180), 0.7);
+      const Vec3 wo = localDirection(std::cos(thetaDeg * M_PI / 180), 0.7);
       auto sample = [&](Rng& rng, Vec3& m) {
         const double u0 = rng.uniform(), u1 = rng.uniform();
         m = d.sampleVisibleNormal(wo, u0, u1);
@@ -231,7 +227,7 @@ TEST(Microfacet, StatisticalCompensatedWhiteFurnace) {
     auto f = makeCookTorranceBsdf({1, 1, 1}, 1, roughness, {0.04, 0.04, 0.04}, s);
     auto single = makeCookTorranceBsdf({1, 1, 1}, 1, roughness, {0.04, 0.04, 0.04}, {});
     for (double mu : {0.2, 0.6, 1.0}) {
-      const Vec3 wo = direction(mu, 0);
+      const Vec3 wo = localDirection(mu, 0);
       Rng rng(7, int(roughness * 10), int(mu * 10));
       double sum = 0, sumSq = 0, lossy = 0;
       const int n = 200000;

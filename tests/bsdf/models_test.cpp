@@ -15,11 +15,6 @@
 namespace radkit {
 namespace {
 
-Vec3 direction(double mu, double phi) {
-  const double s = std::sqrt(std::max(0.0, 1 - mu * mu));
-  return {s * std::cos(phi), s * std::sin(phi), mu};
-}
-
 /// The non-delta models the statistical tests run over, with a name for messages.
 struct NamedBsdf {
   std::string name;
@@ -66,12 +61,12 @@ TEST(Bsdf, Construct) {
 
 TEST(Bsdf, ExactLambertMirrorGlass) {
   auto lambert = makeLambertBsdf({0.5, 0.25, 0.1});
-  EXPECT_NEAR(lambert->eval(direction(0.3, 1), direction(0.9, 2)).x, 0.5 / M_PI, 1e-15);
-  EXPECT_EQ(lambert->eval(direction(-0.3, 1), direction(0.9, 2)).x, 0);  // one-sided
-  EXPECT_NEAR(lambert->pdf(direction(0.3, 1), direction(0.9, 2)), 0.9 / M_PI, 1e-15);
+  EXPECT_NEAR(lambert->eval(localDirection(0.3, 1), localDirection(0.9, 2)).x, 0.5 / M_PI, 1e-15);
+  EXPECT_EQ(lambert->eval(localDirection(-0.3, 1), localDirection(0.9, 2)).x, 0);  // one-sided
+  EXPECT_NEAR(lambert->pdf(localDirection(0.3, 1), localDirection(0.9, 2)), 0.9 / M_PI, 1e-15);
 
   auto mirror = makeMirrorBsdf({0.9, 0.8, 0.7});
-  const Vec3 wo = direction(0.6, 0.4);
+  const Vec3 wo = localDirection(0.6, 0.4);
   auto s = mirror->sample(wo, 0.5, 0.5, 0.5);
   ASSERT_TRUE(s);
   EXPECT_TRUE(s->delta);
@@ -102,8 +97,8 @@ TEST(Bsdf, ExactReciprocity) {
   Rng rng(3, 0, 0);
   for (const NamedBsdf& m : glossyModels())
     for (int k = 0; k < 2000; ++k) {
-      const Vec3 a = direction(rng.uniform(), 2 * M_PI * rng.uniform());
-      const Vec3 b = direction(rng.uniform(), 2 * M_PI * rng.uniform());
+      const Vec3 a = localDirection(rng.uniform(), 2 * M_PI * rng.uniform());
+      const Vec3 b = localDirection(rng.uniform(), 2 * M_PI * rng.uniform());
       const Vec3 fab = m.bsdf->eval(a, b), fba = m.bsdf->eval(b, a);
       ASSERT_NEAR(fab.x, fba.x, 1e-12 * std::max(1.0, fab.x)) << m.name;
       ASSERT_NEAR(fab.z, fba.z, 1e-12 * std::max(1.0, fab.z)) << m.name;
@@ -139,7 +134,7 @@ TEST(Bsdf, StatisticalAlbedoAtMostOne) {
       double sum = 0, sumSq = 0;
       for (int k = 0; k < n; ++k) {
         const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-        if (auto b = m.bsdf->sample(direction(mu, 0.3), u0, u1, u2)) {
+        if (auto b = m.bsdf->sample(localDirection(mu, 0.3), u0, u1, u2)) {
           const double w = maxComponent(b->weight);
           sum += w, sumSq += w * w;
         }
@@ -159,7 +154,7 @@ TEST(Bsdf, StatisticalSamplersMatchPdf) {
   const long long n = 100000;
   for (const NamedBsdf& m : models)
     for (double mu : {0.15, 0.6, 0.95}) {
-      const Vec3 wo = direction(mu, 1.1);
+      const Vec3 wo = localDirection(mu, 1.1);
       std::vector<double> observed(nt * np + 1, 0), expected(nt * np + 1, 0);
       Rng rng(5, 1, int(mu * 100));
       for (long long k = 0; k < n; ++k) {
@@ -181,8 +176,8 @@ TEST(Bsdf, StatisticalSamplersMatchPdf) {
           double cell = 0;
           for (int a = 0; a < sub; ++a)
             for (int c = 0; c < sub; ++c)
-              cell += m.bsdf->pdf(
-                  wo, direction((i + (a + 0.5) / sub) / nt, 2 * M_PI * (j + (c + 0.5) / sub) / np));
+              cell += m.bsdf->pdf(wo, localDirection((i + (a + 0.5) / sub) / nt,
+                                                     2 * M_PI * (j + (c + 0.5) / sub) / np));
           cell *= (1.0 / nt) * (2 * M_PI / np) / (sub * sub);
           expected[i * np + j] = cell * n;
           total += cell;

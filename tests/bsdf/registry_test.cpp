@@ -62,11 +62,6 @@ TEST(BsdfRegistry, ExactMaterialsCacheTheDiffuseAlbedo) {
   EXPECT_NE(ct.find("F0=[0.04, 0.04, 0.04]"), std::string::npos) << ct;
 }
 
-Vec3 direction(double mu, double phi) {
-  const double s = std::sqrt(std::max(0.0, 1 - mu * mu));
-  return {s * std::cos(phi), s * std::sin(phi), mu};
-}
-
 TEST(OrenNayar, ExactLimits) {
   // Oren & Nayar 1994, eq. 30: σ = 0 gives A = 1, B = 0, the Lambertian R/π; seen from the
   // normal (θo = 0, so β = 0 and tan β = 0) any σ gives A R/π, A = 1 − σ²/(2(σ² + 0.33)).
@@ -74,14 +69,14 @@ TEST(OrenNayar, ExactLimits) {
   auto lambert = makeLambertBsdf({0.6, 0.6, 0.6});
   Rng rng(1, 2, 3);
   for (int k = 0; k < 100; ++k) {
-    const Vec3 a = direction(rng.uniform(), 7 * rng.uniform()),
-               b = direction(rng.uniform(), 7 * rng.uniform());
+    const Vec3 a = localDirection(rng.uniform(), 7 * rng.uniform()),
+               b = localDirection(rng.uniform(), 7 * rng.uniform());
     EXPECT_NEAR(smooth->eval(a, b).x, lambert->eval(a, b).x, 1e-15);
   }
   EXPECT_NEAR(smooth->diffuseAlbedo().x, 0.6, 1e-12);
   const double s2 = std::pow(30 * M_PI / 180, 2), A = 1 - s2 / (2 * (s2 + 0.33));
   auto rough = makeBsdf("oren-nayar", BsdfParams::parse("reflectance=0.6, sigma=30"));
-  EXPECT_NEAR(rough->eval({0, 0, 1}, direction(0.3, 1.0)).x, 0.6 * A / M_PI, 1e-15);
+  EXPECT_NEAR(rough->eval({0, 0, 1}, localDirection(0.3, 1.0)).x, 0.6 * A / M_PI, 1e-15);
 }
 
 TEST(OrenNayar, StatisticalAlbedoMatchesMonteCarlo) {

@@ -14,7 +14,7 @@
 
 namespace radkit {
 namespace {
-RowEntry estimate(const test::MeshBuilder& b, int i, int j, int K) {
+RowEntry hemisphereEstimate(const test::MeshBuilder& b, int i, int j, int K) {
   RayScene scene(b.mesh());
   FormFactorSettings s;
   s.method = "hemisphere";
@@ -60,7 +60,7 @@ TEST(Hemisphere, StatisticalClosedForms) {
       {"cube opposite", test::cubeInterior(1), 0, 1, 0.199824895698387},
   };
   for (const Case& c : cases) {
-    RowEntry e = estimate(c.b, c.i, c.j, K);
+    RowEntry e = hemisphereEstimate(c.b, c.i, c.j, K);
     std::printf("[ hemisphere ] %-18s K=%d  F=%.5f  exact %.5f  se %.2e\n", c.name, K, e.value,
                 c.exact, e.standardError);
     EXPECT_LE(std::fabs(e.value - c.exact), 4 * e.standardError) << c.name;
@@ -69,7 +69,7 @@ TEST(Hemisphere, StatisticalClosedForms) {
 
 TEST(Hemisphere, StatisticalStandardErrorHalves) {
   test::MeshBuilder b = test::parallelRectangles(1, 1, 1);
-  RowEntry k1 = estimate(b, 0, 1, 5000), k4 = estimate(b, 0, 1, 20000);
+  RowEntry k1 = hemisphereEstimate(b, 0, 1, 5000), k4 = hemisphereEstimate(b, 0, 1, 20000);
   EXPECT_NEAR(k4.standardError / k1.standardError, 0.5, 0.05);
 }
 

@@ -69,12 +69,6 @@ TEST(ParseCamera, GivesEveryPartAndRefusesNonsense) {
   }
 }
 
-double meanRadiance(const RadianceImage& img) {
-  double sum = 0;
-  for (const Vec3& v : img.radiance) sum += v.x + v.y + v.z;
-  return sum / (3.0 * img.radiance.size());
-}
-
 TEST(RenderCamera, OpenBoxObjIsNotBlack) {
   // CornellBox-Original.obj's shape: open toward +z. The old camera sat on -z and saw the backs.
   test::TempDir dir;
@@ -82,12 +76,12 @@ TEST(RenderCamera, OpenBoxObjIsNotBlack) {
   const std::string common = " --shading radiosity --patches 60 --size 16x16 --out ";
   test::RunResult r = test::runRadkit("render '" + obj + "'" + common + dir.path("auto.pfm"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_GT(meanRadiance(readPfm(dir.path("auto.pfm"))), 0.01);
+  EXPECT_GT(readPfm(dir.path("auto.pfm")).meanRadiance(), 0.01);
   // --camera replaces the automatic one: from behind the back wall, nothing faces it.
   r = test::runRadkit("render '" + obj + "' --camera 0.5,0.5,-3,0.5,0.5,0" + common +
                       dir.path("behind.pfm"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_EQ(meanRadiance(readPfm(dir.path("behind.pfm"))), 0);
+  EXPECT_EQ(readPfm(dir.path("behind.pfm")).meanRadiance(), 0);
   r = test::runRadkit("render '" + obj + "' --camera 0,0,1" + common + dir.path("bad.pfm"));
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("Fix:"), std::string::npos) << r.output;
