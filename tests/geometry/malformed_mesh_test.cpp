@@ -103,6 +103,23 @@ INSTANTIATE_TEST_SUITE_P(
                  "p.ply",
                  "ply\nformat ascii 1.0\nproperty float x\nend_header\n",
                  {"line 3", "before any element"}},
+        // fuzz_ply timeout (2026-11-24): a version other than 1.0 sent OpenMesh's header
+        // reader into a loop that logged a line per byte; refused before OpenMesh reads it.
+        MeshCase{"PlyFormatVersionNotOnePointZero",
+                 "p.ply",
+                 "ply\nformat binary_little_endian ##################################1.0\n"
+                 "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                 "element face 0\nend_header\n" +
+                     std::string(36, '\0'),
+                 {"line 2", "version"}},
+        MeshCase{"PlyFormatVersionTwo",
+                 "p.ply",
+                 "ply\nformat ascii 2.0\nelement vertex 0\nend_header\n",
+                 {"line 2", "version"}},
+        MeshCase{"PlyFormatTwice",
+                 "p.ply",
+                 "ply\nformat ascii 1.0\nformat ascii 1.0\nelement vertex 0\nend_header\n",
+                 {"line 3", "second 'format'"}},
         // 6: PLY header that never ends.
         MeshCase{
             "PlyNoEndHeader", "p.ply", std::string(kPlyHead) + "element face 0\n", {"end_header"}},
