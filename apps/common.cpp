@@ -12,6 +12,7 @@
 
 #include "geometry/scene_loader.h"
 #include "render/camera.h"
+#include "util/format.h"
 
 namespace radkit::app {
 
@@ -173,11 +174,7 @@ void tooManyPatches(const Scene& scene, const MeshOptions& options) {
                    "--max-area, or fewer --patches.");
 }
 
-std::string fmt(const char* format, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, value);
-  return buf;
-}
+std::string fmt(const char* format, double value) { return formatValue(format, value); }
 
 void printField(const std::string& label, const std::string& value) {
   std::printf("%22s: %s\n", label.c_str(), value.c_str());
