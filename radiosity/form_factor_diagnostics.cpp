@@ -93,11 +93,18 @@ nlohmann::json toJson(const FormFactorDiagnostics& d) {
         {"per_second", d.raysPerSecond},
         {"thread_seconds", d.rayThreadSeconds}}},
       {"quadrature_points", d.quadraturePoints},
+      {"kernel_points", d.kernelPoints},
       {"geometry_thread_seconds", d.geometryThreadSeconds},
       {"threads", d.threads},
       {"seconds", phases},
       {"warnings", d.warnings},
   };
+  if (!d.pairsByRule.empty()) {
+    nlohmann::json rules = {{"adaptive_contour", d.pairsByRule[0]}};
+    for (std::size_t n = 1; n < d.pairsByRule.size(); ++n)
+      rules["tensor_level_" + std::to_string(n)] = d.pairsByRule[n];
+    j["pairs"]["by_rule"] = rules;
+  }
   if (d.overlappingPairs > 0)
     j["pairs"]["first_overlap"] = {d.firstOverlap.first, d.firstOverlap.second};
   return j;

@@ -31,7 +31,9 @@ struct FormFactorDiagnostics {
 
   long long pairsFacing = 0, pairsCulled = 0, overlappingPairs = 0;
   std::pair<int, int> firstOverlap{-1, -1};
-  long long raysCast = 0, raysSaved = 0, quadraturePoints = 0;
+  long long raysCast = 0, raysSaved = 0, quadraturePoints = 0, kernelPoints = 0;
+  /// point-polygon: pairs per rule, [0] adaptive contour, [n] tensor level n (else empty).
+  std::vector<long long> pairsByRule;
   int threads = 1;
   double rayThreadSeconds = 0;       ///< summed over threads
   double geometryThreadSeconds = 0;  ///< summed over threads

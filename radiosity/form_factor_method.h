@@ -44,6 +44,10 @@ struct RowResult {
   long long pairsFacing = 0;       ///< pairs that passed the facing test
   long long overlappingPairs = 0;  ///< coplanar pairs sharing area (coincident patches)
   long long quadraturePoints = 0;  ///< contour-formula evaluations
+  long long kernelPoints = 0;      ///< point-to-point kernel evaluations of the tensor rules
+  /// Pairs integrated by each rule: [0] the adaptive contour cubature, [n] the level-n
+  /// tensor rule (pair_rule.h, levels 1..4).
+  long long pairsByRule[5] = {};
   double raySeconds = 0;           ///< thread time spent casting (and sampling) rays
   double geometrySeconds = 0;      ///< thread time spent on everything else
   int firstOverlap[2] = {-1, -1};  ///< one overlapping pair, for the report

@@ -20,7 +20,8 @@ namespace {
 /// Work counters summed over rows.
 struct Totals {
   long long raysCast = 0, raysSaved = 0, pairsFacing = 0, pairsCulled = 0, overlapping = 0;
-  long long quadraturePoints = 0;
+  long long quadraturePoints = 0, kernelPoints = 0;
+  long long pairsByRule[5] = {};
   double raySeconds = 0, geometrySeconds = 0;
   std::pair<int, int> firstOverlap{-1, -1};
   void add(const RowResult& r) {
@@ -28,6 +29,8 @@ struct Totals {
     t.raysCast = r.raysCast, t.raysSaved = r.raysSaved, t.pairsFacing = r.pairsFacing;
     t.pairsCulled = r.pairsCulled, t.overlapping = r.overlappingPairs;
     t.quadraturePoints = r.quadraturePoints;
+    t.kernelPoints = r.kernelPoints;
+    std::copy(std::begin(r.pairsByRule), std::end(r.pairsByRule), t.pairsByRule);
     t.raySeconds = r.raySeconds, t.geometrySeconds = r.geometrySeconds;
     t.firstOverlap = {r.firstOverlap[0], r.firstOverlap[1]};
     merge(t);
@@ -41,6 +44,8 @@ struct Totals {
       firstOverlap = t.firstOverlap;
     overlapping += t.overlapping;
     quadraturePoints += t.quadraturePoints;
+    kernelPoints += t.kernelPoints;
+    for (int k = 0; k < 5; ++k) pairsByRule[k] += t.pairsByRule[k];
     raySeconds += t.raySeconds;
     geometrySeconds += t.geometrySeconds;
   }
@@ -99,7 +104,10 @@ template <typename T>
 FormFactorMatrix computeDense(const FormFactorMethod& method, const PatchMesh& mesh,
                               RowProgress& progress, Totals& totals) {
   const int n = mesh.size();
-  DenseMatrix<T> f(n);
+  DenseMatrix<T> f = DenseMatrix<T>::uninitialized(n);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
+    for (int i = r.begin(); i < r.end(); ++i) std::fill(f.row(i), f.row(i) + n, T(0));
+  });
   const bool upper = method.coverage() == RowCoverage::UpperTriangle;
   // Rows write F_ij and, by reciprocity, F_ji: distinct elements, so no two threads collide.
   totals = computeRows(method, n, progress, [&](int i, const RowResult& row) {
@@ -257,6 +265,9 @@ FormFactorResult computeFormFactors(const PatchMesh& mesh, const Visibility& vis
   d.raysCast = totals.raysCast;
   d.raysSaved = totals.raysSaved;
   d.quadraturePoints = totals.quadraturePoints;
+  d.kernelPoints = totals.kernelPoints;
+  if (method->name() == "point-polygon")
+    d.pairsByRule.assign(std::begin(totals.pairsByRule), std::end(totals.pairsByRule));
   d.threads = tbb::this_task_arena::max_concurrency();
   d.rayThreadSeconds = totals.raySeconds;
   d.geometryThreadSeconds = totals.geometrySeconds;

@@ -9,6 +9,40 @@
 
 namespace radkit {
 
+namespace {
+/// Fills the fields that follow from the vertices, normal, centroid and area.
+void finishInfo(PatchInfo& info) {
+  info.bounds = Bounds3();
+  for (int k = 0; k < info.count; ++k) info.bounds.extend(info.v[k]);
+  info.planeOffset = dot(info.normal, info.centroid);
+  info.split = patchSplit(info.v, info.count);
+  info.sphereCentre = info.centroid;
+  info.sphereRadius = 0;
+  for (int k = 0; k < info.count; ++k)
+    info.sphereRadius = std::max(info.sphereRadius, length(info.v[k] - info.centroid));
+  // v0 − v1 + v2 − v3 is the bilinear map's twist: zero exactly for a parallelogram.
+  info.parallelogram =
+      info.count == 4 &&
+      length(info.v[0] - info.v[1] + info.v[2] - info.v[3]) <= 1e-12 * info.sphereRadius;
+}
+}  // namespace
+
+PatchInfo makePatchInfo(const Vec3* v, int count, const Vec3& normal) {
+  PatchInfo info;
+  info.count = count;
+  std::copy(v, v + count, info.v);
+  info.normal = normal;
+  Vec3 weighted;
+  for (int k = 1; k + 1 < count; ++k) {
+    double a = 0.5 * length(cross(v[k] - v[0], v[k + 1] - v[0]));
+    info.area += a;
+    weighted += (v[0] + v[k] + v[k + 1]) * (a / 3);
+  }
+  info.centroid = info.area > 0 ? weighted / info.area : v[0];
+  finishInfo(info);
+  return info;
+}
+
 PatchTable::PatchTable(const PatchMesh& mesh) {
   Bounds3 b = mesh.bounds();
   m_tolerance = 1e-9 * std::max(1e-300, b.empty() ? 1.0 : b.diagonal());
@@ -17,19 +51,12 @@ PatchTable::PatchTable(const PatchMesh& mesh) {
     const Patch& p = mesh.patches[i];
     PatchInfo& info = m_patches[i];
     info.count = p.vertexCount;
-    for (int k = 0; k < p.vertexCount; ++k) {
-      info.v[k] = mesh.vertex(p, k);
-      info.bounds.extend(info.v[k]);
-    }
+    for (int k = 0; k < p.vertexCount; ++k) info.v[k] = mesh.vertex(p, k);
     info.normal = p.normal;
     info.centroid = p.centroid;
     info.area = p.area;
-    info.planeOffset = dot(p.normal, p.centroid);
     info.surface = p.surface;
-    info.split = patchSplit(info.v, info.count);
-    info.sphereCentre = p.centroid;
-    for (int k = 0; k < p.vertexCount; ++k)
-      info.sphereRadius = std::max(info.sphereRadius, length(info.v[k] - p.centroid));
+    finishInfo(info);
   }
 }
 

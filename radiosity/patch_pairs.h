@@ -21,10 +21,15 @@ struct PatchInfo {
   double sphereRadius = 0;
   double split = 1;  ///< patchSplit(): area share of triangle (0,1,2)
   int surface = -1;
+  bool parallelogram = false;  ///< a quad whose opposite edges are parallel and equal (1e-12)
 
   /// Signed distance of p from the patch plane (positive on the front side).
   double height(const Vec3& p) const { return dot(normal, p) - planeOffset; }
 };
+
+/// \brief The record of one planar patch (3 or 4 vertices, counter-clockwise about `normal`);
+/// area and centroid from the vertices. Tests and tools build patches with it.
+PatchInfo makePatchInfo(const Vec3* v, int count, const Vec3& normal);
 
 /// The patch table and the tolerance used for "on the plane" decisions.
 class PatchTable {

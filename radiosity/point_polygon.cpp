@@ -1,6 +1,7 @@
-// point-polygon: F_ij = (1/A_i) ∫_Ai F_dAi→Aj dA_i · V_ij, the integrand given exactly by
-// Lambert's contour formula (contour.h), the integral by adaptive Gauss–Legendre cubature
-// (quadrature.h), and V_ij the visible fraction of the kernel estimated from K segments
+// point-polygon: F_ij = (1/A_i) ∫_Ai F_dAi→Aj dA_i · V_ij. Pairs apart from each other take a
+// tensor Gauss–Legendre rule with the point-to-point kernel, its level chosen per pair from an
+// error bound (pair_rule.h); the rest the exact contour integrand (contour.h) under adaptive
+// cubature (quadrature.h). V_ij the visible fraction of the kernel estimated from K segments
 // stratified over both patches: V̂ = Σ w_k v_k / Σ w_k with w_k = cosθ_i cosθ_j / r² of
 // segment k and v_k its visibility (a ratio estimator: F_ij V̂ → F_ij exactly as K grows,
 // and V̂ = 1 or 0 exactly when nothing or everything is blocked).
@@ -13,6 +14,7 @@
 #include "radiosity/contour.h"
 #include "radiosity/form_factor_method.h"
 #include "radiosity/occluder_culling.h"
+#include "radiosity/pair_rule.h"
 #include "radiosity/patch_pairs.h"
 #include "util/format.h"
 
@@ -36,7 +38,12 @@ class PointPolygon final : public FormFactorMethod {
       << "adaptive " << m_settings.quadrature.order << "x" << m_settings.quadrature.order
       << " Gauss-Legendre cubature (tolerance " << m_settings.quadrature.tolerance
       << ", depth <= " << m_settings.quadrature.maxDepth << ", far ratio "
-      << m_settings.quadrature.farRatio << "), visibility from K=" << m_settings.samples
+      << m_settings.quadrature.farRatio << ")";
+    if (m_settings.quadrature.pairLevels > 0)
+      d << ", or for pairs in front of each other the cheapest tensor Gauss-Legendre rule of "
+        << "level <= " << m_settings.quadrature.pairLevels << " whose error bound is <= "
+        << m_settings.quadrature.tolerance << " relative";
+    d << ", visibility from K=" << m_settings.samples
       << " stratified rays per pair"
       << (m_settings.cullUnblockable ? " (none for unblockable pairs)" : "")
       << ", F_ji by reciprocity, seed " << m_settings.seed;
@@ -45,8 +52,17 @@ class PointPolygon final : public FormFactorMethod {
   RowCoverage coverage() const override { return RowCoverage::UpperTriangle; }
   void computeRow(int i, RowResult& out) const override;
 
-  /// Unoccluded F_ij by cubature over the smaller patch; F_ji follows by reciprocity.
-  double unoccluded(int i, int j, QuadratureStats& stats) const;
+  /// The tensor-rule points of row i, computed once per row and level.
+  struct RowPoints {
+    PatchPoints level[kMaxPairLevel + 1];
+    bool ready[kMaxPairLevel + 1] = {};
+  };
+  /// Unoccluded F_ij: the selected tensor rule, or cubature over the smaller patch; F_ji
+  /// follows by reciprocity. Counts the rule used in `out`.
+  double unoccluded(int i, int j, RowPoints& rowPoints, QuadratureStats& stats,
+                    RowResult& out) const;
+  /// Unoccluded F_ij by adaptive cubature of the contour integrand.
+  double adaptiveContour(int i, int j, QuadratureStats& stats) const;
   /// Buffers reused across the pairs of a row.
   struct Scratch {
     std::vector<double> u, weight;
@@ -64,7 +80,27 @@ class PointPolygon final : public FormFactorMethod {
   AdaptiveCubature m_cubature;
 };
 
-double PointPolygon::unoccluded(int i, int j, QuadratureStats& stats) const {
+double PointPolygon::unoccluded(int i, int j, RowPoints& rowPoints, QuadratureStats& stats,
+                                RowResult& out) const {
+  const QuadratureSettings& q = m_settings.quadrature;
+  const PatchInfo& a = m_table[i];
+  const PatchInfo& b = m_table[j];
+  if (q.pairLevels > 0 && inFrontOfEachOther(a, b, m_table.planeTolerance())) {
+    int n = selectPairLevel(pairSeparation(a, b), q.tolerance, q.pairLevels);
+    if (n > 0) {
+      if (!rowPoints.ready[n]) patchPoints(a, n, rowPoints.level[n]), rowPoints.ready[n] = true;
+      PatchPoints pb;
+      patchPoints(b, n, pb);
+      ++out.pairsByRule[n];
+      out.kernelPoints += (long long)rowPoints.level[n].count * pb.count;
+      return pairRuleFormFactor(a, rowPoints.level[n], b, pb);
+    }
+  }
+  ++out.pairsByRule[0];
+  return adaptiveContour(i, j, stats);
+}
+
+double PointPolygon::adaptiveContour(int i, int j, QuadratureStats& stats) const {
   // Integrate over the smaller patch a: for a given number of points the integrand varies
   // least over the patch that is small compared with its distance to the other.
   bool swap = m_table[j].area < m_table[i].area;
@@ -122,6 +158,7 @@ void PointPolygon::computeRow(int i, RowResult& out) const {
   std::vector<RowEntry> needRays;
   const int n = m_table.size();
   const long long K = m_settings.samples;
+  RowPoints rowPoints;
   for (int j = i + 1; j < n; ++j) {
     if (!m_table.facing(i, j)) {
       // Coincident or overlapping coplanar patches: F = 0 (no front sees the other), reported.
@@ -132,7 +169,7 @@ void PointPolygon::computeRow(int i, RowResult& out) const {
       continue;
     }
     ++out.pairsFacing;
-    double f = unoccluded(i, j, stats);
+    double f = unoccluded(i, j, rowPoints, stats, out);
     if (!(f > 0)) continue;
     if (m_settings.cullUnblockable && !m_culling.mayBeBlocked(i, j)) {
       ++out.pairsCulled;

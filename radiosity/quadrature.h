@@ -43,6 +43,10 @@ struct QuadratureSettings {
   /// order-n rule without an error estimate: there the integrand is smooth on the cell's
   /// scale and the rule's error falls as (diameter/distance)^(2n) (~1e-4 relative at 2, n=2).
   double farRatio = 2.0;
+  /// Per-pair selection (pair_rule.h): a pair whose patches lie wholly in front of each other
+  /// takes the cheapest tensor rule of level <= pairLevels whose error bound is at most
+  /// `tolerance` relative to F_ij; the others, the adaptive cubature above. 0: adaptive for all.
+  int pairLevels = 4;
 };
 
 /// Bounding sphere of what the integrand looks at (the target patch).

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "util/check.h"
+#include "util/large_array_allocator.h"
 
 namespace radkit {
 
@@ -21,6 +22,14 @@ class DenseMatrix {
   using Scalar = T;
   DenseMatrix() = default;
   explicit DenseMatrix(int n) : m_n(n), m_data(static_cast<std::size_t>(n) * n, T(0)) {}
+  /// \brief An n×n matrix whose entries are not set: the caller writes every one (in
+  /// parallel, so that both the writes and the page faults are shared by the threads).
+  static DenseMatrix uninitialized(int n) {
+    DenseMatrix m;
+    m.m_n = n;
+    m.m_data.resize(static_cast<std::size_t>(n) * n);
+    return m;
+  }
 
   int rows() const { return m_n; }
   int cols() const { return m_n; }
@@ -48,7 +57,7 @@ class DenseMatrix {
  private:
   bool inRange(int i) const { return i >= 0 && i < m_n; }
   int m_n = 0;
-  std::vector<T> m_data;
+  std::vector<T, LargeArrayAllocator<T>> m_data;
 };
 
 /// Square sparse matrix in compressed sparse row form; columns sorted within each row.
