@@ -6,6 +6,23 @@
 
 #include "apps/common.h"
 #include "geometry/scene_loader.h"
+#include "util/threads.h"
+
+namespace {
+/// `--threads N` on every command that runs something (commands that own a --threads, like
+/// `bench solver`, keep theirs). It acts while parsing, before the command's callback runs.
+void addThreadsOption(CLI::App& command) {
+  for (CLI::App* sub : command.get_subcommands({})) addThreadsOption(*sub);
+  if (!command.get_subcommands({}).empty() || command.get_parent() == nullptr) return;
+  if (command.get_option_no_throw("--threads") != nullptr) return;
+  command
+      .add_option_function<int>(
+          "--threads", [](const int& n) { radkit::limitThreads(n); },
+          "Threads for every parallel loop (default: all cores); 1 runs serially")
+      ->check(CLI::Range(1, 1024))
+      ->trigger_on_parse();
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"radkit: radiosity and global-illumination toolkit"};
@@ -19,6 +36,7 @@ int main(int argc, char** argv) {
   radkit::app::addRenderCommand(app);
   radkit::app::addBrdfCommand(app);
   radkit::app::addPhotonsCommand(app);
+  addThreadsOption(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -72,6 +72,12 @@ void addFormFactorOptions(CLI::App& c, FormFactorOptions& o) {
   c.add_option("--seed", o.settings.seed, "Seed of every random stream (same seed, same output)")
       ->check(Unsigned)
       ->capture_default_str();
+  c.add_option("--ff-pair-levels", o.settings.quadrature.pairLevels,
+               "point-polygon: highest tensor Gauss-Legendre level (1-4) a pair may take when "
+               "its error bound allows; 0 integrates every pair by the adaptive contour "
+               "cubature (docs/formfactors.md)")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
   c.add_option("--ff-enforce", o.enforce,
                "'reciprocity': replace A_iF_ij and A_jF_ji by their mean (off by default)");
   c.add_option("--ff-storage", o.storage, "Form-factor storage precision")

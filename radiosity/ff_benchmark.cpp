@@ -1,5 +1,6 @@
 // Benchmark: visibility rays inside point-polygon versus raw Embree occlusion rays.
 #include "radiosity/ff_benchmark.h"
+#include "util/threads.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -57,7 +58,7 @@ FormFactorBenchmark benchmarkFormFactors(const PatchMesh& mesh, const RayScene& 
   using Clock = std::chrono::steady_clock;
   FormFactorBenchmark b;
   b.patches = mesh.size();
-  b.threads = tbb::this_task_arena::max_concurrency();
+  b.threads = activeThreads();
 
   Clock::time_point start = Clock::now();
   FormFactorResult ff = computeFormFactors(mesh, scene, settings.formFactors);
@@ -68,6 +69,12 @@ FormFactorBenchmark benchmarkFormFactors(const PatchMesh& mesh, const RayScene& 
   b.raySeconds = ff.diagnostics.rayThreadSeconds / b.threads;
   b.raysPerSecond = ff.diagnostics.raysPerSecond;
   b.raysPerSecondOverall = b.formFactorSeconds > 0 ? b.raysCast / b.formFactorSeconds : 0;
+  b.pairs = ff.diagnostics.pairsFacing;
+  for (const auto& [phase, seconds] : ff.diagnostics.phaseSeconds)
+    if (phase == "compute") b.computeSeconds = seconds;
+  b.pairsPerSecond = b.computeSeconds > 0 ? b.pairs / b.computeSeconds : 0;
+  double geometry = ff.diagnostics.geometryThreadSeconds / b.threads;
+  b.pairsPerGeometrySecond = geometry > 0 ? b.pairs / geometry : 0;
   ff.matrix = FormFactorMatrix{};  // release F before the reference allocates its segments
 
   if (mesh.size() >= 2 && settings.referenceRays > 0) {
@@ -109,6 +116,12 @@ nlohmann::json toJson(const FormFactorBenchmark& b) {
         {"rays_per_second", b.referenceRaysPerSecond},
         {"occluded_fraction", b.referenceOccludedFraction}}},
       {"ratio", b.ratio},
+      {"pairs",
+       {{"name", "facing patch pairs per second of the compute phase (F_ij and F_ji)"},
+        {"pairs", b.pairs},
+        {"compute_seconds", b.computeSeconds},
+        {"pairs_per_second", b.pairsPerSecond},
+        {"pairs_per_geometry_second", b.pairsPerGeometrySecond}}},
       {"form_factor_seconds", b.formFactorSeconds},
       {"rays_per_second_overall", b.raysPerSecondOverall},
       {"matrix_bytes", b.matrixBytes},

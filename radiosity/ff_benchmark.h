@@ -38,6 +38,12 @@ struct FormFactorBenchmark {
   double referenceRaysPerSecond = 0;
   double referenceOccludedFraction = 0;
   double ratio = 0;  ///< raysPerSecond / referenceRaysPerSecond (target >= 0.8)
+  // Pairs: facing patch pairs (each computed once, both directions by reciprocity) per
+  // second of the compute phase, and of the geometry part alone (thread seconds / threads).
+  long long pairs = 0;
+  double computeSeconds = 0;
+  double pairsPerSecond = 0;
+  double pairsPerGeometrySecond = 0;
   std::size_t matrixBytes = 0;
   std::size_t peakResidentBytes = 0;  ///< VmHWM of the process after the run (Linux)
   FormFactorDiagnostics diagnostics;

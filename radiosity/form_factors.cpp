@@ -1,5 +1,6 @@
 // The form-factor driver: plan storage, compute rows in parallel, assemble, measure.
 #include "radiosity/form_factors.h"
+#include "util/threads.h"
 #include "util/format.h"
 
 #include <tbb/blocked_range.h>
@@ -268,7 +269,7 @@ FormFactorResult computeFormFactors(const PatchMesh& mesh, const Visibility& vis
   d.kernelPoints = totals.kernelPoints;
   if (method->name() == "point-polygon")
     d.pairsByRule.assign(std::begin(totals.pairsByRule), std::end(totals.pairsByRule));
-  d.threads = tbb::this_task_arena::max_concurrency();
+  d.threads = activeThreads();
   d.rayThreadSeconds = totals.raySeconds;
   d.geometryThreadSeconds = totals.geometrySeconds;
   d.raysPerSecond = totals.raySeconds > 0 ? totals.raysCast / (totals.raySeconds / d.threads) : 0;

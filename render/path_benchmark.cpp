@@ -1,4 +1,5 @@
 #include "render/path_benchmark.h"
+#include "util/threads.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -45,7 +46,7 @@ std::vector<Ray> referenceRays(const ShadingScene& scene, long long count, std::
 PathTraceBenchmark benchmarkPathTracer(const ShadingScene& scene, const Camera& camera,
                                        const PathTraceBenchmarkSettings& s) {
   PathTraceBenchmark b;
-  b.threads = tbb::this_task_arena::max_concurrency();
+  b.threads = activeThreads();
   b.width = s.render.width;
   b.height = s.render.height;
   b.samplesPerPixel = s.render.samplesPerPixel;

@@ -75,6 +75,39 @@ TEST(FormFactorsCli, CornellBoxReciprocityAndRowSums) {
   EXPECT_GT(ff["rays"]["saved"].get<long long>(), 0);
 }
 
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// --threads caps the parallel loops (report.json says how many ran) and changes no bit of F.
+// --ff-pair-levels 0 gives every pair the adaptive contour: another F, as close as both rules'
+// tolerances (1e-6 relative and absolute per pair) allow.
+TEST(FormFactorsCli, ThreadsAndPairLevels) {
+  test::TempDir dir;
+  const std::string scene = "formfactors '" + dataPath("cornell-box.json") + "' --patches 300 ";
+  for (const char* t : {"1", "2"}) {
+    auto r = runRadkit(scene + "--threads " + t + " --out '" + dir.path(t) + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(readJson(dir.path(std::string(t) + "/report.json"))["form_factors"]["threads"],
+              std::stoi(t));
+  }
+  EXPECT_EQ(fileBytes(dir.path("1/formfactors.bin")), fileBytes(dir.path("2/formfactors.bin")));
+  auto r = runRadkit(scene + "--ff-pair-levels 0 --out '" + dir.path("a") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  json selected = readJson(dir.path("1/report.json"))["form_factors"]["pairs"]["by_rule"];
+  json adaptive = readJson(dir.path("a/report.json"))["form_factors"]["pairs"]["by_rule"];
+  EXPECT_GT(selected["tensor_level_3"].get<long long>() + selected["tensor_level_4"].get<long long>(), 0);
+  EXPECT_EQ(adaptive["tensor_level_3"].get<long long>() + adaptive["tensor_level_4"].get<long long>(), 0);
+  for (auto& row : readCsv(dir.path("a/surface_formfactors.csv")))
+    EXPECT_NEAR(surfaceFactor(dir.path("1/surface_formfactors.csv"), row["from"], row["to"]),
+                std::stod(row["F"]), 2e-6)
+        << row["from"] << " -> " << row["to"];
+  r = runRadkit(scene + "--threads 0 --out '" + dir.path("z") + "'");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("--threads"), std::string::npos) << r.output;
+}
+
 TEST(FormFactorsCli, BadInput) {
   test::TempDir dir;
   auto r = runRadkit("formfactors '" + dataPath("furnace.json") + "' --ff-samples 0 --out '" +
