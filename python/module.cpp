@@ -1,0 +1,678 @@
+// The `radkit` Python module: the pipeline's stages as functions over numpy arrays, for
+// notebooks and the labs. Objects hold what they were made from (a mesh its scene, form
+// factors their mesh, a system its matrix), so Python's reference counting keeps every
+// pointer the C++ side stores valid. docs/python.md is the user's guide.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/patch_mesh.h"
+#include "geometry/ray_scene.h"
+#include "geometry/scene.h"
+#include "geometry/scene_loader.h"
+#include "geometry/subdivision.h"
+#include "photon/estimate.h"
+#include "photon/image.h"
+#include "photon/tracer.h"
+#include "radiosity/form_factor_storage.h"
+#include "radiosity/form_factors.h"
+#include "radiosity/radiosity_solution.h"
+#include "render/camera.h"
+#include "render/path_tracer.h"
+#include "render/radiosity_image.h"
+#include "render/shading_context.h"
+#include "solvers/registry.h"
+#include "solvers/solver.h"
+#include "util/threads.h"
+
+namespace py = pybind11;
+using namespace radkit;
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+Array vec3Array(const std::vector<Vec3>& v) {
+  Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
+  auto m = a.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < m.shape(0); ++i) m(i, 0) = v[i].x, m(i, 1) = v[i].y, m(i, 2) = v[i].z;
+  return a;
+}
+
+Array channelsArray(const Channels& c) {
+  const py::ssize_t n = static_cast<py::ssize_t>(c[0].size());
+  Array a({n, py::ssize_t(3)});
+  auto m = a.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) m(i, k) = c[k][i];
+  return a;
+}
+
+/// (n, 3) or (n,) (grey: the same value in every channel) to three channels; `what` names the
+/// argument in the error.
+Channels toChannels(const Array& a, py::ssize_t n, const char* what) {
+  Channels c = makeChannels(static_cast<int>(n));
+  if (a.ndim() == 1 && a.shape(0) == n) {
+    auto m = a.unchecked<1>();
+    for (py::ssize_t i = 0; i < n; ++i) c[0][i] = c[1][i] = c[2][i] = m(i);
+  } else if (a.ndim() == 2 && a.shape(0) == n && a.shape(1) == 3) {
+    auto m = a.unchecked<2>();
+    for (py::ssize_t i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) c[k][i] = m(i, k);
+  } else {
+    throw py::value_error(std::string(what) + ": expected shape (" + std::to_string(n) +
+                          ", 3) or (" + std::to_string(n) + ",), one row per patch");
+  }
+  return c;
+}
+
+Array imageArray(const RadianceImage& img) {
+  Array a({py::ssize_t(img.height), py::ssize_t(img.width), py::ssize_t(3)});
+  auto m = a.mutable_unchecked<3>();
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Vec3& v = img.radiance[static_cast<std::size_t>(y) * img.width + x];
+      m(y, x, 0) = v.x, m(y, x, 1) = v.y, m(y, x, 2) = v.z;
+    }
+  return a;
+}
+
+py::object jsonToPython(const nlohmann::json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
+}
+
+// ---- holders: each keeps alive what its C++ object points into ----
+
+struct PyScene {
+  std::shared_ptr<const Scene> scene;
+};
+
+struct PyMesh {
+  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const PatchMesh> mesh;
+  std::vector<std::string> warnings;
+  mutable std::shared_ptr<const RayScene> rays;  // built on first use, then shared
+  const RayScene& rayScene() const {
+    if (!rays) rays = std::make_shared<const RayScene>(*mesh);
+    return *rays;
+  }
+};
+
+struct PyFormFactors {
+  PyMesh mesh;
+  std::shared_ptr<const FormFactorResult> result;
+};
+
+struct PySystem {
+  std::shared_ptr<const FormFactorMatrix> matrix;  // shared with PyFormFactors or owned
+  std::optional<PyMesh> mesh;                      // when made from a mesh
+  RadiositySystem system;
+};
+
+// ---- scene, mesh ----
+
+PyScene loadScenePy(const std::string& path, const std::string& units, bool repair) {
+  LoadOptions options;
+  options.units = units;
+  options.repair = repair;
+  return {std::make_shared<const Scene>(loadScene(path, nullptr, options))};
+}
+
+PyMesh meshPy(const PyScene& s, int patches, double maxArea) {
+  if (patches < 0 || !(maxArea >= 0))
+    throw py::value_error("mesh: patches and max_area must be >= 0 (0: no limit)");
+  SubdivisionSettings settings;
+  settings.targetPatches = patches;
+  settings.maxArea = maxArea;
+  PyMesh m;
+  m.scene = s.scene;
+  m.mesh = std::make_shared<const PatchMesh>(subdivide(*s.scene, settings, &m.warnings));
+  return m;
+}
+
+// ---- form factors ----
+
+PyFormFactors formFactorsPy(const PyMesh& mesh, const std::string& method, int samples,
+                            std::uint64_t seed, const std::string& precision, int pairLevels) {
+  FormFactorSettings settings;
+  settings.method = method;
+  settings.samples = samples;
+  settings.seed = seed;
+  if (precision == "float")
+    settings.precision = FormFactorPrecision::Float;
+  else if (precision != "double")
+    throw py::value_error("form_factors: precision '" + precision +
+                          "' is not known. Fix: 'double' (default) or 'float'");
+  if (pairLevels < 0 || pairLevels > 4)
+    throw py::value_error("form_factors: pair_levels must be in 0..4");
+  settings.quadrature.pairLevels = pairLevels;
+  const RayScene& rays = mesh.rayScene();
+  std::shared_ptr<FormFactorResult> result;
+  {
+    py::gil_scoped_release release;
+    result = std::make_shared<FormFactorResult>(computeFormFactors(*mesh.mesh, rays, settings));
+  }
+  return {mesh, result};
+}
+
+/// F as a dense (n, n) array (a copy in double, whatever the storage).
+Array denseArray(const FormFactorMatrix& f) {
+  const py::ssize_t n = matrixSize(f);
+  Array a({n, n});
+  double* out = a.mutable_data();
+  std::fill(out, out + n * n, 0.0);
+  std::visit(
+      [&](const auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        for (int i = 0; i < n; ++i) {
+          double* row = out + static_cast<std::size_t>(i) * n;
+          if constexpr (std::is_same_v<M, DenseMatrix<double>> ||
+                        std::is_same_v<M, DenseMatrix<float>>) {
+            const auto* r = m.row(i);
+            for (int j = 0; j < n; ++j) row[j] = static_cast<double>(r[j]);
+          } else {
+            for (std::int64_t k = m.rowBegin(i); k < m.rowEnd(i); ++k)
+              row[m.column(k)] = static_cast<double>(m.value(k));
+          }
+        }
+      },
+      f);
+  return a;
+}
+
+/// F as scipy.sparse.csr_matrix (zeros of a dense F left out).
+py::object sparseMatrix(const FormFactorMatrix& f) {
+  const int n = matrixSize(f);
+  std::vector<std::int64_t> start(n + 1, 0);
+  std::vector<std::int32_t> column;
+  std::vector<double> value;
+  std::visit(
+      [&](const auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        for (int i = 0; i < n; ++i) {
+          if constexpr (std::is_same_v<M, DenseMatrix<double>> ||
+                        std::is_same_v<M, DenseMatrix<float>>) {
+            const auto* r = m.row(i);
+            for (int j = 0; j < n; ++j)
+              if (r[j] != 0) column.push_back(j), value.push_back(static_cast<double>(r[j]));
+          } else {
+            for (std::int64_t k = m.rowBegin(i); k < m.rowEnd(i); ++k)
+              column.push_back(m.column(k)), value.push_back(static_cast<double>(m.value(k)));
+          }
+          start[i + 1] = static_cast<std::int64_t>(value.size());
+        }
+      },
+      f);
+  py::module_ sparse = py::module_::import("scipy.sparse");
+  py::array_t<double> data(static_cast<py::ssize_t>(value.size()), value.data());
+  py::array_t<std::int32_t> indices(static_cast<py::ssize_t>(column.size()), column.data());
+  py::array_t<std::int64_t> indptr(static_cast<py::ssize_t>(start.size()), start.data());
+  return sparse.attr("csr_matrix")(py::make_tuple(data, indices, indptr),
+                                   py::arg("shape") = py::make_tuple(n, n));
+}
+
+/// A matrix from Python: a dense (n, n) array or anything scipy.sparse can turn into CSR.
+std::shared_ptr<FormFactorMatrix> matrixFromPython(const py::object& f) {
+  py::module_ sparse = py::module_::import("scipy.sparse");
+  if (sparse.attr("issparse")(f).cast<bool>()) {
+    py::object csr = f.attr("tocsr")().attr("copy")();
+    csr.attr("sum_duplicates")();
+    csr.attr("sort_indices")();
+    const auto shape = csr.attr("shape").cast<std::pair<int, int>>();
+    if (shape.first != shape.second) throw py::value_error("F: expected a square matrix");
+    const auto indptr = csr.attr("indptr").cast<py::array_t<std::int64_t, py::array::forcecast>>();
+    const auto indices = csr.attr("indices").cast<py::array_t<int, py::array::forcecast>>();
+    const auto data = csr.attr("data").cast<Array>();
+    std::vector<std::int64_t> start(indptr.data(), indptr.data() + indptr.size());
+    std::vector<int> column(indices.data(), indices.data() + indices.size());
+    std::vector<double> value(data.data(), data.data() + data.size());
+    return std::make_shared<FormFactorMatrix>(
+        CsrMatrix<double>(shape.first, std::move(start), std::move(column), std::move(value)));
+  }
+  const Array a = f.cast<Array>();
+  if (a.ndim() != 2 || a.shape(0) != a.shape(1))
+    throw py::value_error("F: expected a square (n, n) array or a scipy.sparse matrix");
+  const int n = static_cast<int>(a.shape(0));
+  DenseMatrix<double> m(n);
+  auto v = a.unchecked<2>();
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) m(i, j) = v(i, j);
+  return std::make_shared<FormFactorMatrix>(std::move(m));
+}
+
+// ---- systems and solvers ----
+
+PySystem systemFromFormFactors(const PyFormFactors& ff) {
+  PySystem s;
+  s.matrix = std::shared_ptr<const FormFactorMatrix>(ff.result, &ff.result->matrix);
+  s.mesh = ff.mesh;
+  s.system = makeRadiositySystem(*ff.mesh.scene, *ff.mesh.mesh, *s.matrix);
+  return s;
+}
+
+PySystem systemFromArrays(const py::object& f, const Array& area, const Array& reflectance,
+                          const Array& emission) {
+  PySystem s;
+  s.matrix = matrixFromPython(f);
+  const int n = matrixSize(*s.matrix);
+  if (area.ndim() != 1 || area.shape(0) != n)
+    throw py::value_error("area: expected shape (" + std::to_string(n) + ",), one per patch");
+  s.system.area.assign(area.data(), area.data() + n);
+  s.system.reflectance = toChannels(reflectance, n, "reflectance");
+  s.system.emission = toChannels(emission, n, "emission");
+  s.system.formFactors = s.matrix.get();
+  s.system.validate();
+  return s;
+}
+
+ResidualNorm parseNorm(const std::string& norm) {
+  if (norm == "relative") return ResidualNorm::Relative;
+  if (norm == "per-patch") return ResidualNorm::PerPatch;
+  throw py::value_error("norm '" + norm + "' is not known. Fix: 'relative' or 'per-patch'");
+}
+
+/// A solver written in Python, run by the same driver (stopping rules, history) as the
+/// built-in ones. The object has start(system) and step(), and radiosity() returning B as
+/// (n, 3); optionally name and sweeps(). The residual is computed here from F, exactly, so a
+/// student's solver is held to the measure the built-in solvers report.
+class PythonSolver final : public Solver {
+ public:
+  PythonSolver(py::object object, py::object system)
+      : m_object(std::move(object)), m_pySystem(std::move(system)) {}
+  std::string name() const override {
+    return py::hasattr(m_object, "name") ? py::str(m_object.attr("name")).cast<std::string>()
+                                         : std::string("python");
+  }
+  std::string describe() const override {
+    return "Python solver " +
+           py::str(m_object.get_type().attr("__name__")).cast<std::string>();
+  }
+  void start(const RadiositySystem& system, const SolverSettings& settings) override {
+    system.validate();
+    m_system = &system;
+    m_norm = settings.norm;
+    m_steps = 0;
+    m_object.attr("start")(m_pySystem);
+    update();
+  }
+  void step() override {
+    m_object.attr("step")();
+    ++m_steps;
+    update();
+  }
+  const Channels& radiosity() const override { return m_b; }
+  double residual() const override { return m_residual; }
+  double unshotPower() const override { return m_power; }
+  double sweeps() const override {
+    return py::hasattr(m_object, "sweeps") ? m_object.attr("sweeps")().cast<double>()
+                                           : static_cast<double>(m_steps);
+  }
+
+ private:
+  void update() {
+    const Array b = m_object.attr("radiosity")().cast<Array>();
+    m_b = toChannels(b, m_system->size(), "radiosity() of the Python solver");
+    const Channels r = residualVector(*m_system, m_b);
+    m_residual = residualMeasure(*m_system, r, m_b, m_norm);
+    m_power = residualPower(*m_system, r);
+  }
+  py::object m_object, m_pySystem;
+  const RadiositySystem* m_system = nullptr;
+  ResidualNorm m_norm = ResidualNorm::Relative;
+  Channels m_b;
+  double m_residual = 0, m_power = 0;
+  long m_steps = 0;
+};
+
+py::dict resultDict(const SolveResult& r) {
+  py::dict d;
+  d["solver"] = r.solver;
+  d["description"] = r.description;
+  d["converged"] = r.converged;
+  d["exit"] = r.exit;
+  d["reason"] = r.reason;
+  d["iterations"] = r.iterations;
+  d["seconds"] = r.seconds;
+  d["residual"] = r.residual;
+  d["checked_residual"] = r.checkedResidual;
+  d["spectral_radius"] = r.spectralRadius;
+  d["radiosity"] = channelsArray(r.radiosity);
+  const py::ssize_t rows = static_cast<py::ssize_t>(r.history.size());
+  py::array_t<long> iteration(rows);
+  Array seconds(rows), residual(rows), power(rows), sweeps(rows);
+  for (py::ssize_t k = 0; k < rows; ++k) {
+    const HistoryRow& h = r.history[k];
+    iteration.mutable_at(k) = h.iteration, seconds.mutable_at(k) = h.seconds;
+    residual.mutable_at(k) = h.residual, power.mutable_at(k) = h.unshotPower;
+    sweeps.mutable_at(k) = h.sweeps;
+  }
+  py::dict history;
+  history["iteration"] = iteration, history["seconds"] = seconds;
+  history["residual"] = residual, history["unshot_power"] = power, history["sweeps"] = sweeps;
+  d["history"] = history;
+  return d;
+}
+
+py::dict solvePy(const py::object& pySystem, const py::object& solver, const std::string& params,
+                 double tolerance, long maxIterations, double maxSeconds, const std::string& norm) {
+  const PySystem& s = pySystem.cast<const PySystem&>();
+  SolverSettings settings;
+  settings.tolerance = tolerance;
+  settings.maxIterations = maxIterations;
+  settings.maxSeconds = maxSeconds;
+  settings.norm = parseNorm(norm);
+  if (!(tolerance > 0)) throw py::value_error("tolerance must be > 0");
+  if (py::isinstance<py::str>(solver)) {
+    std::unique_ptr<Solver> builtIn =
+        makeSolver(solver.cast<std::string>(), SolverParams::parse(params));
+    SolveResult r;
+    {
+      py::gil_scoped_release release;
+      r = solve(*builtIn, s.system, settings);
+    }
+    return resultDict(r);
+  }
+  if (!params.empty())
+    throw py::value_error("params are for built-in solvers; a Python solver takes its own");
+  if (py::hasattr(solver, "step") && py::hasattr(solver, "start")) {
+    PythonSolver adapter(solver, pySystem);
+    return resultDict(solve(adapter, s.system, settings));
+  }
+  if (!PyCallable_Check(solver.ptr()))
+    throw py::type_error(
+        "solver: expected a built-in solver's name, an object with start(system), step() and "
+        "radiosity(), or a function system -> B");
+  // A function that returns B at once: one step, measured like any other.
+  s.system.validate();
+  const auto t0 = std::chrono::steady_clock::now();
+  const Array b = solver(pySystem).cast<Array>();
+  SolveResult r;
+  r.solver = "python";
+  r.description = "Python function " + py::str(solver.attr("__name__")).cast<std::string>();
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.iterations = 1;
+  r.radiosity = toChannels(b, s.system.size(), "the Python function's B");
+  const Channels res = residualVector(s.system, r.radiosity);
+  r.checkedResidual = r.residual = residualMeasure(s.system, res, r.radiosity, settings.norm);
+  r.converged = r.residual <= tolerance;
+  r.exit = r.converged ? "converged" : "not_converged";
+  r.reason = r.converged ? "residual within the tolerance" : "residual above the tolerance";
+  r.history.push_back({1, r.seconds, r.residual, residualPower(s.system, res), 1.0});
+  return resultDict(r);
+}
+
+// ---- images ----
+
+Camera cameraFor(const PyMesh& m, const std::optional<std::string>& camera) {
+  return camera ? parseCamera("camera", *camera) : sceneCamera(*m.scene, *m.mesh);
+}
+
+void checkImageSize(int width, int height) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw py::value_error("width and height must be in 1..16384");
+}
+
+Array renderRadiosityPy(const PyMesh& m, const Array& radiosity, int width, int height,
+                        int samplesPerAxis, bool smooth, const std::optional<std::string>& camera) {
+  checkImageSize(width, height);
+  const Channels b = toChannels(radiosity, m.mesh->size(), "radiosity");
+  ImageSettings settings;
+  settings.width = width, settings.height = height;
+  settings.samplesPerAxis = samplesPerAxis, settings.smooth = smooth;
+  const Camera cam = cameraFor(m, camera);
+  const std::vector<Vec3> bv = toVec3(b);
+  const std::vector<bool> twoSided = m.scene->twoSidedSurfaces();
+  const RayScene& rays = m.rayScene();
+  RadianceImage img;
+  {
+    py::gil_scoped_release release;
+    img = renderRadiosity(*m.mesh, rays, cam, bv, twoSided, settings);
+  }
+  return imageArray(img);
+}
+
+py::tuple pathTracePy(const PyMesh& m, int spp, int width, int height, std::uint64_t seed,
+                      const std::string& sampler, const std::optional<std::string>& camera) {
+  checkImageSize(width, height);
+  if (spp < 1) throw py::value_error("spp must be >= 1");
+  PathTraceSettings settings;
+  settings.width = width, settings.height = height, settings.samplesPerPixel = spp;
+  settings.seed = seed;
+  settings.sampler = parseSamplerType(sampler);
+  const Camera cam = cameraFor(m, camera);
+  const RayScene& rays = m.rayScene();
+  MonteCarloImage img;
+  {
+    py::gil_scoped_release release;
+    const ShadingScene shading(*m.scene, *m.mesh, rays, BsdfSettings{});
+    img = renderPathTraced(shading, cam, settings);
+  }
+  RadianceImage variance = img.image;
+  variance.radiance = img.varianceOfMean;
+  return py::make_tuple(imageArray(img.image), imageArray(variance));
+}
+
+py::dict photonsPy(const PyMesh& m, std::size_t photons, std::uint64_t seed) {
+  if (photons < 1) throw py::value_error("photons must be >= 1");
+  PhotonSettings settings;
+  settings.photons = photons;
+  settings.seed = seed;
+  const RayScene& rays = m.rayScene();
+  PhotonRadiosity estimate;
+  PhotonTraceStats stats;
+  {
+    py::gil_scoped_release release;
+    const EmitterSampler emitters = photonEmitters(*m.scene, *m.mesh);
+    PhotonTrace trace = tracePhotons(*m.scene, *m.mesh, rays, emitters, settings);
+    stats = trace.stats;
+    estimate = estimateRadiosity(*m.scene, *m.mesh, trace.photons, photons);
+  }
+  py::dict d;
+  d["radiosity"] = vec3Array(estimate.radiosity);
+  d["radiosity_error"] = vec3Array(estimate.radiosityError);
+  d["irradiance"] = vec3Array(estimate.irradiance);
+  py::list surfaces;
+  for (const SurfaceEstimate& e : estimate.surfaces) {
+    py::dict s;
+    s["name"] = e.name, s["area"] = e.area;
+    s["radiosity"] = vec3Array({e.radiosity}).attr("reshape")(3);
+    s["radiosity_error"] = vec3Array({e.radiosityError}).attr("reshape")(3);
+    s["photons"] = e.photons;
+    surfaces.append(s);
+  }
+  d["surfaces"] = surfaces;
+  d["stored"] = stats.stored, d["escaped"] = stats.escaped, d["seconds"] = stats.seconds;
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(radkit, mod) {
+  mod.doc() =
+      "radkit: radiosity and global illumination. Load a scene, mesh it into patches, compute "
+      "the form-factor matrix, solve B = E + rho F B with a built-in or a Python solver, and "
+      "render; every per-patch quantity is a numpy array (docs/python.md).";
+
+  py::register_exception<InputError>(mod, "InputError", PyExc_ValueError);
+  py::register_exception<MemoryBudgetError>(mod, "MemoryBudgetError", PyExc_MemoryError);
+
+  py::class_<PyScene>(mod, "Scene", "A loaded, validated scene (load_scene)")
+      .def_property_readonly("name", [](const PyScene& s) { return s.scene->name; })
+      .def_property_readonly("file", [](const PyScene& s) { return s.scene->file; })
+      .def_property_readonly("units", [](const PyScene& s) { return s.scene->units; })
+      .def_property_readonly("surface_names",
+                             [](const PyScene& s) {
+                               std::vector<std::string> names;
+                               for (const Surface& f : s.scene->surfaces) names.push_back(f.name);
+                               return names;
+                             })
+      .def("__repr__", [](const PyScene& s) {
+        return "<radkit.Scene '" + s.scene->name + "', " +
+               std::to_string(s.scene->surfaces.size()) + " surfaces>";
+      });
+
+  py::class_<PyMesh>(mod, "Mesh", "The scene split into patches (mesh); arrays are copies")
+      .def("__len__", [](const PyMesh& m) { return m.mesh->size(); })
+      .def_property_readonly("scene", [](const PyMesh& m) { return PyScene{m.scene}; })
+      .def_property_readonly("warnings", [](const PyMesh& m) { return m.warnings; })
+      .def_property_readonly(
+          "area",
+          [](const PyMesh& m) {
+            Array a(m.mesh->size());
+            for (int i = 0; i < m.mesh->size(); ++i) a.mutable_at(i) = m.mesh->patches[i].area;
+            return a;
+          },
+          "patch areas, scene units^2")
+      .def_property_readonly("centroid",
+                             [](const PyMesh& m) {
+                               std::vector<Vec3> v;
+                               for (const Patch& p : m.mesh->patches) v.push_back(p.centroid);
+                               return vec3Array(v);
+                             })
+      .def_property_readonly("normal",
+                             [](const PyMesh& m) {
+                               std::vector<Vec3> v;
+                               for (const Patch& p : m.mesh->patches) v.push_back(p.normal);
+                               return vec3Array(v);
+                             })
+      .def_property_readonly("surface",
+                             [](const PyMesh& m) {
+                               py::array_t<int> a(m.mesh->size());
+                               for (int i = 0; i < m.mesh->size(); ++i)
+                                 a.mutable_at(i) = m.mesh->patches[i].surface;
+                               return a;
+                             },
+                             "index into scene.surface_names per patch")
+      .def_property_readonly("vertices",
+                             [](const PyMesh& m) { return vec3Array(m.mesh->vertices); })
+      .def_property_readonly(
+          "patch_vertices",
+          [](const PyMesh& m) {
+            py::array_t<int> a({m.mesh->size(), 4});
+            auto v = a.mutable_unchecked<2>();
+            for (int i = 0; i < m.mesh->size(); ++i)
+              for (int k = 0; k < 4; ++k) v(i, k) = m.mesh->patches[i].vertex[k];
+            return a;
+          },
+          "(n, 4) vertex indices, counter-clockwise from the front; -1 fourth for triangles")
+      .def_property_readonly(
+          "reflectance",
+          [](const PyMesh& m) {
+            const FormFactorMatrix none;
+            return channelsArray(makeRadiositySystem(*m.scene, *m.mesh, none).reflectance);
+          },
+          "(n, 3) diffuse reflectance")
+      .def_property_readonly(
+          "emission",
+          [](const PyMesh& m) {
+            const FormFactorMatrix none;
+            return channelsArray(makeRadiositySystem(*m.scene, *m.mesh, none).emission);
+          },
+          "(n, 3) emitted radiosity E, W/m^2")
+      .def("__repr__", [](const PyMesh& m) {
+        return "<radkit.Mesh " + std::to_string(m.mesh->size()) + " patches>";
+      });
+
+  py::class_<PyFormFactors>(mod, "FormFactors", "The form-factor matrix F of a mesh")
+      .def_property_readonly("mesh", [](const PyFormFactors& f) { return f.mesh; })
+      .def_property_readonly("storage",
+                             [](const PyFormFactors& f) { return storageName(f.result->matrix); })
+      .def("dense", [](const PyFormFactors& f) { return denseArray(f.result->matrix); },
+           "F as an (n, n) numpy array (a copy)")
+      .def("sparse", [](const PyFormFactors& f) { return sparseMatrix(f.result->matrix); },
+           "F as scipy.sparse.csr_matrix (a copy, zeros left out)")
+      .def_property_readonly(
+          "diagnostics",
+          [](const PyFormFactors& f) { return jsonToPython(toJson(f.result->diagnostics)); },
+          "report.json's form_factors object: rays, seconds, row sums, reciprocity")
+      .def("__repr__", [](const PyFormFactors& f) {
+        return "<radkit.FormFactors " + std::to_string(matrixSize(f.result->matrix)) + "x" +
+               std::to_string(matrixSize(f.result->matrix)) + " " +
+               storageName(f.result->matrix) + ">";
+      });
+
+  py::class_<PySystem>(mod, "System", "The radiosity system B = E + rho F B, three channels")
+      .def(py::init(&systemFromArrays), py::arg("F"), py::arg("area"), py::arg("reflectance"),
+           py::arg("emission"),
+           "A system from arrays: F (n, n) or scipy.sparse, area (n,), reflectance and "
+           "emission (n, 3) or (n,); checked like a scene's (rho in [0, 1), E >= 0, A > 0)")
+      .def(py::init(&systemFromFormFactors), py::arg("form_factors"),
+           "The system of a mesh: areas in m^2, reflectance and emission from its materials")
+      .def("__len__", [](const PySystem& s) { return s.system.size(); })
+      .def_property_readonly("F", [](const PySystem& s) { return denseArray(*s.matrix); },
+                             "F as an (n, n) numpy array (a copy)")
+      .def_property_readonly("F_sparse", [](const PySystem& s) { return sparseMatrix(*s.matrix); })
+      .def_property_readonly("area",
+                             [](const PySystem& s) {
+                               return Array(static_cast<py::ssize_t>(s.system.area.size()),
+                                            s.system.area.data());
+                             })
+      .def_property_readonly("reflectance",
+                             [](const PySystem& s) { return channelsArray(s.system.reflectance); })
+      .def_property_readonly("emission",
+                             [](const PySystem& s) { return channelsArray(s.system.emission); })
+      .def(
+          "residual",
+          [](const PySystem& s, const Array& b, const std::string& norm) {
+            const Channels bc = toChannels(b, s.system.size(), "B");
+            return residualMeasure(s.system, residualVector(s.system, bc), bc, parseNorm(norm));
+          },
+          py::arg("B"), py::arg("norm") = "relative",
+          "The residual measure of B the solvers stop on: max|E + rho F B - B| / max|E|")
+      .def(
+          "multiply",
+          [](const PySystem& s, const Array& b) {
+            const Channels bc = toChannels(b, s.system.size(), "B");
+            Channels out = makeChannels(s.system.size());
+            multiply(*s.matrix, bc, out);
+            return channelsArray(out);
+          },
+          py::arg("B"), "F B per channel, (n, 3), in the matrix's own parallel kernel");
+
+  mod.def("load_scene", &loadScenePy, py::arg("path"), py::arg("units") = "",
+          py::arg("repair") = false,
+          "Loads and validates a scene (.json, or .obj with its MTL); errors raise InputError "
+          "naming the file, the element and the fix");
+  mod.def("mesh", &meshPy, py::arg("scene"), py::arg("patches") = 0, py::arg("max_area") = 0.0,
+          "Splits a scene into about `patches` patches (or patches of at most max_area)");
+  mod.def("form_factors", &formFactorsPy, py::arg("mesh"), py::arg("method") = "point-polygon",
+          py::arg("samples") = 16, py::arg("seed") = 1, py::arg("precision") = "double",
+          py::arg("pair_levels") = 4,
+          "Computes F (docs/formfactors.md): method point-polygon, monte-carlo or hemisphere; "
+          "samples = rays per blockable pair");
+  mod.def("solve", &solvePy, py::arg("system"), py::arg("solver") = "gauss-seidel",
+          py::arg("params") = "", py::arg("tolerance") = 1e-6,
+          py::arg("max_iterations") = 100000000L,
+          py::arg("max_seconds") = std::numeric_limits<double>::infinity(),
+          py::arg("norm") = "relative",
+          "Solves from B = E with a built-in solver (solver_names()), a Python object with "
+          "start(system), step() and radiosity(), or a function system -> B. Returns a dict: "
+          "radiosity (n, 3), converged, exit, iterations, residual, checked_residual, seconds, "
+          "spectral_radius and history (numpy arrays per column)");
+  mod.def("solver_names", &solverNames, "The built-in solvers' names");
+  mod.def("render", &renderRadiosityPy, py::arg("mesh"), py::arg("radiosity"),
+          py::arg("width") = 256, py::arg("height") = 256, py::arg("samples_per_axis") = 2,
+          py::arg("smooth") = false, py::arg("camera") = py::none(),
+          "Radiance B/pi seen by the camera, (height, width, 3), linear W/m^2/sr; camera "
+          "'px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]]' or the scene's");
+  mod.def("path_trace", &pathTracePy, py::arg("mesh"), py::arg("spp") = 16, py::arg("width") = 256,
+          py::arg("height") = 256, py::arg("seed") = 1, py::arg("sampler") = "sobol",
+          py::arg("camera") = py::none(),
+          "Path-traced reference image and the variance of each pixel's mean, both "
+          "(height, width, 3)");
+  mod.def("photons", &photonsPy, py::arg("mesh"), py::arg("photons") = 200000,
+          py::arg("seed") = 1,
+          "Photon tracing tallied per patch: radiosity, radiosity_error (standard errors), "
+          "irradiance as (n, 3) and per-surface estimates");
+  mod.def("set_threads", &limitThreads, py::arg("n"),
+          "Caps every parallel loop at n threads; 0 lifts the cap");
+}
