@@ -1,0 +1,32 @@
+"""What the labs' checks that use the radkit Python module share: finding the module in the
+build tree and importing a student's file from any folder."""
+import importlib.util
+import os
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+def import_radkit(lab):
+    """The radkit module from the build tree (RADKIT_PYTHON_DIR overrides)."""
+    where = os.environ.get("RADKIT_PYTHON_DIR", str(REPO / "build" / "python"))
+    if where not in sys.path:
+        sys.path.insert(0, where)
+    try:
+        import radkit
+    except ImportError as e:
+        raise SystemExit(f"lab {lab} needs the radkit Python module, not found in {where} ({e}). "
+                         "Fix: build it with `bash scripts/build.sh`, or set RADKIT_PYTHON_DIR")
+    return radkit
+
+
+def load_student(student_dir, filename):
+    """Imports student_dir/filename as a fresh module (a TA may check many folders in a row)."""
+    path = Path(student_dir).resolve() / filename
+    if not path.exists():
+        raise SystemExit(f"{path}: not found. Fix: give the folder that holds your {filename}")
+    spec = importlib.util.spec_from_file_location(f"student_{abs(hash(str(path)))}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
