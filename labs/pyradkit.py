@@ -1,7 +1,8 @@
-"""What the labs' checks that use the radkit Python module share: finding the module in the
-build tree and importing a student's file from any folder."""
+"""What the labs' checks share: finding the radkit Python module in the build tree, running the
+radkit command line, and importing a student's file from any folder."""
 import importlib.util
 import os
+import subprocess
 import sys
 from pathlib import Path
 
@@ -41,3 +42,22 @@ def attempt(failures, f):
         if f"not done yet: {e}" not in failures:
             failures.append(f"not done yet: {e}")
     return None
+
+
+def need_radkit(radkit, lab):
+    """The radkit command a check runs (labs/check found it from --radkit, $RADKIT or the build
+    tree), or a stop that says how to get one."""
+    if radkit is None or not Path(radkit).is_file():
+        raise SystemExit(f"lab {lab} runs the radkit command line, not found (tried --radkit, "
+                         "$RADKIT, build/apps/radkit and PATH). Fix: build it with "
+                         "`bash scripts/build.sh` from the repository root, or give --radkit PATH")
+    return radkit
+
+
+def run_radkit(radkit, *args):
+    """Runs radkit with args (str() of each); stops with its own message when it fails."""
+    command = [radkit, *map(str, args)]
+    done = subprocess.run(command, capture_output=True, text=True)
+    if done.returncode != 0:
+        raise SystemExit(f"{' '.join(command)} failed ({done.returncode}):\n{done.stderr.strip()}")
+    return done

@@ -1,0 +1,411 @@
+"""Check for lab 1: form factors by hand (formfactor.py).
+
+Oracles, from Howell, "A Catalog of Radiation Heat Transfer Configuration Factors"
+(docs/oracles.md):
+- B-3, a point under one corner of a parallel rectangle. Summed with signs over the four corners
+  it is the exact factor from any point of a parallel plane to a rectangle, so it also gives the
+  exact value of any quadrature rule on parallel rectangles: the student's rule is checked to
+  rounding, not to a tolerance.
+- C-11 (parallel opposed rectangles) and C-14 (perpendicular, common edge), evaluated here and
+  checked against the catalogue's tabulated values before use.
+- The summation rule: the five faces of a cube, seen from a point of the sixth, fill its
+  hemisphere, so their factors sum to exactly 1.
+radkit formfactors is the reference for the pair with no closed form (tilted-pair.json).
+
+Tolerances: where the check knows the rule's exact value, rounding only (1e-10 relative).
+Against a closed form, ten times the error the reference solution's n x n rule measures there
+(listed with each case), and never below 1e-9. Every mistake listed in README.md moves the answer
+by tens of percent or more, at least a thousand times the tolerance.
+"""
+import csv
+import math
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from pyradkit import attempt, load_student, need_radkit, run_radkit  # noqa: E402
+
+LAB = Path(__file__).resolve().parent
+ROUNDING = 1e-10  # relative: two evaluations of the same formula or the same rule
+TASK_OF = {"point_to_polygon": 1, "gauss_legendre_rule": 2, "form_factor": 3, "howell_c11": 4,
+           "howell_c14": 4, "near_field_errors": 5}
+
+
+def rect(x0, x1, y0, y1, z, down=False):
+    """The rectangle [x0, x1] x [y0, y1] at height z, counter-clockwise seen from its front:
+    facing up (+z), or down."""
+    corners = [[x0, y0, z], [x1, y0, z], [x1, y1, z], [x0, y1, z]]
+    return np.array(corners[::-1] if down else corners, dtype=float)
+
+
+FLOOR = rect(0, 1, 0, 1, 0)
+WALL_2 = np.array([[0, 0, 0], [0, 0, 2], [1, 0, 2], [1, 0, 0]], dtype=float)  # 1 x 2, facing +y
+PANEL = np.array([[0.25, 1.5, 0.2], [1.25, 1.5, 0.2], [1.25, 1.02, 0.84], [0.25, 1.02, 0.84]])
+
+
+# --- the oracles -------------------------------------------------------------------------------
+def b3(a, b, h):
+    """Howell B-3: point to a parallel a x b rectangle at height h, one corner above the point.
+    Odd in a and in b, so signed corner sums give any rectangle."""
+    X, Y = a / h, b / h
+    x1, y1 = math.sqrt(1 + X * X), math.sqrt(1 + Y * Y)
+    return (X / x1 * math.atan(Y / x1) + Y / y1 * math.atan(X / y1)) / (2 * math.pi)
+
+
+def point_under(px, py, x0, x1, y0, y1, h):
+    """Exact factor from (px, py) facing up to the rectangle [x0, x1] x [y0, y1] h above."""
+    return (b3(x1 - px, y1 - py, h) - b3(x0 - px, y1 - py, h)
+            - b3(x1 - px, y0 - py, h) + b3(x0 - px, y0 - py, h))
+
+
+def c11(a, b, c):
+    X, Y = a / c, b / c
+    x1, y1 = math.sqrt(1 + X * X), math.sqrt(1 + Y * Y)
+    return 2 / (math.pi * X * Y) * (math.log(x1 * y1 / math.sqrt(1 + X * X + Y * Y))
+                                    + X * y1 * math.atan(X / y1) + Y * x1 * math.atan(Y / x1)
+                                    - X * math.atan(X) - Y * math.atan(Y))
+
+
+def c14(l, w, h):
+    W, H = w / l, h / l
+    R2 = W * W + H * H
+    R = math.sqrt(R2)
+    log_term = (math.log((1 + W * W) * (1 + H * H) / (1 + R2))
+                + W * W * math.log(W * W * (1 + R2) / ((1 + W * W) * R2))
+                + H * H * math.log(H * H * (1 + R2) / ((1 + H * H) * R2)))
+    return (W * math.atan(1 / W) + H * math.atan(1 / H) - R * math.atan(1 / R)
+            + log_term / 4) / (math.pi * W)
+
+
+# Howell's tabulated values (docs/oracles.md), with half a unit of their last digit.
+C11_TABLE = [((1, 1, 1), 0.19982489569838746, 1e-15), ((0.5, 0.5, 1), 0.068590, 5e-7),
+             ((2, 2, 1), 0.415253, 5e-7), ((1, 5, 1), 0.359167, 5e-7),
+             ((1, 1.5, 0.5), 0.4755764365, 5e-11)]
+C14_TABLE = [((1, 1, 1), 0.20004377607540316, 1e-15), ((1, 1, 2), 0.232853, 5e-7),
+             ((1, 2, 1), 0.116426, 5e-7), ((1, 0.5, 0.5), 0.240636, 5e-7)]
+for _args, _value, _tol in C11_TABLE:
+    assert abs(c11(*_args) - _value) <= _tol + 1e-15, ("C-11", _args)
+for _args, _value, _tol in C14_TABLE:
+    assert abs(c14(*_args) - _value) <= _tol + 1e-15, ("C-14", _args)
+
+
+def gl_rule_exact(x0, x1, y0, y1, h, n, upper):
+    """The exact value of the n x n Gauss-Legendre rule on the rectangle [x0, x1] x [y0, y1]
+    (facing up) for the factor to the rectangle `upper` = (x0, x1, y0, y1) h above it."""
+    t, w = np.polynomial.legendre.leggauss(n)
+    xs, ys = x0 + (t + 1) / 2 * (x1 - x0), y0 + (t + 1) / 2 * (y1 - y0)
+    return sum(w[a] * w[b] / 4 * point_under(xs[a], ys[b], *upper, h)
+               for a in range(n) for b in range(n))
+
+
+def integrate_x5y5(points, weights):
+    p = np.asarray(points, dtype=float)
+    return float(np.asarray(weights, dtype=float) @ (p[:, 0] ** 5 * p[:, 1] ** 5))
+
+
+# --- what the usual mistakes give ----------------------------------------------------------------
+def contour_variant(x, normal, polygon, kind):
+    """Lambert's contour sum with one deliberate mistake (for diagnosis only)."""
+    P = np.asarray(polygon, dtype=float)
+    v = P - np.asarray(x, dtype=float)
+    v /= np.linalg.norm(v, axis=1)[:, None]
+    w = np.roll(v, -1, axis=0)
+    c = np.cross(v, w)
+    s = np.linalg.norm(c, axis=1)
+    gamma = np.arctan2(s, np.einsum("ij,ij->i", v, w))
+    n = np.asarray(normal, dtype=float)
+    if kind == "polygon normal":
+        m = np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
+        n = m / np.linalg.norm(m)
+    if kind == "no gamma":
+        return abs((c @ n).sum()) / (2 * math.pi)
+    if kind == "cross not normalised":
+        return abs((gamma * (c @ n)).sum()) / (2 * math.pi)
+    return abs((gamma * (c @ n) / s).sum()) / (2 * math.pi)
+
+
+RATIO_MISTAKES = [
+    (2 * math.pi, "your value is 2π times the expected one: did you forget the 1/(2π)?"),
+    (2.0, "your value is twice the expected one: the factor is 1/(2π), not 1/π"),
+    (180 / math.pi, "your value is 180/π = 57.3 times the expected one: the angle γ_k is in "
+                    "degrees; use radians (numpy.arccos and numpy.arctan2 return them)"),
+    (360.0, "your value is 360 times the expected one: degrees and no 1/(2π)?"),
+    (-1.0, "your value has the wrong sign: the sum is negative when the polygon faces x (its "
+           "vertices, counter-clockwise seen from its front, run clockwise seen from x). Take "
+           "the absolute value, or sum over the vertices in the other order"),
+    (1 / (2 * math.pi), "your value is 1/(2π) of the expected one: the 1/(2π) is applied twice"),
+]
+
+
+def diagnose_ratio(got, exact):
+    """A sentence naming the mistake when got/exact is one of the telltale factors."""
+    if exact == 0 or not math.isfinite(got):
+        return None
+    return next((text for factor, text in RATIO_MISTAKES
+                 if math.isclose(got / exact, factor, rel_tol=1e-6)), None)
+
+
+def sentence(text):
+    """text as a sentence: capital first letter, full stop."""
+    return text[:1].upper() + text[1:] + ("" if text.endswith((".", "?")) else ".")
+
+
+# --- the tasks -----------------------------------------------------------------------------------
+def check_point_to_polygon(lab, task, failures):
+    up = np.array([0.0, 0.0, 1.0])
+    square = rect(0, 1, 0, 1, 1, down=True)
+    strip = rect(-0.5, 1.5, 0.1, 0.6, 0.3, down=True)
+    on_square = (0, 1, 0, 1, 1.0)
+    cases = [((0.5, 0.5, 0), square, on_square, "under the centre of a unit square 1 above"),
+             ((0.0, 0.0, 0), square, on_square, "under a corner of that square (B-3 itself)"),
+             ((0.2, 0.7, 0), square, on_square, "under the square, off centre"),
+             ((1.6, -0.3, 0), square, on_square, "beside the square, outside its shadow"),
+             ((0.3, 0.2, 0), strip, (-0.5, 1.5, 0.1, 0.6, 0.3), "under a 2 x 0.5 strip 0.3 above")]
+    for x, polygon, (x0, x1, y0, y1, h), where in cases:
+        got = task("point_to_polygon", lambda: float(lab.point_to_polygon(
+            np.array(x, dtype=float), up, polygon.copy())))
+        if got is None:
+            return False
+        exact = point_under(x[0], x[1], x0, x1, y0, y1, h)
+        if not math.isclose(got, exact, rel_tol=ROUNDING):
+            hint = diagnose_ratio(got, exact)
+            for kind, text in (("no gamma", "you summed n·(v_k × v_k+1)/|v_k × v_k+1| without "
+                                "the angle γ_k: each edge counts γ_k times its unit normal"),
+                               ("cross not normalised", "the edge's normal v_k × v_k+1 must be "
+                                "divided by its length |v_k × v_k+1| (= sin γ_k)")):
+                if hint is None and math.isclose(got, contour_variant(x, up, polygon, kind),
+                                                 rel_tol=1e-6):
+                    hint = text
+            failures.append(f"Task 1, point_to_polygon from a point {where}: {got:.10g}, Howell "
+                            f"B-3 gives {exact:.10g}. "
+                            f"{sentence(hint or 'compare with the formula in README.md')}")
+            return False
+
+    # Summation rule: from (0.3, 0.6, 0) on the floor of the unit cube the other five faces
+    # (each counter-clockwise seen from inside) cover the hemisphere: their sum is 1.
+    faces = [rect(0, 1, 0, 1, 1, down=True),
+             np.array([[0, 0, 0], [0, 0, 1], [1, 0, 1], [1, 0, 0]], dtype=float),
+             np.array([[0, 1, 0], [1, 1, 0], [1, 1, 1], [0, 1, 1]], dtype=float),
+             np.array([[0, 0, 0], [0, 1, 0], [0, 1, 1], [0, 0, 1]], dtype=float),
+             np.array([[1, 0, 0], [1, 0, 1], [1, 1, 1], [1, 1, 0]], dtype=float)]
+    x = np.array([0.3, 0.6, 0.0])
+    total = task("point_to_polygon",
+                 lambda: sum(float(lab.point_to_polygon(x.copy(), up, f.copy())) for f in faces))
+    if total is None:
+        return False
+    if not math.isclose(total, 1.0, rel_tol=ROUNDING):
+        wrong = sum(contour_variant(x, up, f, "polygon normal") for f in faces)
+        hint = ("you used the polygon's normal; the cosine at x needs x's own normal n (the walls "
+                "are perpendicular to it)" if math.isclose(total, wrong, rel_tol=1e-6) else
+                "each face's term must use the normal at x, and every face lies in front of x, "
+                "so no clipping is needed")
+        failures.append(f"Task 1, point_to_polygon: the five faces of a unit cube seen from a "
+                        f"point on the sixth sum to {total:.10g}; they fill the hemisphere, so the "
+                        f"sum is exactly 1 (Nusselt's analogy). {sentence(hint)}")
+        return False
+    return True
+
+
+def check_gauss_legendre_rule(lab, task, failures):
+    para = np.array([[1, 0, 0.2], [3, 0, 0.2], [3.5, 1.5, 0.2], [1.5, 1.5, 0.2]])  # area 3
+    rule = task("gauss_legendre_rule", lambda: lab.gauss_legendre_rule(para.copy(), 3))
+    if rule is None:
+        return False
+    points, weights = (np.asarray(r, dtype=float) for r in rule)
+    problem = None
+    if points.shape != (9, 3) or weights.shape != (9,):
+        problem = (f"for n = 3 it returned points of shape {points.shape} and weights of shape "
+                   f"{weights.shape}; expected (9, 3) and (9,): n x n points in 3-D")
+    elif not math.isclose(weights.sum(), 3.0, rel_tol=1e-12):
+        s = weights.sum()
+        fix = ("They sum to 4 A: Gauss-Legendre weights on [-1, 1] sum to 2 per direction; halve "
+               "them when mapping to [0, 1]" if math.isclose(s, 12, rel_tol=1e-9) else
+               "Multiply by the Jacobian |e1 × e2|, the area" if math.isclose(s, 1, rel_tol=1e-9)
+               else "Check the mapping of the weights")
+        problem = (f"the weights sum to {s:.6g} on a parallelogram of area 3; they must sum to "
+                   f"its area (∫ 1 dA = A). {fix}")
+    else:
+        # Inside the parallelogram: parameters (u, v) of P0 + u e1 + v e2 in (0, 1).
+        uv = np.linalg.lstsq(np.stack([para[1] - para[0], para[3] - para[0]], axis=1),
+                             (points - para[0]).T, rcond=None)[0]
+        if uv.min() <= 0 or uv.max() >= 1 or not np.allclose(points[:, 2], 0.2):
+            problem = ("some points lie outside the parallelogram: map the Gauss-Legendre nodes "
+                       "t in [-1, 1] to u = (t + 1)/2, then x = P0 + u e1 + v e2")
+    if problem is None:
+        # Degree 5 in each variable is exact with 3 points per direction (2n - 1).
+        got = task("gauss_legendre_rule",
+                   lambda: integrate_x5y5(*lab.gauss_legendre_rule(rect(1, 3, 0, 0.5, 0), 3)))
+        if got is None:
+            return False
+        exact = (3 ** 6 - 1) / 6 * 0.5 ** 6 / 6
+        if not math.isclose(got, exact, rel_tol=1e-12):
+            problem = (f"with n = 3 it integrates x^5 y^5 over [1, 3] x [0, 0.5] to {got:.10g}, "
+                       f"not {exact:.10g}: n Gauss-Legendre points integrate degree 2n - 1 "
+                       "exactly, evenly spaced points do not. Use "
+                       "numpy.polynomial.legendre.leggauss(n)")
+    if problem:
+        failures.append(f"Task 2, gauss_legendre_rule: {problem}.")
+        return False
+    return True
+
+
+def check_form_factor(lab, task, failures, radkit):
+    def form_factor(pi, pj, n):
+        return task("form_factor", lambda: float(lab.form_factor(pi.copy(), pj.copy(), n)))
+
+    # C-11, a = 1, b = 1.5, c = 0.5: first the exact 2 x 2 and 5 x 5 rule values (B-3).
+    lower, upper = rect(0, 1, 0, 1.5, 0), rect(0, 1, 0, 1.5, 0.5, down=True)
+    for n in (2, 5):
+        got = form_factor(lower, upper, n)
+        if got is None:
+            return False
+        exact = gl_rule_exact(0, 1, 0, 1.5, 0.5, n, (0, 1, 0, 1.5))
+        if not math.isclose(got, exact, rel_tol=ROUNDING):
+            r = got / exact
+            if math.isclose(r, 1.5, rel_tol=1e-6):
+                hint = ("your value is A_i = 1.5 times the expected one: did you forget to divide "
+                        "by the area of patch i? F_ij = (1/A_i) ∫ F_dA→j dA")
+            elif math.isclose(r, 1 / 1.5, rel_tol=1e-6):
+                hint = ("your value is 1/A_i times the expected one: the weights already carry "
+                        "the area; divide their sum by A_i once")
+            else:
+                hint = diagnose_ratio(got, exact) or (
+                    "integrate point_to_polygon(x, n_i, patch j) over patch i with your rule, "
+                    "divided by A_i")
+            failures.append(f"Task 3, form_factor between opposed 1 x 1.5 rectangles 0.5 apart "
+                            f"with n = {n}: {got:.10g}; the {n} x {n} Gauss-Legendre rule gives "
+                            f"exactly {exact:.10g} (Howell B-3 at its points). {sentence(hint)}")
+            return False
+
+    # Against the closed forms at n = 8: (patch i, patch j, exact, the reference rule's measured
+    # relative error, what, the factor the other way round). Tolerance: ten times that error,
+    # at least 1e-9. The wall-to-floor direction converges only algebraically (README.md).
+    f12 = c14(1, 1, 2)
+    cases = [(lower, upper, c11(1, 1.5, 0.5), 3.5e-7, "C-11, 1 x 1.5 rectangles 0.5 apart", None),
+             (FLOOR, WALL_2, f12, 7.2e-16, "C-14, from the 1 x 1 floor to the 1 x 2 wall", f12 / 2),
+             (WALL_2, FLOOR, f12 / 2, 3.3e-4, "C-14, from the 1 x 2 wall to the 1 x 1 floor", f12)]
+    for pi, pj, exact, measured, what, other in cases:
+        tol = max(10 * measured, 1e-9)
+        got = form_factor(pi, pj, 8)
+        if got is None:
+            return False
+        if abs(got - exact) > tol * exact:
+            if other is not None and math.isclose(got, other, rel_tol=1e-2):
+                hint = ("that is the factor the other way round: F_12 and F_21 are mixed up. F_ij "
+                        "is the share of the light leaving i that reaches j: integrate over patch "
+                        "i (the first argument), divide by A_i; reciprocity A_i F_ij = A_j F_ji "
+                        "relates the two")
+            else:
+                hint = diagnose_ratio(got, exact) or "see README.md, Task 3"
+            failures.append(f"Task 3, form_factor ({what}, n = 8): {got:.10g}, Howell gives "
+                            f"{exact:.10g} (tolerance {tol:.1g} relative; the 8 x 8 rule's own "
+                            f"error here is {measured:.1g}). {sentence(hint)}")
+            return False
+
+    # A pair with no closed form: radkit's point-polygon F is within its tolerance 1e-6
+    # (docs/formfactors.md) and printed to 10 digits; the 8 x 8 rule is within 1e-9 here.
+    with tempfile.TemporaryDirectory() as tmp:
+        run_radkit(radkit, "formfactors", LAB / "tilted-pair.json", "--patches", 2,
+                   "--seed", 1, "--threads", 2, "--out", Path(tmp) / "ff")
+        with open(Path(tmp) / "ff" / "surface_formfactors.csv") as f:
+            ref = {(r["from"], r["to"]): float(r["F"]) for r in csv.DictReader(f)}
+    polygons = {"floor": FLOOR, "panel": PANEL}
+    for i, j in (("floor", "panel"), ("panel", "floor")):
+        got = form_factor(polygons[i], polygons[j], 8)
+        if got is None:
+            return False
+        if abs(got - ref[(i, j)]) > 2e-6:
+            hint = ("that is radkit's F for the other direction: F_12 and F_21 are mixed up"
+                    if abs(got - ref[(j, i)]) < 1e-4 else
+                    "is the normal of patch i taken by the right-hand rule from its "
+                    "counter-clockwise vertices?")
+            failures.append(f"Task 3, form_factor on tilted-pair.json, F({i} → {j}) with n = 8: "
+                            f"{got:.10f}; radkit formfactors gives {ref[(i, j)]:.10f} (within "
+                            f"2e-6: its tolerance 1e-6 plus the rule's error). {sentence(hint)}")
+            return False
+    return True
+
+
+def check_closed_forms(lab, task, failures):
+    ok = True
+    for name, table, names in (("howell_c11", C11_TABLE, "a, b, c"),
+                               ("howell_c14", C14_TABLE, "l, w, h")):
+        for args, value, tol in table:
+            got = task(name, lambda: float(getattr(lab, name)(*map(float, args))))
+            if got is None:
+                ok = False
+                break
+            if not abs(got - value) <= max(tol, 1e-12 * value):
+                hint = "compare it term by term with README.md (math.log is the natural logarithm)"
+                if name == "howell_c14" and math.isclose(got, c14(args[0], args[2], args[1]),
+                                                         rel_tol=1e-6):
+                    hint = ("that is the factor from the l x h rectangle: W = w/l belongs to A1, "
+                            "the one the light leaves, H = h/l to A2")
+                failures.append(f"Task 4, {name}({', '.join(f'{a:g}' for a in args)}) ({names}) "
+                                f"= {got:.10g}; Howell's table: {value}. {sentence(hint)}")
+                ok = False
+                break
+    return ok
+
+
+def check_near_field(lab, task, failures, earlier_ok):
+    distances = [1.0, 0.5, 0.25, 0.1]
+    got = task("near_field_errors",
+               lambda: np.asarray(lab.near_field_errors(list(distances), 2), dtype=float))
+    if got is None:
+        return None
+    c = np.array([c11(1, 1, d) for d in distances])
+    exact = np.array([abs(gl_rule_exact(0, 1, 0, 1, d, 2, (0, 1, 0, 1)) - f) / f
+                      for d, f in zip(distances, c)])
+    if got.shape != exact.shape or not np.allclose(got, exact, rtol=1e-8, atol=0):
+        hint = "return |F_n - F| / F per distance, F from Howell C-11, F_n from form_factor(..., n)"
+        if not earlier_ok:
+            hint = "it uses form_factor and howell_c11: make Tasks 1 to 4 pass first"
+        elif got.shape == exact.shape and np.allclose(got, exact * c, rtol=1e-6):
+            hint = "those are absolute errors: divide by the exact F (relative error)"
+        elif got.shape == exact.shape and np.allclose(np.abs(got), exact, rtol=1e-8):
+            hint = "some are negative: return the size of the error, |F_n - F| / F"
+        failures.append(f"Task 5, near_field_errors({distances}, n=2) = "
+                        f"{np.array2string(got, precision=4)}; the 2 x 2 rule's errors are "
+                        f"{np.array2string(exact, precision=4)} (its exact values from Howell "
+                        f"B-3, against C-11). {sentence(hint)}")
+        return None
+    return exact
+
+
+def check(student_dir, radkit=None):
+    radkit = need_radkit(radkit, 1)
+    lab = load_student(student_dir, "formfactor.py")
+    failures = []
+
+    def task(label, f):
+        """f(), or None when the task is not written yet or raised (said in failures)."""
+        try:
+            return attempt(failures, f)
+        except Exception as e:  # a student's bug: report it, keep checking the other tasks
+            failures.append(f"Task {TASK_OF[label]}, {label} raised {type(e).__name__}: {e}")
+            return None
+
+    basics = check_point_to_polygon(lab, task, failures)
+    basics = check_gauss_legendre_rule(lab, task, failures) and basics
+    if basics:
+        integrated = check_form_factor(lab, task, failures, radkit)
+    else:
+        # Task 3 builds on Tasks 1 and 2: until they pass, only say whether it is written yet.
+        integrated = False
+        try:
+            lab.form_factor(FLOOR.copy(), rect(0, 1, 0, 1, 1, down=True), 2)
+        except NotImplementedError as e:
+            if "Task 3" in str(e):
+                failures.append(f"not done yet: {e}")
+        except Exception:
+            pass
+    closed = check_closed_forms(lab, task, failures)
+    errors = check_near_field(lab, task, failures, integrated and closed)
+    if not failures:
+        print(f"lab 1: the 2 x 2 rule is {errors[0]:.1e} off at d = 1 and {errors[-1]:.1e} at "
+              "d = 0.1 (relative to C-11)")
+    return failures
