@@ -1,9 +1,14 @@
-"""What the labs' checks share: finding the radkit Python module in the build tree, running the
-radkit command line, and importing a student's file from any folder."""
+"""What the labs' checks and studies share: finding the radkit Python module and command line,
+running radkit, importing a student's file from any folder, and the closed forms and wording
+more than one check uses."""
+import csv
 import importlib.util
+import math
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
@@ -61,3 +66,38 @@ def run_radkit(radkit, *args):
     if done.returncode != 0:
         raise SystemExit(f"{' '.join(command)} failed ({done.returncode}):\n{done.stderr.strip()}")
     return done
+
+
+def find_radkit(option=None):
+    """The radkit command: `option` (--radkit), $RADKIT, the build tree, then PATH (None if
+    absent). A given --radkit or $RADKIT that is not a file is an error, not a fallback."""
+    for given, name in ((option, "--radkit"), (os.environ.get("RADKIT"), "$RADKIT")):
+        if given and not Path(given).is_file():
+            sys.exit(f"{name} {given} is not a file. Fix: give the radkit binary "
+                     "(build it with `bash scripts/build.sh`: build/apps/radkit)")
+    for candidate in (option, os.environ.get("RADKIT"), str(REPO / "build" / "apps" / "radkit")):
+        if candidate and Path(candidate).is_file():
+            return str(Path(candidate).resolve())
+    return shutil.which("radkit")
+
+
+def radkit_surface_factors(radkit, scene):
+    """{(from, to): F} from `radkit formfactors` (one patch per surface, default method)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        run_radkit(radkit, "formfactors", scene, "--patches", 2, "--seed", 1, "--threads", 2,
+                   "--out", Path(tmp) / "ff")
+        with open(Path(tmp) / "ff" / "surface_formfactors.csv") as f:
+            return {(r["from"], r["to"]): float(r["F"]) for r in csv.DictReader(f)}
+
+
+def howell_b3(a, b, h):
+    """Howell B-3: point to a parallel a x b rectangle at height h, one corner above the point.
+    Odd in a and in b, so signed corner sums give any rectangle."""
+    X, Y = a / h, b / h
+    x1, y1 = math.sqrt(1 + X * X), math.sqrt(1 + Y * Y)
+    return (X / x1 * math.atan(Y / x1) + Y / y1 * math.atan(X / y1)) / (2 * math.pi)
+
+
+def sentence(text):
+    """text as a sentence: capital first letter, full stop."""
+    return text[:1].upper() + text[1:] + ("" if text.endswith((".", "?")) else ".")

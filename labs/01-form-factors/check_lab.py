@@ -17,16 +17,15 @@ Against a closed form, ten times the error the reference solution's n x n rule m
 (listed with each case), and never below 1e-9. Every mistake listed in README.md moves the answer
 by tens of percent or more, at least a thousand times the tolerance.
 """
-import csv
 import math
 import sys
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import attempt, load_student, need_radkit, run_radkit  # noqa: E402
+from pyradkit import (attempt, howell_b3 as b3, load_student, need_radkit,  # noqa: E402
+                      radkit_surface_factors, sentence)
 
 LAB = Path(__file__).resolve().parent
 ROUNDING = 1e-10  # relative: two evaluations of the same formula or the same rule
@@ -47,14 +46,6 @@ PANEL = np.array([[0.25, 1.5, 0.2], [1.25, 1.5, 0.2], [1.25, 1.02, 0.84], [0.25,
 
 
 # --- the oracles -------------------------------------------------------------------------------
-def b3(a, b, h):
-    """Howell B-3: point to a parallel a x b rectangle at height h, one corner above the point.
-    Odd in a and in b, so signed corner sums give any rectangle."""
-    X, Y = a / h, b / h
-    x1, y1 = math.sqrt(1 + X * X), math.sqrt(1 + Y * Y)
-    return (X / x1 * math.atan(Y / x1) + Y / y1 * math.atan(X / y1)) / (2 * math.pi)
-
-
 def point_under(px, py, x0, x1, y0, y1, h):
     """Exact factor from (px, py) facing up to the rectangle [x0, x1] x [y0, y1] h above."""
     return (b3(x1 - px, y1 - py, h) - b3(x0 - px, y1 - py, h)
@@ -146,11 +137,6 @@ def diagnose_ratio(got, exact):
         return None
     return next((text for factor, text in RATIO_MISTAKES
                  if math.isclose(got / exact, factor, rel_tol=1e-6)), None)
-
-
-def sentence(text):
-    """text as a sentence: capital first letter, full stop."""
-    return text[:1].upper() + text[1:] + ("" if text.endswith((".", "?")) else ".")
 
 
 # --- the tasks -----------------------------------------------------------------------------------
@@ -307,11 +293,7 @@ def check_form_factor(lab, task, failures, radkit):
 
     # A pair with no closed form: radkit's point-polygon F is within its tolerance 1e-6
     # (docs/formfactors.md) and printed to 10 digits; the 8 x 8 rule is within 1e-9 here.
-    with tempfile.TemporaryDirectory() as tmp:
-        run_radkit(radkit, "formfactors", LAB / "tilted-pair.json", "--patches", 2,
-                   "--seed", 1, "--threads", 2, "--out", Path(tmp) / "ff")
-        with open(Path(tmp) / "ff" / "surface_formfactors.csv") as f:
-            ref = {(r["from"], r["to"]): float(r["F"]) for r in csv.DictReader(f)}
+    ref = radkit_surface_factors(radkit, LAB / "tilted-pair.json")
     polygons = {"floor": FLOOR, "panel": PANEL}
     for i, j in (("floor", "panel"), ("panel", "floor")):
         got = form_factor(polygons[i], polygons[j], 8)

@@ -2,20 +2,10 @@
 labs/check 1 tells you what is still wrong.
 
 Polygons are (k, 3) arrays of vertices, counter-clockwise seen from their front side (the side
-their normal points to). Run this file to print the comparisons and draw near-field.png:
-
-    python3 formfactor.py [--radkit PATH] [--out DIR]
+their normal points to). Then study.py, beside this file, prints the comparisons and draws
+near-field.png.
 """
-import argparse
-import csv
-import json
 import math
-import os
-import shutil
-import subprocess
-import sys
-import tempfile
-from pathlib import Path
 
 import numpy as np
 
@@ -93,115 +83,3 @@ def near_field_errors(distances, n):
     Howell C-11."""
     # TODO Task 5: for each d, form_factor(*unit_squares(d), n=n) against howell_c11(1, 1, d).
     raise NotImplementedError("Task 5: near_field_errors (formfactor.py)")
-
-
-# ---------------------------------------------------------------------------------------------
-# The study (written for you): run it once the tasks are done and hand in its output.
-# ---------------------------------------------------------------------------------------------
-def repo_root():
-    """The radkit repository this file (or the current folder) is in."""
-    for start in (Path(__file__).resolve(), Path.cwd().resolve()):
-        for folder in start.parents if start.is_file() else (start, *start.parents):
-            if (folder / "data" / "parallel-squares.json").is_file():
-                return folder
-    sys.exit("the radkit repository (its data/ folder) was not found above this file or the "
-             "current folder. Fix: run from inside the repository")
-
-
-def find_radkit(option, repo):
-    for candidate in (option, os.environ.get("RADKIT"), repo / "build" / "apps" / "radkit"):
-        if candidate and Path(candidate).is_file():
-            return str(candidate)
-    found = shutil.which("radkit")
-    if not found:
-        sys.exit("radkit not found. Fix: build it with `bash scripts/build.sh` from the repository "
-                 "root, or pass --radkit PATH (or set RADKIT)")
-    return found
-
-
-def scene_polygons(path):
-    """{surface name: polygon} of a scene file whose surfaces are single polygons."""
-    return {s["name"]: np.array(s["polygon"], dtype=float)
-            for s in json.loads(Path(path).read_text())["surfaces"]}
-
-
-def radkit_factors(radkit, scene):
-    """{(from, to): F} from `radkit formfactors` (one patch per surface, default method)."""
-    with tempfile.TemporaryDirectory() as tmp:
-        subprocess.run([radkit, "formfactors", str(scene), "--patches", "2", "--seed", "1",
-                        "--threads", "2", "--out", f"{tmp}/ff"], check=True, capture_output=True)
-        with open(f"{tmp}/ff/surface_formfactors.csv") as f:
-            return {(r["from"], r["to"]): float(r["F"]) for r in csv.DictReader(f)}
-
-
-def main():
-    parser = argparse.ArgumentParser(description="Lab 1: the comparisons and near-field.png")
-    parser.add_argument("--radkit", help="the radkit command (default: build/apps/radkit)")
-    parser.add_argument("--out", default=".", help="folder for near-field.png (default: here)")
-    args = parser.parse_args()
-    repo = repo_root()
-    radkit = find_radkit(args.radkit, repo)
-
-    print("Gauss-Legendre n x n on patch i against Howell (relative error):")
-    cases = [("C-11 unit squares 1 apart", unit_squares(1.0), howell_c11(1, 1, 1)),
-             ("C-11 1 x 1.5 at 0.5", ([[0, 0, 0], [1, 0, 0], [1, 1.5, 0], [0, 1.5, 0]],
-                                      [[0, 0, .5], [0, 1.5, .5], [1, 1.5, .5], [1, 0, .5]]),
-              howell_c11(1, 1.5, 0.5)),
-             ("C-14 W = 1, H = 2", ([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
-                                    [[0, 0, 0], [0, 0, 2], [1, 0, 2], [1, 0, 0]]),
-              howell_c14(1, 1, 2))]
-    print(f"{'case':28s} {'exact':>12s}" + "".join(f"{'n=' + str(n):>10s}"
-                                                    for n in (1, 2, 4, 8, 16)))
-    for name, (pi, pj), exact in cases:
-        errs = [abs(form_factor(pi, pj, n) - exact) / exact for n in (1, 2, 4, 8, 16)]
-        print(f"{name:28s} {exact:12.9f}" + "".join(f"{e:10.2e}" for e in errs))
-
-    print("\nAgainst radkit formfactors (F_ij both ways, n = 8):")
-    for scene in (repo / "data" / "parallel-squares.json",
-                  repo / "data" / "perpendicular-squares.json",
-                  repo / "labs" / "01-form-factors" / "tilted-pair.json"):
-        polygons, ref = scene_polygons(scene), radkit_factors(radkit, scene)
-        (a, pa), (b, pb) = polygons.items()
-        for i, pi, j, pj in ((a, pa, b, pb), (b, pb, a, pa)):
-            mine = form_factor(pi, pj, 8)
-            print(f"  {scene.name:26s} F({i} -> {j}) = {mine:.10f}  radkit {ref[(i, j)]:.10f}"
-                  f"  difference {mine - ref[(i, j)]:+.1e}")
-
-    distances = np.array([2, 1, 0.5, 0.25, 0.1, 0.05, 0.02])
-    rules = (1, 2, 3, 4, 8)
-    print("\nUnit squares approaching: relative error of the n x n rule against C-11")
-    print(f"{'d':>6s}" + "".join(f"{'n=' + str(n):>10s}" for n in rules))
-    table = np.array([near_field_errors(distances, n) for n in rules])
-    for k, d in enumerate(distances):
-        print(f"{d:6.2f}" + "".join(f"{table[r, k]:10.2e}" for r in range(len(rules))))
-    for tol in (1e-3, 1e-6):
-        needed = []
-        for d in distances:
-            n = 1
-            while near_field_errors([d], n)[0] > tol and n < 64:
-                n += 1
-            needed.append(n)
-        print(f"points per side for a relative error below {tol:g}: " +
-              ", ".join(f"d = {d:g}: {n}" for d, n in zip(distances, needed)))
-
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6, 4))
-    for r, n in enumerate(rules):
-        ax.loglog(distances, np.maximum(table[r], 1e-16), "o-", label=f"{n} x {n} points")
-    ax.set_xlabel("distance d between unit squares")
-    ax.set_ylabel("relative error against Howell C-11")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    out = Path(args.out) / "near-field.png"
-    fig.savefig(out, dpi=120)
-    print(f"\nwrote {out}")
-
-
-if __name__ == "__main__":
-    try:
-        main()
-    except NotImplementedError as e:
-        sys.exit(f"{e} is not done yet; labs/check 1 says what is missing")

@@ -20,23 +20,12 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import REPO, attempt, load_student, need_radkit, run_radkit  # noqa: E402
+from pyradkit import (REPO, attempt, howell_b3 as b3, load_student,  # noqa: E402
+                      need_radkit, run_radkit, sentence)
 
 RICHARDSON_TOLERANCE = 1e-5
 RICHARDSON_MEASURED = 3.1e-6  # the reference solution's remainder from 128 and 512 patches
 COUNTS = [8, 32, 128, 512]    # two unit squares of k x k patches, k = 2, 4, 8, 16
-
-
-def b3(a, b, h):
-    """Howell B-3: point to a parallel a x b rectangle at height h, one corner above the point."""
-    X, Y = a / h, b / h
-    x1, y1 = math.sqrt(1 + X * X), math.sqrt(1 + Y * Y)
-    return (X / x1 * math.atan(Y / x1) + Y / y1 * math.atan(X / y1)) / (2 * math.pi)
-
-
-def sentence(text):
-    """text as a sentence: capital first letter, full stop."""
-    return text[:1].upper() + text[1:] + ("" if text.endswith((".", "?")) else ".")
 
 
 def which(got, variants):
