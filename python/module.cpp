@@ -170,22 +170,7 @@ Array denseArray(const FormFactorMatrix& f) {
   Array a({n, n});
   double* out = a.mutable_data();
   std::fill(out, out + n * n, 0.0);
-  std::visit(
-      [&](const auto& m) {
-        using M = std::decay_t<decltype(m)>;
-        for (int i = 0; i < n; ++i) {
-          double* row = out + static_cast<std::size_t>(i) * n;
-          if constexpr (std::is_same_v<M, DenseMatrix<double>> ||
-                        std::is_same_v<M, DenseMatrix<float>>) {
-            const auto* r = m.row(i);
-            for (int j = 0; j < n; ++j) row[j] = static_cast<double>(r[j]);
-          } else {
-            for (std::int64_t k = m.rowBegin(i); k < m.rowEnd(i); ++k)
-              row[m.column(k)] = static_cast<double>(m.value(k));
-          }
-        }
-      },
-      f);
+  forEachNonZero(f, [&](int i, int j, double v) { out[static_cast<std::size_t>(i) * n + j] = v; });
   return a;
 }
 
@@ -195,23 +180,12 @@ py::object sparseMatrix(const FormFactorMatrix& f) {
   std::vector<std::int64_t> start(n + 1, 0);
   std::vector<std::int32_t> column;
   std::vector<double> value;
-  std::visit(
-      [&](const auto& m) {
-        using M = std::decay_t<decltype(m)>;
-        for (int i = 0; i < n; ++i) {
-          if constexpr (std::is_same_v<M, DenseMatrix<double>> ||
-                        std::is_same_v<M, DenseMatrix<float>>) {
-            const auto* r = m.row(i);
-            for (int j = 0; j < n; ++j)
-              if (r[j] != 0) column.push_back(j), value.push_back(static_cast<double>(r[j]));
-          } else {
-            for (std::int64_t k = m.rowBegin(i); k < m.rowEnd(i); ++k)
-              column.push_back(m.column(k)), value.push_back(static_cast<double>(m.value(k)));
-          }
-          start[i + 1] = static_cast<std::int64_t>(value.size());
-        }
-      },
-      f);
+  forEachNonZero(f, [&](int i, int j, double v) {  // row by row, columns ascending
+    ++start[i + 1];
+    column.push_back(j);
+    value.push_back(v);
+  });
+  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
   py::module_ sparse = py::module_::import("scipy.sparse");
   py::array_t<double> data(static_cast<py::ssize_t>(value.size()), value.data());
   py::array_t<std::int32_t> indices(static_cast<py::ssize_t>(column.size()), column.data());

@@ -191,6 +191,8 @@ def test_system_from_arrays_dense_and_sparse():
     F = np.array([[0.0, 1.0], [1.0, 0.0]])
     for matrix in (F, scipy.sparse.csr_matrix(F)):
         system = radkit.System(matrix, np.ones(2), np.full(2, 0.5), np.array([1.0, 0.0]))
+        np.testing.assert_array_equal(system.F, F)  # back out of dense and CSR storage alike
+        assert (system.F_sparse != scipy.sparse.csr_matrix(F)).nnz == 0
         r = radkit.solve(system, "sor", params="omega=1.1", tolerance=1e-14)
         np.testing.assert_allclose(r["radiosity"][:, 0], [4 / 3, 2 / 3], rtol=1e-13)
         assert system.residual(r["radiosity"]) <= 1e-14
