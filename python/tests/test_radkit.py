@@ -248,6 +248,52 @@ def test_path_tracer_furnace_within_standard_errors(furnace):
     assert np.array_equal(img, again)
 
 
+def test_photon_map_holds_the_photons_photons_tallies(furnace):
+    mesh, _ = furnace
+    pm = radkit.photon_map(mesh, photons=20000, seed=2)
+    tally = radkit.photons(mesh, photons=20000, seed=2)
+    assert pm.emitted == 20000 and len(pm) == len(pm.positions) == len(pm.patch) == len(pm.path)
+    assert pm.path.max() < 20000
+    summed = np.zeros((len(mesh), 3))
+    np.add.at(summed, pm.patch, pm.power)
+    np.testing.assert_allclose(summed / mesh.area[:, None], tally["irradiance"], rtol=1e-12)
+
+
+def test_photon_map_estimate_is_unbiased_where_the_density_is_uniform(furnace):
+    # In the furnace H = (B - E)/rho = 2 everywhere. With the k-th photon at weight 0, the
+    # Epanechnikov estimate of a uniform Poisson density is unbiased and has relative variance
+    # 4/(3(k - 2)) (labs/06-photon-mapping/README.md); the six face centres are independent.
+    mesh, _ = furnace
+    pm = radkit.photon_map(mesh, photons=200000, seed=3)
+    centres = np.array([[0.5, 0.5, 0], [0.5, 0.5, 1], [0.5, 0, 0.5], [0.5, 1, 0.5],
+                        [0, 0.5, 0.5], [1, 0.5, 0.5]])
+    normals = 0.5 - centres
+    k = 50
+    e = pm.irradiance(centres, normals, k=k)
+    assert np.all(e["photons"] == k) and np.all(e["radius"] < 0.5)
+    se = 2.0 * np.sqrt(4 / (3 * (k - 2)) / len(centres))
+    assert abs(e["irradiance"][:, 0].mean() - 2.0) < 4 * se
+    same = pm.irradiance(centres[0], normals[0], k=k)  # one point as (3,)
+    np.testing.assert_array_equal(same["irradiance"][0], e["irradiance"][0])
+
+
+def test_photon_map_rejects_bad_queries(furnace):
+    mesh, _ = furnace
+    pm = radkit.photon_map(mesh, photons=1000, seed=1)
+    with pytest.raises(ValueError, match="k must be >= 2"):
+        pm.irradiance([0.5, 0.5, 0], [0, 0, 1], k=1)
+    with pytest.raises(ValueError, match="filter 'box' is not known"):
+        pm.irradiance([0.5, 0.5, 0], [0, 0, 1], filter="box")
+    with pytest.raises(ValueError, match="expected shape"):
+        pm.irradiance(np.zeros((2, 2)), [0, 0, 1])
+    with pytest.raises(ValueError, match="one per point"):
+        pm.irradiance(np.zeros((3, 3)), np.ones((2, 3)))
+    with pytest.raises(ValueError, match="zero length"):
+        pm.irradiance([0.5, 0.5, 0], [0, 0, 0])
+    with pytest.raises(ValueError, match="finite"):
+        pm.irradiance([np.nan, 0.5, 0], [0, 0, 1])
+
+
 def test_photons_furnace_within_standard_errors(furnace):
     mesh, _ = furnace
     p = radkit.photons(mesh, photons=20000, seed=2)
