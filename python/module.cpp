@@ -559,6 +559,41 @@ py::dict photonIrradiancePy(const PyPhotonMap& pm, const Array& points, const Ar
   return d;
 }
 
+Array photonImagePy(const PyMesh& m, std::size_t photons, int k, const std::string& filter,
+                    int gather, const std::string& view, int width, int height, std::uint64_t seed,
+                    const std::optional<std::string>& camera) {
+  checkImageSize(width, height);
+  if (photons < 1) throw py::value_error("photon_image: photons must be >= 1");
+  if (k < 2) throw py::value_error("photon_image: k must be >= 2");
+  if (gather < 0) throw py::value_error("photon_image: gather must be >= 0 (0: the map itself)");
+  PhotonView v = PhotonView::FinalGather;
+  if (view == "map" || (view == "gather" && gather == 0))
+    v = PhotonView::GlobalMap;
+  else if (view == "caustic")
+    v = PhotonView::CausticMap;
+  else if (view != "gather")
+    throw py::value_error("photon_image: view '" + view +
+                          "' is not known. Fix: 'gather', 'map' or 'caustic'");
+  PhotonSettings settings;
+  settings.photons = photons, settings.seed = seed, settings.neighbours = k;
+  settings.filter = parseFilterPy(filter);
+  settings.gatherRays = gather;
+  const Camera cam = cameraFor(m, camera);
+  const RayScene& rays = m.rayScene();
+  RadianceImage img;
+  {
+    py::gil_scoped_release release;
+    const EmitterSampler emitters = photonEmitters(*m.scene, *m.mesh);
+    PhotonTrace trace = tracePhotons(*m.scene, *m.mesh, rays, emitters, settings);
+    PhotonMaps maps = buildPhotonMaps(*m.mesh, std::move(trace.photons));
+    if (v == PhotonView::FinalGather)
+      maps.global->precomputeIrradiance(k, settings.filter, settings.precomputeStride);
+    const PhotonScene in{*m.scene, *m.mesh, rays, emitters, *maps.global, *maps.caustic};
+    img = renderPhotonImage(in, cam, width, height, v, settings);
+  }
+  return imageArray(img);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(radkit, mod) {
@@ -796,6 +831,13 @@ PYBIND11_MODULE(radkit, mod) {
           py::arg("seed") = 1,
           "Traces `photons` photons (the same ones photons() tallies for the same seed) and "
           "builds their kd-tree: a PhotonMap");
+  mod.def("photon_image", &photonImagePy, py::arg("mesh"), py::arg("photons") = 200000,
+          py::arg("k") = 100, py::arg("filter") = "epanechnikov", py::arg("gather") = 64,
+          py::arg("view") = "gather", py::arg("width") = 256, py::arg("height") = 256,
+          py::arg("seed") = 1, py::arg("camera") = py::none(),
+          "Photon-mapped radiance (height, width, 3), W/m^2/sr, as `radkit photons` renders "
+          "photonmap.png: view 'gather' (final gathering with `gather` rays per pixel), 'map' "
+          "(the global map's estimate) or 'caustic' (the caustic map alone)");
   mod.def("set_threads", &limitThreads, py::arg("n"),
           "Caps every parallel loop at n threads; 0 lifts the cap");
 }

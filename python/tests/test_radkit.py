@@ -294,6 +294,27 @@ def test_photon_map_rejects_bad_queries(furnace):
         pm.irradiance([np.nan, 0.5, 0], [0, 0, 1])
 
 
+def test_photon_image_of_the_furnace_is_its_radiance(furnace):
+    # From the middle of the closed cube every face has L = B/pi = 2/pi. The map view is
+    # E/pi + (rho/pi) H with H the k-nearest estimate, of relative variance 4/(3(k - 2)) under
+    # the uniform photon density; the bound takes the pixels as fully correlated (one draw).
+    mesh, _ = furnace
+    camera = "0.5,0.5,0.5,0.5,0.5,0,0,1,0,60"
+    k = 100
+    args = dict(photons=200000, k=k, width=32, height=32, seed=4, camera=camera)
+    image = radkit.photon_image(mesh, view="map", **args)
+    assert image.shape == (32, 32, 3)
+    sd = 0.5 / math.pi * 2.0 * math.sqrt(4 / (3 * (k - 2)))
+    assert abs(image[8:24, 8:24].mean() - 2 / math.pi) < 4 * sd
+    np.testing.assert_array_equal(image, radkit.photon_image(mesh, view="map", **args))
+    assert not np.array_equal(image, radkit.photon_image(mesh, view="map", **{**args, "seed": 5}))
+    # No mirror or glass: the caustic map is empty and shows only emission, E/pi = 1/pi.
+    np.testing.assert_allclose(radkit.photon_image(mesh, view="caustic", **args), 1 / math.pi,
+                               rtol=1e-12)
+    with pytest.raises(ValueError, match="view 'film' is not known"):
+        radkit.photon_image(mesh, view="film", **args)
+
+
 def test_photons_furnace_within_standard_errors(furnace):
     mesh, _ = furnace
     p = radkit.photons(mesh, photons=20000, seed=2)
