@@ -4,3 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 ./build/apps/radkit run --out out/cornell-box
+echo "radkit: pictures and numbers are in out/cornell-box/ (render.png, report.json; docs/run.md)."
+echo "radkit: next, the lab exercises start at labs/README.md; the Python module at docs/python.md."
