@@ -479,6 +479,23 @@ struct PyPhotonMap {
   Vec3 emittedPower;
 };
 
+/// One Vec3 per stored photon, (m, 3).
+Array photonVectors(const PyPhotonMap& p, Vec3 (Photon::*get)() const) {
+  std::vector<Vec3> v;
+  v.reserve(p.map->size());
+  for (const Photon& ph : p.map->photons()) v.push_back((ph.*get)());
+  return vec3Array(v);
+}
+
+/// One integer per stored photon, (m,).
+template <class Get>
+py::array_t<std::int64_t> photonIndices(const PyPhotonMap& p, Get get) {
+  py::array_t<std::int64_t> a(static_cast<py::ssize_t>(p.map->size()));
+  std::size_t i = 0;
+  for (const Photon& ph : p.map->photons()) a.mutable_at(i++) = get(ph);
+  return a;
+}
+
 PyPhotonMap photonMapPy(const PyMesh& m, std::size_t photons, std::uint64_t seed) {
   if (photons < 1) throw py::value_error("photon_map: photons must be >= 1");
   PhotonSettings settings;
@@ -777,39 +794,21 @@ PYBIND11_MODULE(radkit, mod) {
                           "Traced photons (photon_map) and their k-nearest irradiance estimate")
       .def("__len__", [](const PyPhotonMap& p) { return p.map->size(); })
       .def_property_readonly(
-          "positions",
-          [](const PyPhotonMap& p) {
-            std::vector<Vec3> v;
-            v.reserve(p.map->size());
-            for (const Photon& ph : p.map->photons()) v.push_back(ph.point());
-            return vec3Array(v);
-          },
+          "positions", [](const PyPhotonMap& p) { return photonVectors(p, &Photon::point); },
           "(m, 3) where each stored photon landed (stored as float: 7 digits)")
       .def_property_readonly(
-          "power",
-          [](const PyPhotonMap& p) {
-            std::vector<Vec3> v;
-            v.reserve(p.map->size());
-            for (const Photon& ph : p.map->photons()) v.push_back(ph.flux());
-            return vec3Array(v);
-          },
+          "power", [](const PyPhotonMap& p) { return photonVectors(p, &Photon::flux); },
           "(m, 3) incident power per channel, scene units² · W/m²")
       .def_property_readonly(
           "patch",
           [](const PyPhotonMap& p) {
-            py::array_t<std::int64_t> a(static_cast<py::ssize_t>(p.map->size()));
-            std::size_t i = 0;
-            for (const Photon& ph : p.map->photons()) a.mutable_at(i++) = ph.patch;
-            return a;
+            return photonIndices(p, [](const Photon& ph) { return std::int64_t(ph.patch); });
           },
           "(m,) the patch each photon landed on")
       .def_property_readonly(
           "path",
           [](const PyPhotonMap& p) {
-            py::array_t<std::int64_t> a(static_cast<py::ssize_t>(p.map->size()));
-            std::size_t i = 0;
-            for (const Photon& ph : p.map->photons()) a.mutable_at(i++) = ph.path;
-            return a;
+            return photonIndices(p, [](const Photon& ph) { return std::int64_t(ph.path); });
           },
           "(m,) the emitted photon (path) that left each stored photon")
       .def_property_readonly("emitted", [](const PyPhotonMap& p) { return p.stats.emitted; })
