@@ -437,18 +437,28 @@ py::tuple pathTracePy(const PyMesh& m, int spp, int width, int height, std::uint
   return py::make_tuple(imageArray(img.image), imageArray(variance));
 }
 
-py::dict photonsPy(const PyMesh& m, std::size_t photons, std::uint64_t seed) {
-  if (photons < 1) throw py::value_error("photons must be >= 1");
+PhotonSettings photonSettings(const char* what, std::size_t photons, std::uint64_t seed) {
+  if (photons < 1) throw py::value_error(std::string(what) + ": photons must be >= 1");
   PhotonSettings settings;
   settings.photons = photons;
   settings.seed = seed;
+  return settings;
+}
+
+/// Traces the mesh's photons; call without the GIL.
+PhotonTrace tracePy(const PyMesh& m, const RayScene& rays, const PhotonSettings& settings) {
+  const EmitterSampler emitters = photonEmitters(*m.scene, *m.mesh);
+  return tracePhotons(*m.scene, *m.mesh, rays, emitters, settings);
+}
+
+py::dict photonsPy(const PyMesh& m, std::size_t photons, std::uint64_t seed) {
+  const PhotonSettings settings = photonSettings("photons", photons, seed);
   const RayScene& rays = m.rayScene();
   PhotonRadiosity estimate;
   PhotonTraceStats stats;
   {
     py::gil_scoped_release release;
-    const EmitterSampler emitters = photonEmitters(*m.scene, *m.mesh);
-    PhotonTrace trace = tracePhotons(*m.scene, *m.mesh, rays, emitters, settings);
+    PhotonTrace trace = tracePy(m, rays, settings);
     stats = trace.stats;
     estimate = estimateRadiosity(*m.scene, *m.mesh, trace.photons, photons);
   }
@@ -497,17 +507,13 @@ py::array_t<std::int64_t> photonIndices(const PyPhotonMap& p, Get get) {
 }
 
 PyPhotonMap photonMapPy(const PyMesh& m, std::size_t photons, std::uint64_t seed) {
-  if (photons < 1) throw py::value_error("photon_map: photons must be >= 1");
-  PhotonSettings settings;
-  settings.photons = photons;
-  settings.seed = seed;
+  const PhotonSettings settings = photonSettings("photon_map", photons, seed);
   const RayScene& rays = m.rayScene();
   PyPhotonMap out;
   out.mesh = m;
   {
     py::gil_scoped_release release;
-    const EmitterSampler emitters = photonEmitters(*m.scene, *m.mesh);
-    PhotonTrace trace = tracePhotons(*m.scene, *m.mesh, rays, emitters, settings);
+    PhotonTrace trace = tracePy(m, rays, settings);
     out.stats = trace.stats;
     out.emittedPower = trace.emittedPower;
     out.map = std::make_shared<const PhotonMap>(*m.mesh, std::move(trace.photons));
@@ -580,7 +586,6 @@ Array photonImagePy(const PyMesh& m, std::size_t photons, int k, const std::stri
                     int gather, const std::string& view, int width, int height, std::uint64_t seed,
                     const std::optional<std::string>& camera) {
   checkImageSize(width, height);
-  if (photons < 1) throw py::value_error("photon_image: photons must be >= 1");
   if (k < 2) throw py::value_error("photon_image: k must be >= 2");
   if (gather < 0) throw py::value_error("photon_image: gather must be >= 0 (0: the map itself)");
   PhotonView v = PhotonView::FinalGather;
@@ -591,8 +596,8 @@ Array photonImagePy(const PyMesh& m, std::size_t photons, int k, const std::stri
   else if (view != "gather")
     throw py::value_error("photon_image: view '" + view +
                           "' is not known. Fix: 'gather', 'map' or 'caustic'");
-  PhotonSettings settings;
-  settings.photons = photons, settings.seed = seed, settings.neighbours = k;
+  PhotonSettings settings = photonSettings("photon_image", photons, seed);
+  settings.neighbours = k;
   settings.filter = parseFilterPy(filter);
   settings.gatherRays = gather;
   const Camera cam = cameraFor(m, camera);
