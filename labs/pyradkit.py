@@ -49,6 +49,22 @@ def attempt(failures, f):
     return None
 
 
+def guarded(failures, task_of, passthrough=()):
+    """A runner task(label, f) for a check: f(), or None when the student's function is not
+    written yet (see attempt) or raised, which becomes a failure naming the task (task_of maps
+    the function's name to its number) so the other tasks are still checked. Exceptions in
+    passthrough propagate."""
+    def task(label, f):
+        try:
+            return attempt(failures, f)
+        except passthrough:
+            raise
+        except Exception as e:  # a student's bug: report it, keep checking the other tasks
+            failures.append(f"Task {task_of[label]}, {label} raised {type(e).__name__}: {e}")
+            return None
+    return task
+
+
 def need_radkit(radkit, lab):
     """The radkit command a check runs (labs/check found it from --radkit, $RADKIT or the build
     tree), or a stop that says how to get one."""

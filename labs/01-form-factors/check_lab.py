@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import (attempt, howell_b3 as b3, load_student, need_radkit,  # noqa: E402
+from pyradkit import (guarded, howell_b3 as b3, load_student, need_radkit,  # noqa: E402
                       radkit_surface_factors, sentence)
 
 LAB = Path(__file__).resolve().parent
@@ -363,13 +363,7 @@ def check(student_dir, radkit=None):
     lab = load_student(student_dir, "formfactor.py")
     failures = []
 
-    def task(label, f):
-        """f(), or None when the task is not written yet or raised (said in failures)."""
-        try:
-            return attempt(failures, f)
-        except Exception as e:  # a student's bug: report it, keep checking the other tasks
-            failures.append(f"Task {TASK_OF[label]}, {label} raised {type(e).__name__}: {e}")
-            return None
+    task = guarded(failures, TASK_OF)
 
     basics = check_point_to_polygon(lab, task, failures)
     basics = check_gauss_legendre_rule(lab, task, failures) and basics

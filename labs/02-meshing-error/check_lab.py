@@ -20,12 +20,14 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import (REPO, attempt, howell_b3 as b3, load_student,  # noqa: E402
+from pyradkit import (REPO, guarded, howell_b3 as b3, load_student,  # noqa: E402
                       need_radkit, run_radkit, sentence)
 
 RICHARDSON_TOLERANCE = 1e-5
 RICHARDSON_MEASURED = 3.1e-6  # the reference solution's remainder from 128 and 512 patches
 COUNTS = [8, 32, 128, 512]    # two unit squares of k x k patches, k = 2, 4, 8, 16
+TASK_OF = {"surface_radiosity": 1, "point_limit": 2, "loglog_slope": 3, "richardson": 4,
+           "observed_order": 5, "extrapolate": 6}
 
 
 def which(got, variants):
@@ -68,7 +70,7 @@ def extrapolation_mistakes(counts, values, p):
 # --- the tasks -----------------------------------------------------------------------------------
 def check_reading(lab, task, failures, run_dir, expected):
     for surface, (mean, peak) in expected.items():
-        got = task(1, "surface_radiosity",
+        got = task("surface_radiosity",
                    lambda: tuple(map(float, lab.surface_radiosity(str(run_dir), surface))))
         if got is None:
             return False
@@ -93,7 +95,7 @@ def check_reading(lab, task, failures, run_dir, expected):
 def check_point_limit(lab, task, failures):
     for args in ((0.5, 1.0, 1.0, 1.0, 1.0), (0.8, 2.0, 2.0, 1.0, 0.5)):
         rho, e, a, b, h = args
-        got = task(2, "point_limit", lambda: float(lab.point_limit(*args)))
+        got = task("point_limit", lambda: float(lab.point_limit(*args)))
         if got is None:
             return False
         F = 4 * b3(a / 2, b / 2, h)
@@ -122,7 +124,7 @@ def check_slope(lab, task, failures):
     x = np.array([8.0, 32, 128, 512, 2048])
     for y, what in ((0.3 * x ** -1.25, "y = 0.3 x^-1.25"),
                     (0.02 / x * (1 + 3 / np.sqrt(x)), "y = 0.02/x (1 + 3/sqrt(x)), not a power")):
-        got = task(3, "loglog_slope", lambda: float(lab.loglog_slope(x.copy(), y.copy())))
+        got = task("loglog_slope", lambda: float(lab.loglog_slope(x.copy(), y.copy())))
         if got is None:
             return False
         exact = float(np.polyfit(np.log(x), np.log(y), 1)[0])
@@ -156,7 +158,7 @@ def check_richardson(lab, task, failures):
     cases = [((0.3125, 0.303125, 2.0, 2.0), "f = 0.3 + 0.05 h², h = 0.5 then 0.25"),
              ((0.1, 0.3 - 0.2 * 3 ** -1.5, 3.0, 1.5), "f = 0.3 - 0.2 h^1.5, h = 1 then 1/3")]
     for (coarse, fine, r, p), what in cases:
-        got = task(4, "richardson", lambda: float(lab.richardson(coarse, fine, r, p)))
+        got = task("richardson", lambda: float(lab.richardson(coarse, fine, r, p)))
         if got is None:
             return False
         if not math.isclose(got, 0.3, rel_tol=1e-9):
@@ -185,7 +187,7 @@ def check_richardson(lab, task, failures):
 def check_order(lab, task, failures):
     for sign in (1, -1):
         f = [2 + sign * 0.3 * h ** 1.5 for h in (1.0, 0.5, 0.25)]
-        got = task(5, "observed_order", lambda: float(lab.observed_order(*f, 2.0)))
+        got = task("observed_order", lambda: float(lab.observed_order(*f, 2.0)))
         if got is None:
             return False
         if not math.isclose(got, 1.5, rel_tol=1e-9):
@@ -212,7 +214,7 @@ def check_extrapolate(lab, task, failures, peaks, richardson_ok):
                   "f = 0.3 + 0.4 h^1.5, h = 1/sqrt(N)")]
     for counts, p, f, what in synthetic:
         values = [f(n) for n in counts]
-        got = task(6, "extrapolate", lambda: float(lab.extrapolate(list(counts), list(values), p)))
+        got = task("extrapolate", lambda: float(lab.extrapolate(list(counts), list(values), p)))
         if got is None:
             return None
         if not math.isclose(got, 0.3, rel_tol=1e-9):
@@ -226,7 +228,7 @@ def check_extrapolate(lab, task, failures, peaks, richardson_ok):
 
     # radkit's series: the floor's peak under the lamp, limit rho E F at the centre (B-3).
     limit = 0.5 * 1.0 * 4 * b3(0.5, 0.5, 1.0)
-    got = task(6, "extrapolate", lambda: float(lab.extrapolate(list(COUNTS), list(peaks), 2.0)))
+    got = task("extrapolate", lambda: float(lab.extrapolate(list(COUNTS), list(peaks), 2.0)))
     if got is None:
         return None
     if abs(got - limit) > RICHARDSON_TOLERANCE:
@@ -246,13 +248,7 @@ def check(student_dir, radkit=None):
     lab = load_student(student_dir, "meshing.py")
     failures = []
 
-    def task(number, label, f):
-        """f(), or None when the task is not written yet or raised (said in failures)."""
-        try:
-            return attempt(failures, f)
-        except Exception as e:  # a student's bug: report it, keep checking the other tasks
-            failures.append(f"Task {number}, {label} raised {type(e).__name__}: {e}")
-            return None
+    task = guarded(failures, TASK_OF)
 
     with tempfile.TemporaryDirectory() as tmp:
         runs = {n: Path(tmp) / f"parallel-{n}" for n in COUNTS}
