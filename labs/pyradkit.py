@@ -114,6 +114,23 @@ def howell_b3(a, b, h):
     return (X / x1 * math.atan(Y / x1) + Y / y1 * math.atan(X / y1)) / (2 * math.pi)
 
 
+def save_figure(fig, folder, name, dpi=110):
+    """Lays a study's figure out, writes folder/name and says where."""
+    fig.tight_layout()
+    path = Path(folder) / name
+    fig.savefig(path, dpi=dpi)
+    print(f"\nwrote {path}")
+    return path
+
+
+def run_study(main, lab):
+    """Runs a study's main(); a task not written yet stops it with a pointer to the check."""
+    try:
+        main()
+    except NotImplementedError as e:
+        sys.exit(f"{e} is not done yet; labs/check {lab} says what is missing")
+
+
 def sentence(text):
     """text as a sentence: capital first letter, full stop."""
     return text[:1].upper() + text[1:] + ("" if text.endswith((".", "?")) else ".")

@@ -15,7 +15,7 @@ sys.dont_write_bytecode = True  # importing the student's file leaves no __pycac
 LAB = Path(__file__).resolve().parent
 sys.path.insert(0, str(LAB.parent))
 from pyradkit import (REPO, find_radkit, load_student, need_radkit,  # noqa: E402
-                      radkit_surface_factors)
+                      radkit_surface_factors, run_study, save_figure)
 
 
 def scene_polygons(path):
@@ -87,14 +87,8 @@ def main():
     ax.set_ylabel("relative error against Howell C-11")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
-    fig.tight_layout()
-    out = Path(args.out) / "near-field.png"
-    fig.savefig(out, dpi=120)
-    print(f"\nwrote {out}")
+    save_figure(fig, args.out, "near-field.png", dpi=120)
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except NotImplementedError as e:
-        sys.exit(f"{e} is not done yet; labs/check 1 says what is missing")
+    run_study(main, 1)

@@ -15,7 +15,7 @@ sys.dont_write_bytecode = True  # importing the student's file leaves no __pycac
 LAB = Path(__file__).resolve().parent
 sys.path.insert(0, str(LAB.parent))
 sys.path.insert(0, str(LAB))
-from pyradkit import import_radkit, load_student  # noqa: E402
+from pyradkit import import_radkit, load_student, run_study, save_figure  # noqa: E402
 from check_lab import lamp_irradiance, lamp_laplacian  # noqa: E402
 
 GAUSS = np.polynomial.legendre.leggauss(6)
@@ -35,7 +35,8 @@ def patch_means(mesh):
         for a, wa in zip(x, w):
             for b, wb in zip(x, w):
                 s, t = (a + 1) / 2, (b + 1) / 2
-                p = (1 - s) * (1 - t) * c[0] + s * (1 - t) * c[1] + s * t * c[2] + (1 - s) * t * c[3]
+                p = ((1 - s) * (1 - t) * c[0] + s * (1 - t) * c[1] + s * t * c[2]
+                     + (1 - s) * t * c[3])
                 total += wa * wb * lamp_irradiance(p[0], p[1])
         out[i] = total / 4
     return out
@@ -158,10 +159,7 @@ def main():
     b.set_ylabel("irradiance (W/m^2)")
     b.set_title("the floor: radiosity, tally and density estimate")
     b.legend(fontsize=7)
-    fig.tight_layout()
-    out = Path(args.out) / "photon-mapping.png"
-    fig.savefig(out, dpi=110)
-    print(f"\nwrote {out}")
+    save_figure(fig, args.out, "photon-mapping.png", dpi=110)
 
 
 class _Sub:
@@ -174,4 +172,4 @@ class _Sub:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main, 6)

@@ -16,7 +16,8 @@ import numpy as np
 sys.dont_write_bytecode = True  # importing the student's file leaves no __pycache__ there
 LAB = Path(__file__).resolve().parent
 sys.path.insert(0, str(LAB.parent))
-from pyradkit import find_radkit, load_student, need_radkit, run_radkit  # noqa: E402
+from pyradkit import (find_radkit, load_student, need_radkit, run_radkit,  # noqa: E402
+                      run_study, save_figure)
 
 ALPHAS = (0.1, 0.3, 0.6, 1.0)
 
@@ -46,12 +47,11 @@ def main():
     ct, ph = {}, {}
     for j, a in enumerate(ALPHAS):
         n = 2 / a ** 2 - 2  # the Phong exponent of the same lobe width (Walter et al. 2007)
-        ct[a] = np.array([lab.albedo(lambda o, i: lab.cook_torrance(o, i, a),
-                                     np.array([math.sqrt(1 - m * m), 0, m]), args.samples, 100 * j + k)
-                          for k, m in enumerate(mus)])
-        ph[a] = np.array([lab.albedo(lambda o, i: lab.phong(o, i, n, 1.0),
-                                     np.array([math.sqrt(1 - m * m), 0, m]), args.samples, 50 + 100 * j + k)
-                          for k, m in enumerate(mus)])
+        wo = [np.array([math.sqrt(1 - m * m), 0, m]) for m in mus]
+        ct[a] = np.array([lab.albedo(lambda o, i: lab.cook_torrance(o, i, a), w, args.samples,
+                                     100 * j + k) for k, w in enumerate(wo)])
+        ph[a] = np.array([lab.albedo(lambda o, i: lab.phong(o, i, n, 1.0), w, args.samples,
+                                     50 + 100 * j + k) for k, w in enumerate(wo)])
 
     print(f"Directional albedo E(mu), yours ({args.samples} cosine-weighted samples) +- one "
           "standard error, against radkit brdf --table (Cook-Torrance, F = 1, height-correlated G) "
@@ -97,11 +97,8 @@ def main():
         ax.legend(fontsize=8)
         ax.set_ylim(0, 1.05)
     left.set_ylabel("directional albedo E(mu)")
-    fig.tight_layout()
-    out = Path(args.out) / "albedo.png"
-    fig.savefig(out, dpi=110)
-    print(f"\nwrote {out}")
+    save_figure(fig, args.out, "albedo.png", dpi=110)
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main, 7)
