@@ -11,6 +11,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+import numpy as np
+
 REPO = Path(__file__).resolve().parent.parent
 
 
@@ -129,6 +131,42 @@ def run_study(main, lab):
         main()
     except NotImplementedError as e:
         sys.exit(f"{e} is not done yet; labs/check {lab} says what is missing")
+
+
+def which(got, variants, rel=1e-7, abs_tol=1e-12):
+    """The text of the first (text, value) whose value matches got, else None: how a check
+    names the mistake a wrong answer came from."""
+    for text, value in variants:
+        if value is not None and math.isfinite(value) and \
+                math.isclose(got, value, rel_tol=rel, abs_tol=abs_tol):
+            return text
+    return None
+
+
+def slope_mistakes(x, y, sign_reason):
+    """(text, value) of the usual wrong log-log slopes of y against x, for which(): linear or
+    semi-log axes, swapped axes, the sign lost (sign_reason says why it matters), mixed log
+    bases, the end points only."""
+    lx, ly = np.log(x), np.log(y)
+    exact = float(np.polyfit(lx, ly, 1)[0])
+    ends = float((ly[-1] - ly[0]) / (lx[-1] - lx[0]))
+    bases = ("the logs have different bases (log10 of one axis, ln of the other): use the same "
+             "for both")
+    return [
+        ("that is the slope on linear axes: a power law is a straight line only on log-log "
+         "axes; fit log(y) against log(x)", float(np.polyfit(x, y, 1)[0])),
+        ("that is the slope of log(y) against x (semi-log): take the log of x too",
+         float(np.polyfit(x, ly, 1)[0])),
+        ("that is the slope of y against log(x): take the log of y too",
+         float(np.polyfit(lx, y, 1)[0])),
+        ("the axes are swapped: fit log(y) against log(x), not log(x) against log(y)",
+         float(np.polyfit(ly, lx, 1)[0])),
+        (f"the sign is lost: {sign_reason}", -exact),
+        (bases, exact * math.log(10)),
+        (bases, exact / math.log(10)),
+        ("that is the slope through the first and last points only: fit all points by least "
+         "squares (numpy.polyfit on the logs)", ends),
+    ]
 
 
 def sentence(text):

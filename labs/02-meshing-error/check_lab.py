@@ -21,22 +21,13 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from pyradkit import (REPO, guarded, howell_b3 as b3, load_student,  # noqa: E402
-                      need_radkit, run_radkit, sentence)
+                      need_radkit, run_radkit, sentence, slope_mistakes, which)
 
 RICHARDSON_TOLERANCE = 1e-5
 RICHARDSON_MEASURED = 3.1e-6  # the reference solution's remainder from 128 and 512 patches
 COUNTS = [8, 32, 128, 512]    # two unit squares of k x k patches, k = 2, 4, 8, 16
 TASK_OF = {"surface_radiosity": 1, "point_limit": 2, "loglog_slope": 3, "richardson": 4,
            "observed_order": 5, "extrapolate": 6}
-
-
-def which(got, variants):
-    """The text of the first (text, value) whose value matches got, else None."""
-    for text, value in variants:
-        if value is not None and math.isfinite(value) and \
-                math.isclose(got, value, rel_tol=1e-7, abs_tol=1e-12):
-            return text
-    return None
 
 
 def read_run(run_dir, surface):
@@ -129,25 +120,9 @@ def check_slope(lab, task, failures):
             return False
         exact = float(np.polyfit(np.log(x), np.log(y), 1)[0])
         if not math.isclose(got, exact, rel_tol=1e-9):
-            ends = float((np.log(y[-1]) - np.log(y[0])) / (np.log(x[-1]) - np.log(x[0])))
-            bases = ("the logs have different bases (log10 of one axis, ln of the other): use "
-                     "the same for both")
-            hint = which(got, [
-                ("that is the slope on linear axes: a power law is a straight line only on "
-                 "log-log axes; fit log(y) against log(x)", float(np.polyfit(x, y, 1)[0])),
-                ("that is the slope of log(y) against x (semi-log): take the log of x too",
-                 float(np.polyfit(x, np.log(y), 1)[0])),
-                ("that is the slope of y against log(x): take the log of y too",
-                 float(np.polyfit(np.log(x), y, 1)[0])),
-                ("the axes are swapped: fit log(y) against log(x), not log(x) against log(y)",
-                 float(np.polyfit(np.log(y), np.log(x), 1)[0])),
-                ("the sign is lost: the error falls as the patch count grows, so the slope is "
-                 "negative", -exact),
-                (bases, exact * math.log(10)),
-                (bases, exact / math.log(10)),
-                ("that is the slope through the first and last points only: fit all points by "
-                 "least squares (numpy.polyfit on the logs)", ends),
-            ]) or "fit a straight line to (log x, log y) by least squares and return its slope"
+            hint = which(got, slope_mistakes(
+                x, y, "the error falls as the patch count grows, so the slope is negative")) \
+                or "fit a straight line to (log x, log y) by least squares and return its slope"
             failures.append(f"Task 3, loglog_slope on {what} at x = 8 .. 2048: {got:.6g}, "
                             f"expected {exact:.6g}. {sentence(hint)}")
             return False

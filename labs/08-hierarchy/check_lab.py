@@ -32,7 +32,8 @@ import numpy as np
 LAB = Path(__file__).resolve().parent
 sys.path.insert(0, str(LAB.parent))
 sys.path.insert(0, str(LAB))  # squares.py, which the student's hierarchy.py imports
-from pyradkit import REPO, guarded, load_student, need_radkit, run_radkit, sentence  # noqa: E402
+from pyradkit import (REPO, guarded, load_student, need_radkit, run_radkit,  # noqa: E402
+                      sentence, slope_mistakes, which as shared_which)
 from squares import (C11, EMISSION, FLOOR, LAMP, MIN_SIZE, RHO, Square,  # noqa: E402
                      floor_leaves, l1_error, leaf_mean, point_factor, sample_points)
 
@@ -73,12 +74,8 @@ def name(e):
 
 
 def which(got, variants, rel=1e-9):
-    """The text of the first (text, value) whose value matches got, else None."""
-    for text, value in variants:
-        if value is not None and math.isfinite(value) and \
-                math.isclose(got, value, rel_tol=rel, abs_tol=1e-15):
-            return text
-    return None
+    """pyradkit.which at this check's tolerances: the definitions here are exact to rounding."""
+    return shared_which(got, variants, rel=rel, abs_tol=1e-15)
 
 
 # --- the definitions, computed here independently of the student ------------------------------
@@ -484,21 +481,9 @@ def check_power_law(lab, task, failures):
         p, log_c = np.polyfit(np.log(x), np.log(y), 1)
         c = math.exp(log_c)
         if not (math.isclose(got[0], p, rel_tol=1e-9) and math.isclose(got[1], c, rel_tol=1e-9)):
-            lx, ly = np.log(x), np.log(y)
-            ends = (ly[-1] - ly[0]) / (lx[-1] - lx[0])
-            slope = which(got[0], [
-                ("the slope's sign is flipped: links grow as ε shrinks, so their p is negative",
-                 -p),
-                ("the axes are swapped: fit log y against log x", np.polyfit(ly, lx, 1)[0]),
-                ("that is the slope on linear axes: fit log y against log x",
-                 np.polyfit(x, y, 1)[0]),
-                ("that is the slope of log y against x (semi-log): take the log of x too",
-                 np.polyfit(x, ly, 1)[0]),
-                ("the logs have different bases: use the same for both axes", p * math.log(10)),
-                ("the logs have different bases: use the same for both axes", p / math.log(10)),
-                ("that is the slope through the end points only: fit all points by least "
-                 "squares", ends),
-            ], rel=1e-7) if not math.isclose(got[0], p, rel_tol=1e-9) else None
+            slope = which(got[0], slope_mistakes(
+                x, y, "p is the slope of log y against log x, negative where y falls as x "
+                "grows"), rel=1e-7) if not math.isclose(got[0], p, rel_tol=1e-9) else None
             prefactor = which(got[1], [
                 ("the prefactor is the fit's intercept log C: return C = exp(intercept)", log_c),
                 ("the prefactor mixes bases: with natural logs, C = exp(intercept), not "
