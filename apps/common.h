@@ -77,5 +77,7 @@ void addStudyCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addBrdfCommand(CLI::App& app);
 void addPhotonsCommand(CLI::App& app);
+void addTerrainCommand(CLI::App& app);
+void addSkyCommand(CLI::App& app);
 
 }  // namespace radkit::app

@@ -91,9 +91,14 @@ void printSummary(const Scene& scene, const HierarchicalResult& r, const Hierarc
   for (long long k : r.linksByKind) links += k;
   printField("links", std::to_string(links) + " (" + std::to_string(r.linksByKind[0]) +
                           " element-element), " + std::to_string(r.raysCast) + " rays");
+  if (r.daylight)
+    printField("daylight", r.sky->typeName() + " sky" + (r.sky->hasSun() ? " and sun" : "") + ", " +
+                               std::to_string(r.daylight->rays) + " rays on the " +
+                               std::to_string(r.hierarchy->base().size()) + " input faces");
   printField("seconds", "hierarchy " + fmt("%.2f", r.seconds.hierarchy) + ", rays " +
-                            fmt("%.2f", r.seconds.rayScene) + ", links " +
-                            fmt("%.2f", r.seconds.refine) + ", solve " +
+                            fmt("%.2f", r.seconds.rayScene) +
+                            (r.daylight ? ", daylight " + fmt("%.2f", r.seconds.daylight) : "") +
+                            ", links " + fmt("%.2f", r.seconds.refine) + ", solve " +
                             fmt("%.2f", r.seconds.solve) + ", total " + fmt("%.2f", total));
   printField(r.solve.solver, std::to_string(r.solve.iterations) + " sweeps, change " +
                                  fmt("%.2e", r.solve.residual) +
@@ -190,9 +195,14 @@ void runHierarchicalJob(HierarchicalJob job) {
          {r.escapedStandardError.x, r.escapedStandardError.y, r.escapedStandardError.z}}}},
       {"surfaces", surfacesJson(r.surfaces)}};
   report["load"] = loadJson(loaded);
-  report["seconds"] = {{"hierarchy", r.seconds.hierarchy}, {"ray_scene", r.seconds.rayScene},
-                       {"links", r.seconds.refine},        {"solve", r.seconds.solve},
-                       {"results", r.seconds.results},     {"total", total}};
+  if (r.daylight) report["daylight"] = daylightJson(*r.sky, *r.daylight);
+  report["seconds"] = {{"hierarchy", r.seconds.hierarchy},
+                       {"ray_scene", r.seconds.rayScene},
+                       {"daylight", r.seconds.daylight},
+                       {"links", r.seconds.refine},
+                       {"solve", r.seconds.solve},
+                       {"results", r.seconds.results},
+                       {"total", total}};
   report["peak_memory_bytes"] = peakMemoryBytes();
   writeJson(folder.path("report.json"), report);
   folder.commit();

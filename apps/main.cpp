@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
   radkit::app::addRenderCommand(app);
   radkit::app::addBrdfCommand(app);
   radkit::app::addPhotonsCommand(app);
+  radkit::app::addTerrainCommand(app);
+  radkit::app::addSkyCommand(app);
   addThreadsOption(app);
   try {
     app.parse(argc, argv);

@@ -47,7 +47,6 @@ struct PhotonsCommand {
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
-json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 /// The radiosity solution to compare with: a run folder's surfaces.csv, or computed here on
 /// the same mesh (then per patch too).
 struct RadiosityReference {
@@ -108,10 +107,10 @@ json surfacesJson(const std::vector<SurfaceEstimate>& surfaces) {
   for (const SurfaceEstimate& s : surfaces)
     a.push_back({{"name", s.name},
                  {"area", s.area},
-                 {"radiosity", triple(s.radiosity)},
-                 {"standard_error", triple(s.radiosityError)},
-                 {"irradiance", triple(s.irradiance)},
-                 {"caustic_irradiance", triple(s.causticIrradiance)},
+                 {"radiosity", vec3Json(s.radiosity)},
+                 {"standard_error", vec3Json(s.radiosityError)},
+                 {"irradiance", vec3Json(s.irradiance)},
+                 {"caustic_irradiance", vec3Json(s.causticIrradiance)},
                  {"photons", s.photons}});
   return a;
 }
@@ -125,8 +124,8 @@ json statsJson(const PhotonTrace& t, const EmitterSampler& emitters) {
           {"absorbed", s.absorbed},
           {"truncated", s.truncated},
           {"rays", s.rays},
-          {"emitted_power", triple(t.emittedPower)},
-          {"total_power", triple(emitters.totalPower())}};
+          {"emitted_power", vec3Json(t.emittedPower)},
+          {"total_power", vec3Json(emitters.totalPower())}};
 }
 
 /// Everything one run computes, in the order it is computed.

@@ -116,9 +116,17 @@ void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCom
                                                     : ""));
   printField("seconds",
              "mesh " + fmt("%.2f", r.seconds.mesh) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
-                 ", form factors " + fmt("%.2f", r.seconds.formFactors) + ", solve " +
+                 ", form factors " + fmt("%.2f", r.seconds.formFactors) +
+                 (r.daylight ? ", daylight " + fmt("%.2f", r.seconds.daylight) : "") + ", solve " +
                  fmt("%.2f", r.seconds.solve) + ", F files " + fmt("%.2f", matrixSeconds) +
                  (cmd.writeMatrix ? " (with .mtx)" : "") + ", total " + fmt("%.2f", total));
+  if (r.daylight)
+    printField("daylight", r.sky->typeName() + " sky" + (r.sky->hasSun() ? " and sun" : "") +
+                               ", open horizontal " +
+                               fmt("%.4g lux", kLumensPerWatt * luminance(r.sky->horizontalSky() +
+                                                                          r.sky->horizontalSun())) +
+                               ", " + std::to_string(r.daylight->rays) + " rays, sky noise " +
+                               fmt("%.2g %%", 100 * r.daylight->skyNoise));
   for (const SolveResult& s : r.solves)
     printField(s.solver, std::to_string(s.iterations) + " iterations, residual " +
                              fmt("%.2e", s.checkedResidual) + ", " + fmt("%.3f s", s.seconds) +
@@ -241,6 +249,7 @@ void runJob(PipelineCommand& cmd) {
     report["energy_balance"] = energyJson(r.energy);
     report["surfaces"] = surfacesJson(r.surfaces);
   }
+  if (r.daylight) report["daylight"] = daylightJson(*r.sky, *r.daylight);
   if (cmd.job == Job::Solvers)
     for (const SolveResult& s : r.solves)
       writeSolutionCsv(folder.path("solution-" + s.solver + ".csv"), scene, r.mesh, s);
@@ -253,6 +262,7 @@ void runJob(PipelineCommand& cmd) {
   report["seconds"] = {{"mesh", r.seconds.mesh},
                        {"ray_scene", r.seconds.rayScene},
                        {"form_factors", r.seconds.formFactors},
+                       {"daylight", r.seconds.daylight},
                        {"solve", r.seconds.solve},
                        {"results", r.seconds.results},
                        {"matrix_files", matrixSeconds},

@@ -20,9 +20,7 @@ namespace radkit::app {
 
 using nlohmann::json;
 
-namespace {
-json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
-}  // namespace
+json vec3Json(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 
 json sceneJson(const Scene& scene) {
   json j{{"name", scene.name}, {"file", scene.file}, {"units", scene.units}};
@@ -31,9 +29,9 @@ json sceneJson(const Scene& scene) {
   j["surfaces"] = names;
   j["materials"] = scene.materials.size();
   if (scene.camera)
-    j["camera"] = {{"position", triple(scene.camera->position)},
-                   {"look_at", triple(scene.camera->lookAt)},
-                   {"up", triple(scene.camera->up)},
+    j["camera"] = {{"position", vec3Json(scene.camera->position)},
+                   {"look_at", vec3Json(scene.camera->lookAt)},
+                   {"up", vec3Json(scene.camera->up)},
                    {"fov_deg", scene.camera->fovDeg}};
   return j;
 }
@@ -82,22 +80,50 @@ json solveJson(const SolveResult& r) {
 }
 
 json energyJson(const EnergyBalance& e) {
-  return {{"emitted_W", triple(e.emitted)},
-          {"absorbed_W", triple(e.absorbed)},
-          {"escaped_W", triple(e.escaped)},
+  return {{"emitted_W", vec3Json(e.emitted)},
+          {"absorbed_W", vec3Json(e.absorbed)},
+          {"escaped_W", vec3Json(e.escaped)},
           {"relative_imbalance", e.relativeImbalance}};
 }
 
 json surfacesJson(const std::vector<SurfaceResult>& surfaces) {
   json a = json::array();
-  for (const SurfaceResult& s : surfaces)
+  for (const SurfaceResult& s : surfaces) {
     a.push_back({{"surface", s.name},
                  {"area_m2", s.area},
-                 {"radiosity_W_m2", triple(s.radiosity)},
-                 {"irradiance_W_m2", triple(s.irradiance)},
+                 {"radiosity_W_m2", vec3Json(s.radiosity)},
+                 {"irradiance_W_m2", vec3Json(s.irradiance)},
                  {"luminance_cd_m2", s.luminance},
                  {"illuminance_lux", s.illuminance}});
+    if (s.daylit)
+      a.back().update({{"sky_view_factor", s.skyViewFactor},
+                       {"daylight_W_m2", vec3Json(s.daylight)},
+                       {"daylight_illuminance_lux", s.daylightIlluminance}});
+  }
   return a;
+}
+
+json daylightJson(const SkyModel& sky, const Daylight& d) {
+  const SkyDescription& k = sky.description();
+  json j{{"sky", sky.typeName()},
+         {"horizontal_sky_W_m2", vec3Json(sky.horizontalSky())},
+         {"horizontal_sun_W_m2", vec3Json(sky.horizontalSun())},
+         {"horizontal_illuminance_lux",
+          kLumensPerWatt * luminance(sky.horizontalSky() + sky.horizontalSun())},
+         {"sky_rays_per_patch", k.samples},
+         {"rays", d.rays},
+         {"sky_noise", d.skyNoise},
+         {"seconds", d.seconds}};
+  if (k.sun)
+    j["sun"] = {{"elevation_deg", k.sunElevationDeg},
+                {"azimuth_deg", k.sunAzimuthDeg},
+                {"direction", vec3Json(sky.sunDirection())},
+                {"normal_irradiance_W_m2", vec3Json(sky.sunIrradiance())},
+                {"rays_per_patch", k.sunSamples}};
+  if (k.type == SkyDescription::Type::Physical)
+    j["physical"] = {
+        {"density", k.density}, {"altitude_m", k.altitude}, {"table_seconds", sky.tableSeconds()}};
+  return j;
 }
 
 void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceResult>& surfaces,
@@ -109,7 +135,9 @@ void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceRes
   for (const SurfaceResult& s : surfaces) {
     std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) +
                        fmt(" %10.4f W/m²", s.radiosity.z);
-    if (photometric) line += fmt("  %9.2f cd/m²", s.luminance) + fmt("  %9.1f lux", s.illuminance);
+    if (photometric || s.daylit)
+      line += fmt("  %9.2f cd/m²", s.luminance) + fmt("  %9.1f lux", s.illuminance);
+    if (s.daylit) line += fmt("  sky view %.3f", s.skyViewFactor);
     printField(s.name, line);
   }
 }

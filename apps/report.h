@@ -5,14 +5,19 @@
 
 #include <string>
 
+#include "daylight/daylight.h"
 #include "radiosity/radiosity_pipeline.h"
 
 namespace radkit::app {
 
+/// [x, y, z] (an RGB triple, a point, a direction).
+nlohmann::json vec3Json(const Vec3& v);
 nlohmann::json sceneJson(const Scene& scene);
 nlohmann::json meshJson(const Scene& scene, const PatchMesh& mesh);
 nlohmann::json solveJson(const SolveResult& result);
 nlohmann::json energyJson(const EnergyBalance& e);
+/// report.json's "daylight": the sky, the sun and the cost of the patches' daylight.
+nlohmann::json daylightJson(const SkyModel& sky, const Daylight& daylight);
 nlohmann::json surfacesJson(const std::vector<SurfaceResult>& surfaces);
 /// Prints the energy balance ("escaped" followed by `escapedNote`) and one line of radiosity
 /// per surface (with cd/m² and lux when photometric).

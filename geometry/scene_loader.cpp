@@ -28,6 +28,10 @@ namespace {
 /// a 5 m room written in millimetres and read as metres spans 5 km.
 constexpr double kLargestPlausibleMetres = 200;
 constexpr double kSmallestPlausibleMetres = 1e-2;
+constexpr double kLargestPlausibleOutdoorMetres = 1e5;
+/// Photometry as in docs/formats.md (683 · Y): white light of luminance L has radiance L/683
+/// in every channel, since Y(1, 1, 1) = 1.
+constexpr double kLumensPerWattWhite = 683.0;
 
 std::string unitList() {
   std::string list;
@@ -272,6 +276,123 @@ void includeObj(const json& j, std::size_t index, Scene& scene, const std::strin
   }
 }
 
+/// A radiance given as one number (grey) or three.
+Vec3 readRadiance(ObjectReader& r, const json& j, const std::string& key) {
+  if (j.is_number()) {
+    const double v = r.toNumber(j, key);
+    return {v, v, v};
+  }
+  return r.toVec3(j, key);
+}
+
+void requireNonNegative(ObjectReader& r, const Vec3& v, const std::string& key) {
+  if (v.x < 0 || v.y < 0 || v.z < 0)
+    r.fail("\"" + key +
+           "\" must not be negative (light cannot be taken away). Fix: give 0 or more");
+}
+
+/// The sun: where it stands and, for the uniform and CIE skies, how strong it is.
+void readSun(const json& j, const std::string& file, SkyDescription& sky) {
+  ObjectReader r(j, "sky's \"sun\"", file);
+  const bool physical = sky.type == SkyDescription::Type::Physical;
+  if (physical)
+    r.allowOnly({"elevation", "azimuth", "angular_radius"});
+  else
+    r.allowOnly({"elevation", "azimuth", "angular_radius", "irradiance", "illuminance"});
+  sky.sun = true;
+  sky.sunElevationDeg = r.toNumber(r.get("elevation"), "elevation");
+  if (std::abs(sky.sunElevationDeg) > 90) r.fail("\"elevation\" must lie in [-90, 90] degrees");
+  sky.sunAzimuthDeg = r.number("azimuth", sky.sunAzimuthDeg);
+  sky.sunAngularRadiusDeg = r.number("angular_radius", sky.sunAngularRadiusDeg);
+  if (!(sky.sunAngularRadiusDeg > 0 && sky.sunAngularRadiusDeg <= 10))
+    r.fail("\"angular_radius\" must lie in (0, 10] degrees (the real sun's is 0.2665)");
+  if (physical) return;
+  if (r.has("irradiance") == r.has("illuminance"))
+    r.fail(
+        "needs exactly one of \"irradiance\" (W/m² per channel, normal to the sun) and "
+        "\"illuminance\" (lux, white)");
+  if (r.has("irradiance")) {
+    sky.sunIrradiance = readRadiance(r, j.at("irradiance"), "irradiance");
+    requireNonNegative(r, sky.sunIrradiance, "irradiance");
+  } else {
+    const double lux = r.toNumber(j.at("illuminance"), "illuminance");
+    if (lux < 0) r.fail("\"illuminance\" must not be negative");
+    const double w = lux / kLumensPerWattWhite;
+    sky.sunIrradiance = {w, w, w};
+  }
+}
+
+SkyDescription readSky(const json& j, const std::string& file) {
+  ObjectReader r(j, "\"sky\"", file);
+  SkyDescription sky;
+  const std::string type = r.string("type", "");
+  if (type == "uniform") {
+    sky.type = SkyDescription::Type::Uniform;
+    r.allowOnly({"type", "radiance", "luminance", "sun", "up", "north", "ground_reflectance",
+                 "samples", "sun_samples"});
+    if (r.has("radiance") == r.has("luminance"))
+      r.fail("(uniform) needs exactly one of \"radiance\" (W m⁻² sr⁻¹) and \"luminance\" (cd/m²)");
+    if (r.has("radiance")) {
+      sky.radiance = readRadiance(r, j.at("radiance"), "radiance");
+    } else {
+      const double l = r.toNumber(j.at("luminance"), "luminance") / kLumensPerWattWhite;
+      sky.radiance = {l, l, l};
+    }
+    requireNonNegative(r, sky.radiance, "radiance");
+  } else if (type == "cie-overcast") {
+    sky.type = SkyDescription::Type::CieOvercast;
+    r.allowOnly({"type", "zenith_radiance", "zenith_luminance", "sun", "up", "north",
+                 "ground_reflectance", "samples", "sun_samples"});
+    if (r.has("zenith_radiance") == r.has("zenith_luminance"))
+      r.fail(
+          "(cie-overcast) needs exactly one of \"zenith_radiance\" (W m⁻² sr⁻¹) and "
+          "\"zenith_luminance\" (cd/m²)");
+    if (r.has("zenith_radiance")) {
+      sky.zenithRadiance = readRadiance(r, j.at("zenith_radiance"), "zenith_radiance");
+    } else {
+      const double l =
+          r.toNumber(j.at("zenith_luminance"), "zenith_luminance") / kLumensPerWattWhite;
+      sky.zenithRadiance = {l, l, l};
+    }
+    requireNonNegative(r, sky.zenithRadiance, "zenith_radiance");
+  } else if (type == "physical") {
+    sky.type = SkyDescription::Type::Physical;
+    r.allowOnly({"type", "sun", "density", "altitude", "up", "north", "ground_reflectance",
+                 "samples", "sun_samples"});
+    sky.density = r.number("density", sky.density);
+    if (!(sky.density > 0 && sky.density <= 100))
+      r.fail("\"density\" (air density over the standard one) must lie in (0, 100]");
+    sky.altitude = r.number("altitude", sky.altitude);
+    if (!(sky.altitude >= 0 && sky.altitude < 50000))
+      r.fail("\"altitude\" must lie in [0, 50000) metres (inside the atmosphere)");
+    if (!r.has("sun")) r.fail("(physical) needs a \"sun\": {\"elevation\": degrees}");
+  } else {
+    r.fail("needs \"type\": one of \"uniform\", \"cie-overcast\", \"physical\"" +
+           std::string(type.empty() ? "" : " (not \"" + type + "\")"));
+  }
+  if (r.has("sun")) readSun(j.at("sun"), file, sky);
+  sky.up = r.vec3("up", sky.up);
+  sky.north = r.vec3("north", sky.north);
+  if (length(sky.up) == 0) r.fail("\"up\" must not be the zero vector");
+  sky.up = normalize(sky.up);
+  sky.north = sky.north - sky.up * dot(sky.north, sky.up);
+  if (!(length(sky.north) > 1e-6))
+    r.fail("\"north\" must not be parallel to \"up\". Fix: give a horizontal direction");
+  sky.north = normalize(sky.north);
+  sky.groundReflectance = r.number("ground_reflectance", sky.groundReflectance);
+  if (!(sky.groundReflectance >= 0 && sky.groundReflectance < 1))
+    r.fail("\"ground_reflectance\" must lie in [0, 1)");
+  const double samples = r.number("samples", sky.samples);
+  const double sunSamples = r.number("sun_samples", sky.sunSamples);
+  if (!(samples >= 1 && samples <= 1 << 20 && samples == std::floor(samples)))
+    r.fail("\"samples\" must be a whole number in [1, 1048576]");
+  if (!(sunSamples >= 1 && sunSamples <= 1 << 16 && sunSamples == std::floor(sunSamples)))
+    r.fail("\"sun_samples\" must be a whole number in [1, 65536]");
+  sky.samples = int(samples);
+  sky.sunSamples = int(sunSamples);
+  return sky;
+}
+
 Camera readCamera(const json& j, const std::string& file) {
   ObjectReader r(j, "camera", file);
   r.allowOnly({"position", "look_at", "up", "fov_deg"});
@@ -301,7 +422,7 @@ Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadRep
   Scene scene;
   scene.file = path;
   ObjectReader r(root, "the scene", path);
-  r.allowOnly({"name", "description", "units", "materials", "surfaces", "camera"});
+  r.allowOnly({"name", "description", "units", "materials", "surfaces", "camera", "sky"});
   scene.name = r.string("name", fs::path(path).stem().string());
   scene.units = r.string("units", options.units.empty() ? "m" : options.units);
   if (!isKnownUnit(scene.units))
@@ -324,6 +445,7 @@ Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadRep
       scene.surfaces.push_back(readSurface(surfaces[i], i, scene, path, options, report));
   }
   if (r.has("camera")) scene.camera = readCamera(root.at("camera"), path);
+  if (r.has("sky")) scene.sky = readSky(root.at("sky"), path);
   return scene;
 }
 
@@ -333,14 +455,16 @@ void warnOnImplausibleSize(const Scene& scene, LoadReport& report) {
   const Bounds3 b = scene.bounds();
   const Vec3 size = (b.hi - b.lo) * scene.metresPerUnit();
   const double largest = std::max({size.x, size.y, size.z});
-  if (largest <= kLargestPlausibleMetres && largest >= kSmallestPlausibleMetres) return;
+  // Under a sky a scene is a street or a landscape, not a room.
+  const double plausible = scene.sky ? kLargestPlausibleOutdoorMetres : kLargestPlausibleMetres;
+  if (largest <= plausible && largest >= kSmallestPlausibleMetres) return;
   char text[160];
   std::snprintf(text, sizeof text, "%.4g m x %.4g m x %.4g m", size.x, size.y, size.z);
   report.warnings.push_back(
       scene.file + ": the scene spans " + text + " read in " + scene.units + ", " +
-      (largest > kLargestPlausibleMetres ? "large" : "small") +
-      " for a room or an object. Fix: if its coordinates are in another unit, give --units " +
-      unitList() +
+      (largest > plausible ? "large" : "small") +
+      (scene.sky ? " for a landscape." : " for a room or an object.") +
+      " Fix: if its coordinates are in another unit, give --units " + unitList() +
       (fs::path(scene.file).extension() == ".json" ? " (or \"units\" in the scene file)" : "") +
       ".");
 }

@@ -577,7 +577,7 @@ void validateScene(Scene& scene, LoadReport& report, bool repair) {
   }
   bool emits = std::any_of(scene.surfaces.begin(), scene.surfaces.end(),
                            [&](const Surface& s) { return scene.materials[s.material].emits(); });
-  if (!emits)
+  if (!emits && !scene.sky)
     report.warnings.push_back(scene.file + ": no surface emits, so every radiosity is zero.");
 }
 

@@ -96,7 +96,7 @@ constexpr int kEmitterClosureRays = 1024;
 /// Share of a surface's rays that may miss for it to count as closed (seams, not openings).
 constexpr double kSeamMisses = 1e-3;
 int closureRays(const SurfaceRadiometry& r) {
-  return maxComponent(r.emission) > 0 ? kEmitterClosureRays : kClosureRays;
+  return maxComponent(r.emission) > 0 && !r.daylightOnly ? kEmitterClosureRays : kClosureRays;
 }
 
 /// Marks the leaves of closed surfaces. Each leaf (tested once) casts K stratified,
@@ -204,10 +204,48 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
   Clock::time_point start = Clock::now();
   PatchMesh base = subdivide(scene, SubdivisionSettings{});
   double meshSeconds = since(start);
-  HierarchicalResult r = solveHierarchical(base, std::move(radiometry), settings, log);
+  // Daylight is computed per input face (constant over the face's elements): refinement then
+  // follows the light it makes, not the sun's shadow edges inside a face, so a sunlit scene
+  // wants faces no larger than the shadow detail it should show (docs/daylight.md).
+  std::unique_ptr<SkyModel> sky;
+  std::unique_ptr<Daylight> daylight;
+  std::vector<Vec3> faceDaylight;
+  double daylightSeconds = 0;
+  if (scene.sky) {
+    start = Clock::now();
+    sky = std::make_unique<SkyModel>(*scene.sky);
+    const RayScene rays(base);
+    daylight = std::make_unique<Daylight>(computeDaylight(base, rays, *sky, settings.seed));
+    for (int f = 0; f < base.size(); ++f) faceDaylight.push_back(daylight->total(f));
+    daylightSeconds = since(start);
+    if (log.progress) log.progress("daylight", 1.0);
+  }
+  HierarchicalResult r = solveHierarchical(base, std::move(radiometry), settings, log,
+                                           scene.sky ? &faceDaylight : nullptr);
   r.seconds.hierarchy += meshSeconds;
+  r.seconds.daylight = daylightSeconds;
   start = Clock::now();
+  std::vector<int> leafFace(r.leaves.size());
+  for (int i = 0; i < r.leaves.size(); ++i) leafFace[i] = (*r.hierarchy)[r.leafNodes[i]].face;
+  if (daylight)
+    for (int i = 0; i < r.leaves.size(); ++i) r.irradiance[i] += faceDaylight[leafFace[i]];
   r.surfaces = surfaceResults(scene, r.leaves, r.radiosity, r.irradiance);
+  if (daylight) {
+    // Per surface, area-weighted over the leaves, each with its face's daylight.
+    for (std::size_t s = 0; s < r.surfaces.size(); ++s) {
+      SurfaceResult& out = r.surfaces[s];
+      double area = 0, svf = 0;
+      Vec3 light{0, 0, 0};
+      for (int i = r.leaves.surfaceBegin[s]; i < r.leaves.surfaceBegin[s + 1]; ++i) {
+        const double a = r.leaves.patches[i].area;
+        area += a, svf += daylight->skyViewFactor[leafFace[i]] * a;
+        light += faceDaylight[leafFace[i]] * a;
+      }
+      out.daylit = true;
+      if (area > 0) out.skyViewFactor = svf / area, out.daylight = light / area;
+      out.daylightIlluminance = kLumensPerWatt * luminance(out.daylight);
+    }
+  }
   // Power bookkeeping as for a dense run, with each leaf's escape fraction measured by rays
   // rather than taken from the links (an emitter, ρ = 0, gathers through coarse links that
   // need not add up), so the balance checks the links' transport independently.
@@ -219,6 +257,7 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
     const Material& m = scene.materials[scene.surfaces[p.surface].material];
     double a = p.area * m2, q = r.escape[i];
     e.emitted += m.emission * a;
+    if (daylight) e.emitted += faceDaylight[leafFace[i]] * a;  // the light the scene takes in
     e.absorbed += mul(Vec3{1, 1, 1} - m.diffuseAlbedo(), r.irradiance[i]) * a;
     e.escaped += r.radiosity[i] * (a * q);
     Vec3 power = r.radiosity[i] * a;
@@ -232,26 +271,42 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
           std::max(e.relativeImbalance,
                    std::fabs(e.emitted[c] - e.absorbed[c] - e.escaped[c]) / e.emitted[c]);
   r.seconds.results += since(start);
+  r.sky = std::move(sky);
+  r.daylight = std::move(daylight);
   return r;
 }
 
 HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces,
-                                     const HierarchicalSettings& settings, const PipelineLog& log) {
+                                     const HierarchicalSettings& settings, const PipelineLog& log,
+                                     const std::vector<Vec3>* daylight) {
   validateHierarchicalSettings(settings);
+  const bool byFace = daylight != nullptr;
+  if (byFace) {
+    std::vector<SurfaceRadiometry> perFace;
+    perFace.reserve(base.size());
+    for (int f = 0; f < base.size(); ++f) {
+      const SurfaceRadiometry& s = surfaces[base.patches[f].surface];
+      perFace.push_back({s.reflectance, s.emission + mul(s.reflectance, (*daylight)[f]),
+                         !(maxComponent(s.emission) > 0)});
+    }
+    surfaces = std::move(perFace);
+  }
   HierarchicalResult r;
   auto say = [&](const std::string& line) {
     if (log.message) log.message(line);
   };
   double totalArea = 0, emitted = 0, emissionNorm = 0;
-  for (const Patch& p : base.patches) {
-    const SurfaceRadiometry& s = surfaces[p.surface];
+  for (int f = 0; f < base.size(); ++f) {
+    const Patch& p = base.patches[f];
+    const SurfaceRadiometry& s = surfaces[byFace ? f : p.surface];
     totalArea += p.area;
     emitted += p.area * maxComponent(s.emission);
     emissionNorm = std::max(emissionNorm, maxComponent(s.emission));
   }
   if (!(emitted > 0))
     throw std::invalid_argument(
-        "the scene emits no light: give at least one material an \"emission\" above 0");
+        byFace ? "no light enters the scene: the sky and sun reach no surface that reflects"
+               : "the scene emits no light: give at least one material an \"emission\" above 0");
   r.minArea = settings.minArea > 0 ? settings.minArea : kDefaultMinAreaFraction * totalArea;
   if (r.minArea > totalArea)
     throw std::invalid_argument(
@@ -260,7 +315,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
         num(kDefaultMinAreaFraction) + " of the scene's area)");
 
   Clock::time_point t = Clock::now();
-  r.hierarchy = std::make_unique<Hierarchy>(base, std::move(surfaces));
+  r.hierarchy = std::make_unique<Hierarchy>(base, std::move(surfaces), byFace);
   Hierarchy& h = *r.hierarchy;
   r.seconds.hierarchy = since(t);
   say("hierarchy: " + std::to_string(base.size()) + " input faces, " + std::to_string(h.size()) +

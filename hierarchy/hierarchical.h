@@ -79,10 +79,13 @@ struct HierarchicalResult {
   double threshold = 0;  ///< τ = ε · emitted power of the last round
   std::size_t hierarchyBytes = 0, linkBytes = 0;
   struct Seconds {
-    double hierarchy = 0, rayScene = 0, refine = 0, solve = 0, results = 0;
+    double hierarchy = 0, rayScene = 0, daylight = 0, refine = 0, solve = 0, results = 0;
   } seconds;
   std::vector<SurfaceResult> surfaces;
   EnergyBalance energy;
+  /// With a sky: its model and each input face's daylight (leaves take their face's).
+  std::unique_ptr<SkyModel> sky;
+  std::unique_ptr<Daylight> daylight;
 };
 
 /// \brief Solves a loaded scene. Throws std::invalid_argument for bad settings or a scene that
@@ -92,9 +95,12 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
 
 /// \brief The same on input faces made elsewhere (tests): `base` has one patch per input face,
 /// `surfaces` one entry per surface index.
+/// `daylight`, when given, is each input face's daylight (W/m²): its ρ-fold is added to the
+/// face's emission, so every face has radiometry of its own.
 HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces,
                                      const HierarchicalSettings& settings,
-                                     const PipelineLog& log = {});
+                                     const PipelineLog& log = {},
+                                     const std::vector<Vec3>* daylight = nullptr);
 
 /// "jacobi" or "gauss-seidel"; throws std::invalid_argument otherwise.
 GatherOrder parseGatherOrder(const std::string& name);

@@ -23,8 +23,8 @@ std::uint64_t childKey(std::uint64_t parent, int k) {
   return splitMix64(parent * 4 + std::uint64_t(k) + 0x9e3779b97f4a7c15ULL);
 }
 
-Hierarchy::Hierarchy(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces)
-    : m_base(base), m_surfaces(std::move(surfaces)) {
+Hierarchy::Hierarchy(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces, bool byFace)
+    : m_base(base), m_surfaces(std::move(surfaces)), m_byFace(byFace) {
   const int n = m_base.size();
   if (n == 0) throw std::invalid_argument("hierarchy: the scene has no faces");
   m_nodes.resize(std::size_t(2) * n - 1);

@@ -51,13 +51,18 @@ void quarterPolygons(const HPolygon& p, HPolygon kids[4], double areas[4]);
 struct SurfaceRadiometry {
   Vec3 reflectance;  ///< ρ per channel in [0, 1)
   Vec3 emission;     ///< E per channel, W/m²
+  /// All of `emission` is reflected daylight: not an emitter for the ray budgets, which
+  /// spend more on the few surfaces that emit.
+  bool daylightOnly = false;
 };
 
 class Hierarchy {
  public:
   /// \brief Builds the cluster tree over the faces of `base` (one patch per input face).
   /// Deterministic: the same input gives the same node numbering whatever the thread count.
-  Hierarchy(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces);
+  /// `byFace`: `surfaces` has one entry per face rather than per surface (daylight makes each
+  /// face's emission its own).
+  Hierarchy(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces, bool byFace = false);
 
   const PatchMesh& base() const { return m_base; }
   int root() const { return 0; }
@@ -68,7 +73,8 @@ class Hierarchy {
   }
   const HPolygon& polygon(int node) const { return m_polygons[m_nodes[node].polygon]; }
   const SurfaceRadiometry& radiometry(int node) const {
-    return m_surfaces[m_base.patches[m_nodes[node].face].surface];
+    const int face = m_nodes[node].face;
+    return m_surfaces[m_byFace ? face : m_base.patches[face].surface];
   }
   /// Child k of a node (k < childCount).
   int child(int node, int k) const {
@@ -104,6 +110,7 @@ class Hierarchy {
 
   PatchMesh m_base;
   std::vector<SurfaceRadiometry> m_surfaces;
+  bool m_byFace = false;
   std::vector<HNode> m_nodes;
   std::vector<HPolygon> m_polygons;
   std::vector<int> m_faceNode;

@@ -125,12 +125,17 @@ void writeSurfacesCsv(const std::string& path, const Scene& scene,
   std::ostringstream o;
   o << std::setprecision(kDigits) << c::kSurface << ',' << c::kArea << ',' << c::kRadiosity[0]
     << ',' << c::kRadiosity[1] << ',' << c::kRadiosity[2];
+  // Daylight's answer is illuminance (lux): a sky scene always has the photometric columns.
+  const bool daylit = !results.empty() && results.front().daylit;
+  photometric = photometric || daylit;
   if (photometric) o << ',' << c::kLuminance << ',' << c::kIlluminance;
+  if (daylit) o << ',' << c::kSkyViewFactor << ',' << c::kDaylightIlluminance;
   o << '\n';
   for (const SurfaceResult& r : results) {
     o << csvField(r.name) << ',' << r.area;
     writeTriple(o, r.radiosity);
     if (photometric) o << ',' << r.luminance << ',' << r.illuminance;
+    if (daylit) o << ',' << r.skyViewFactor << ',' << r.daylightIlluminance;
     o << '\n';
   }
   writeFileAtomically(path, o.str());

@@ -57,8 +57,13 @@ constexpr const char* kArea = "area_m2";
 constexpr const char* kRadiosity[3] = {"b_r_W_m2", "b_g_W_m2", "b_b_W_m2"};
 constexpr const char* kLuminance = "luminance_cd_m2";  ///< with --photometric
 constexpr const char* kIlluminance = "illuminance_lux";
+/// With a sky: the sky view factor and the illuminance of the daylight arriving directly.
+constexpr const char* kSkyViewFactor = "sky_view_factor";
+constexpr const char* kDaylightIlluminance = "daylight_illuminance_lux";
 }  // namespace surfaces_csv
-/// `surface,area_m2,b_r_W_m2,b_g_W_m2,b_b_W_m2[,luminance_cd_m2,illuminance_lux]`.
+/// `surface,area_m2,b_r_W_m2,b_g_W_m2,b_b_W_m2[,luminance_cd_m2,illuminance_lux]
+/// [,sky_view_factor,daylight_illuminance_lux]`: photometric columns with --photometric or a
+/// sky, the daylight columns with a sky.
 void writeSurfacesCsv(const std::string& path, const Scene& scene,
                       const std::vector<SurfaceResult>& results, bool photometric);
 

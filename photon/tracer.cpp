@@ -119,9 +119,12 @@ void addStats(PhotonTraceStats& a, const PhotonTraceStats& b) {
 EmitterSampler photonEmitters(const Scene& scene, const PatchMesh& mesh) {
   EmitterSampler emitters(scene, mesh);
   if (emitters.empty())
-    throw InputError(scene.file +
-                     ": no surface emits, so no photon can start. Fix: give a material an "
-                     "\"emission\" above zero");
+    throw InputError(
+        scene.file + ": no surface emits, so no photon can start" +
+        (scene.sky ? " (photons do not start from the \"sky\" yet: daylight is solved by "
+                     "`radkit run`)"
+                   : "") +
+        ". Fix: give a material an \"emission\" above zero");
   return emitters;
 }
 

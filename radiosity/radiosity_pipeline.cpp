@@ -140,6 +140,38 @@ double gatheredLightNoise(const FormFactorMatrix& f, const PatchMesh& mesh,
   return relative.back().first;
 }
 
+namespace {
+
+/// The sky's light on every patch, and its ρ-fold added to the system's emission.
+void addDaylight(const Scene& scene, const PipelineSettings& settings, PipelineResult& r,
+                 const PipelineLog& log) {
+  r.sky = std::make_unique<SkyModel>(*scene.sky);
+  r.daylight = std::make_unique<Daylight>(
+      computeDaylight(r.mesh, *r.rays, *r.sky, settings.formFactors.seed));
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < r.mesh.size(); ++i)
+      r.system.emission[c][i] += r.system.reflectance[c][i] * r.daylight->total(i)[c];
+  if (log.progress) log.progress("daylight", 1.0);
+}
+
+void addDaylightToSurfaces(const PatchMesh& mesh, const Daylight& d,
+                           std::vector<SurfaceResult>& surfaces) {
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    SurfaceResult& out = surfaces[s];
+    double area = 0, svf = 0;
+    Vec3 light{0, 0, 0};
+    for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i) {
+      const double a = mesh.patches[i].area;
+      area += a, svf += d.skyViewFactor[i] * a, light += d.total(i) * a;
+    }
+    out.daylit = true;
+    if (area > 0) out.skyViewFactor = svf / area, out.daylight = light / area;
+    out.daylightIlluminance = kLumensPerWatt * luminance(out.daylight);
+  }
+}
+
+}  // namespace
+
 SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system,
                       const SolverSettings& stopping, const PipelineLog& log) {
   std::unique_ptr<Solver> solver = makeSolver(choice.name, SolverParams::parse(choice.parameters));
@@ -184,6 +216,11 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
   r.seconds.formFactors = secondsSince(t);
 
   r.system = makeRadiositySystem(scene, r.mesh, r.formFactors->matrix);
+  if (scene.sky) {
+    t = Clock::now();
+    addDaylight(scene, settings, r, log);
+    r.seconds.daylight = secondsSince(t);
+  }
   r.warnings = numericalWarnings(scene, r);
   for (const std::string& w : r.warnings) say("warning: " + w);
   if (settings.solvers.empty()) return r;  // form factors only
@@ -199,8 +236,20 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
   t = Clock::now();
   r.radiosity = toVec3(r.solves.front().radiosity);
   r.irradiance = irradiance(r.formFactors->matrix, r.solves.front().radiosity);
+  const std::vector<Vec3>* daylight = nullptr;
+  std::vector<Vec3> arriving;
+  if (r.daylight) {
+    arriving.resize(r.mesh.size());
+    for (int i = 0; i < r.mesh.size(); ++i) {
+      arriving[i] = r.daylight->total(i);
+      r.irradiance[i] += arriving[i];
+    }
+    daylight = &arriving;
+  }
   r.surfaces = surfaceResults(scene, r.mesh, r.radiosity, r.irradiance);
-  r.energy = energyBalance(scene, r.mesh, r.formFactors->matrix, r.radiosity, r.irradiance);
+  if (r.daylight) addDaylightToSurfaces(r.mesh, *r.daylight, r.surfaces);
+  r.energy =
+      energyBalance(scene, r.mesh, r.formFactors->matrix, r.radiosity, r.irradiance, daylight);
   if (settings.formFactors.method == "hemisphere") {
     r.formFactorNoise = gatheredLightNoise(r.formFactors->matrix, r.mesh, r.radiosity,
                                            settings.formFactors.samples);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "daylight/daylight.h"
+#include "daylight/sky.h"
 #include "geometry/patch_mesh.h"
 #include "geometry/ray_scene.h"
 #include "geometry/scene.h"
@@ -39,7 +41,7 @@ struct PipelineLog {
 
 /// Wall seconds per stage, in pipeline order.
 struct StageSeconds {
-  double mesh = 0, rayScene = 0, formFactors = 0, solve = 0, results = 0;
+  double mesh = 0, rayScene = 0, formFactors = 0, daylight = 0, solve = 0, results = 0;
 };
 
 struct PipelineResult {
@@ -49,7 +51,11 @@ struct PipelineResult {
   RadiositySystem system;
   std::vector<SolveResult> solves;
   std::vector<Vec3> radiosity;   ///< the first solver's B per patch
-  std::vector<Vec3> irradiance;  ///< H = F B
+  std::vector<Vec3> irradiance;  ///< H = F B, plus the daylight with a sky
+  /// With a sky (scene.sky): the sky's model and each patch's daylight, whose ρ-fold is
+  /// added to the system's emission (B = E + ρ(FB + D)).
+  std::unique_ptr<SkyModel> sky;
+  std::unique_ptr<Daylight> daylight;
   std::vector<SurfaceResult> surfaces;
   EnergyBalance energy;
   StageSeconds seconds;

@@ -76,7 +76,8 @@ std::vector<SurfaceResult> surfaceResults(const Scene& scene, const PatchMesh& m
 }
 
 EnergyBalance energyBalance(const Scene& scene, const PatchMesh& mesh, const FormFactorMatrix& f,
-                            const std::vector<Vec3>& b, const std::vector<Vec3>& h) {
+                            const std::vector<Vec3>& b, const std::vector<Vec3>& h,
+                            const std::vector<Vec3>* daylight) {
   const double m2 = scene.metresPerUnit() * scene.metresPerUnit();
   std::vector<double> rows = rowSums(f);
   EnergyBalance e;
@@ -85,6 +86,7 @@ EnergyBalance energyBalance(const Scene& scene, const PatchMesh& mesh, const For
     const Material& m = materialOf(scene, p);
     double a = p.area * m2;
     e.emitted += m.emission * a;
+    if (daylight) e.emitted += (*daylight)[i] * a;
     e.absorbed += mul(Vec3{1, 1, 1} - m.diffuseAlbedo(), h[i]) * a;
     e.escaped += b[i] * (a * std::max(0.0, 1 - rows[i]));
   }

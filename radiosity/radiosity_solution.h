@@ -32,6 +32,11 @@ struct SurfaceResult {
   Vec3 irradiance;         ///< W/m²
   double luminance = 0;    ///< cd/m²: 683 · Y(B) / π (Lambertian, L = B/π)
   double illuminance = 0;  ///< lux: 683 · Y(H)
+  // With a sky (scene.sky): the daylight arriving directly, before interreflection.
+  bool daylit = false;
+  double skyViewFactor = 0;        ///< area-weighted mean over the surface
+  Vec3 daylight;                   ///< W/m², sky and sun
+  double daylightIlluminance = 0;  ///< lux: 683 · Y(daylight)
 };
 
 /// \brief Per-surface results; Y is the Rec. 709 luminance of the RGB triple.
@@ -47,8 +52,11 @@ struct EnergyBalance {
   double relativeImbalance = 0;  ///< max over channels |emitted − absorbed − escaped| / emitted
 };
 
+/// \param irradiance  everything arriving at each patch (with `daylight` included)
+/// \param daylight    light arriving from outside the scene (a sky, the sun), or nullptr; it
+///                    counts as emitted: the power the scene takes in
 EnergyBalance energyBalance(const Scene& scene, const PatchMesh& mesh, const FormFactorMatrix& f,
-                            const std::vector<Vec3>& radiosity,
-                            const std::vector<Vec3>& irradiance);
+                            const std::vector<Vec3>& radiosity, const std::vector<Vec3>& irradiance,
+                            const std::vector<Vec3>* daylight = nullptr);
 
 }  // namespace radkit

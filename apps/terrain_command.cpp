@@ -1,0 +1,312 @@
+// radkit terrain: a procedural landscape (ridged multifractal or fBm heightfield) written as
+// meshes by material (grass, rock, snow by slope and height) and a scene file that puts them
+// under a sky, ready for `radkit run` (docs/terrain.md).
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/common.h"
+#include "apps/report.h"
+#include "atmosphere/atmosphere.h"
+#include "render/camera.h"
+#include "render/hdr_io.h"
+#include "terrain/heightfield.h"
+#include "terrain/landscape.h"
+#include "util/canvas.h"
+#include "util/format.h"
+#include "util/output_folder.h"
+
+namespace radkit::app {
+
+namespace {
+
+using nlohmann::json;
+using terrain::TerrainMaterial;
+
+struct TerrainCommand {
+  terrain::TerrainSettings settings;
+  std::string type = "ridged", format = "obj", sky = "physical", out = "out/terrain";
+  double sunElevation = 35, sunAzimuth = 150;
+  int skySamples = 128, sunSamples = 16;
+  bool image = false;
+  terrain::LandscapeSettings landscape;
+  double exposure = 0;  ///< 0: automatic
+};
+
+/// The heightfield as a viridis PNG, north up.
+void writeHeightMap(const std::string& path, const terrain::Heightfield& f, double height) {
+  Canvas c(f.n, f.n);
+  for (int j = 0; j < f.n; ++j)
+    for (int i = 0; i < f.n; ++i)
+      c.set(i, f.n - 1 - j, viridis(height > 0 ? f.z[std::size_t(j) * f.n + i] / height : 0));
+  writePng(path, c);
+}
+
+Camera terrainCamera(const terrain::TerrainSettings& s) {
+  const double half = s.size / 2;
+  Camera c;
+  c.position = {0.0, -1.2 * half, 1.6 * s.height};
+  c.lookAt = {0.0, 0.2 * half, 0.3 * s.height};
+  c.up = {0, 0, 1};
+  c.fovDeg = 55;
+  return c;
+}
+
+RadianceImage toImage(const terrain::LandscapeImage& l, int w, int h, double exposure) {
+  RadianceImage img;
+  img.width = w, img.height = h;
+  img.radiance = l.radiance;
+  img.patch.assign(l.radiance.size(), -1);
+  img.exposure = exposure;
+  return img;
+}
+
+/// Both landscape images, their difference, and what each cost.
+json renderLandscapes(TerrainCommand& cmd, OutputFolder& folder,
+                      const terrain::Heightfield& field) {
+  terrain::LandscapeSettings& ls = cmd.landscape;
+  ls.sunElevationDeg = cmd.sunElevation, ls.sunAzimuthDeg = cmd.sunAzimuth;
+  ls.seed = cmd.settings.fractal.seed;
+  const terrain::TerrainSurface surface(field, cmd.settings);
+  const atmosphere::Atmosphere air;
+  const PinholeCamera camera(terrainCamera(cmd.settings), ls.width, ls.height);
+  const auto direction = [&](double x, double y) { return camera.direction(x, y); };
+  const terrain::LandscapeImage march =
+      terrain::renderLandscape(surface, air, camera.origin(), direction, ls, false);
+  const terrain::LandscapeImage embree =
+      terrain::renderLandscape(surface, air, camera.origin(), direction, ls, true);
+  // Exposure: the reference's mean luminance to 0.18 (a mid grey), unless given.
+  double mean = 0;
+  for (const Vec3& v : embree.radiance) mean += luminance(v);
+  mean /= double(embree.radiance.size());
+  const double exposure = cmd.exposure > 0 ? cmd.exposure : (mean > 0 ? 0.18 / mean : 1);
+  json out = json::object();
+  double sumSq = 0, refSq = 0, hitMismatch = 0, depthError = 0, both = 0;
+  RadianceImage diff = toImage(embree, ls.width, ls.height, 1);
+  for (std::size_t i = 0; i < embree.radiance.size(); ++i) {
+    const Vec3 e = march.radiance[i] - embree.radiance[i];
+    sumSq += dot(e, e) / 3, refSq += dot(embree.radiance[i], embree.radiance[i]) / 3;
+    const double rel = luminance(embree.radiance[i]) > 0
+                           ? std::fabs(luminance(e)) / luminance(embree.radiance[i])
+                           : 0;
+    diff.radiance[i] = Vec3{1, 1, 1} * std::min(1.0, 5 * rel);  // 20 % is white
+    const bool a = march.depth[i] >= 0, b = embree.depth[i] >= 0;
+    hitMismatch += a != b;
+    if (a && b)
+      both += 1, depthError += std::fabs(march.depth[i] - embree.depth[i]) / embree.depth[i];
+  }
+  const std::size_t pixels = embree.radiance.size();
+  for (const auto& [name, image] :
+       {std::pair<std::string, const terrain::LandscapeImage*>{"march", &march},
+        {"embree", &embree}}) {
+    const RadianceImage img = toImage(*image, ls.width, ls.height, exposure);
+    writePfm(folder.path("landscape-" + name + ".pfm"), img);
+    writePng(folder.path("landscape-" + name + ".png"),
+             toneMapCurve(img, exposure, ToneCurve::Filmic));
+    out[name] = {{"seconds", image->seconds},
+                 {"visibility_thread_seconds", image->visibilitySeconds},
+                 {"rays", image->rays},
+                 {"rays_per_second", image->rays / std::max(image->seconds, 1e-9)}};
+    if (name == "march") out[name]["steps"] = image->steps;
+  }
+  writePng(folder.path("landscape-difference.png"), toneMapCurve(diff, 1, ToneCurve::Srgb));
+  out["relative_rmse"] = refSq > 0 ? std::sqrt(sumSq / refSq) : 0.0;
+  out["hit_mismatch_pixels"] = hitMismatch;
+  out["mean_relative_depth_difference"] = both > 0 ? depthError / both : 0.0;
+  out["pixels"] = pixels;
+  out["settings"] = {{"width", ls.width},
+                     {"height", ls.height},
+                     {"max_steps", ls.maxSteps},
+                     {"sun_samples", ls.sunSamples},
+                     {"aerial_samples", ls.aerialSamples},
+                     {"aerial_perspective", ls.aerialPerspective},
+                     {"exposure", exposure}};
+  return out;
+}
+
+json skyJson(const TerrainCommand& cmd) {
+  json sky{{"type", cmd.sky},
+           {"up", {0, 0, 1}},
+           {"north", {0, 1, 0}},
+           {"samples", cmd.skySamples},
+           {"sun_samples", cmd.sunSamples}};
+  if (cmd.sky == "physical") {
+    sky["sun"] = {{"elevation", cmd.sunElevation}, {"azimuth", cmd.sunAzimuth}};
+  } else if (cmd.sky == "cie-overcast") {
+    sky["zenith_luminance"] = 4093;  // 10 000 lux on an open horizontal plane
+  } else {
+    sky["luminance"] = 3183;  // 10 000 lux: πL = E
+  }
+  return sky;
+}
+
+void runTerrain(TerrainCommand& cmd) {
+  const auto start = std::chrono::steady_clock::now();
+  terrain::TerrainSettings& s = cmd.settings;
+  s.type = cmd.type == "fbm" ? terrain::NoiseType::Fbm : terrain::NoiseType::Ridged;
+  OutputFolder folder(cmd.out);
+  const terrain::Heightfield field = terrain::makeHeightfield(s);
+  const terrain::TerrainMesh mesh = terrain::triangulate(field, s);
+  const double generateSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  json materials = json::object(), surfaces = json::array(), counts = json::object();
+  for (int m = 0; m < 3; ++m) {
+    const std::string name = terrain::kTerrainMaterialNames[m];
+    const std::string file = "terrain-" + name + "." + cmd.format;
+    const std::size_t n = terrain::writeTerrainPart(folder.path(file), mesh, TerrainMaterial(m));
+    counts[name] = n;
+    if (n == 0) {
+      std::filesystem::remove(folder.path(file));
+      continue;
+    }
+    materials[name] = {{"reflectance", vec3Json(terrain::kTerrainReflectance[m])}};
+    surfaces.push_back({{"name", name}, {"material", name}, {"mesh", file}});
+  }
+  json scene{
+      {"name", "terrain"},
+      {"description", "radkit terrain: " + cmd.type + " heightfield, seed " +
+                          std::to_string(s.fractal.seed) + ", " + std::to_string(s.resolution) +
+                          "² vertices over " + formatNumber(s.size) + " m"},
+      {"units", "m"},
+      {"materials", materials},
+      {"surfaces", surfaces},
+      {"camera",
+       {{"position", vec3Json(terrainCamera(s).position)},
+        {"look_at", vec3Json(terrainCamera(s).lookAt)},
+        {"up", {0, 0, 1}},
+        {"fov_deg", terrainCamera(s).fovDeg}}},
+      {"sky", skyJson(cmd)}};
+  writeFileAtomically(folder.path("terrain.json"), scene.dump(1) + "\n");
+  writeHeightMap(folder.path("heightmap.png"), field, s.height);
+  const terrain::FractalSettings& f = s.fractal;
+  json report{{"radkit", RADKIT_VERSION},
+              {"command", "terrain"},
+              {"settings",
+               {{"type", cmd.type},
+                {"octaves", f.octaves},
+                {"lacunarity", f.lacunarity},
+                {"H", f.H},
+                {"gain", f.gain},
+                {"offset", f.offset},
+                {"seed", f.seed},
+                {"resolution", s.resolution},
+                {"size_m", s.size},
+                {"height_m", s.height},
+                {"feature_size_m", s.featureSize},
+                {"snow_line", s.snowLine},
+                {"rock_slope_deg", s.rockSlopeDeg},
+                {"format", cmd.format}}},
+              {"triangles", mesh.triangles.size()},
+              {"triangles_by_material", counts},
+              {"seconds", {{"generate", generateSeconds}}}};
+  if (cmd.image) report["landscape"] = renderLandscapes(cmd, folder, field);
+  writeFileAtomically(folder.path("report.json"), report.dump(2) + "\n");
+  folder.commit();
+  printField("terrain", cmd.type + ", seed " + std::to_string(f.seed) + ", " +
+                            std::to_string(s.resolution) + "² vertices, " +
+                            std::to_string(mesh.triangles.size()) + " triangles");
+  printField("materials", "grass " + counts["grass"].dump() + ", rock " + counts["rock"].dump() +
+                              ", snow " + counts["snow"].dump() + " triangles");
+  printField("seconds", formatNumber(generateSeconds));
+  if (cmd.image) {
+    const json& l = report["landscape"];
+    auto seconds = [&](const char* who) {
+      return formatNumber(l[who]["seconds"].get<double>()) + " s (hits and shadows " +
+             formatNumber(l[who]["visibility_thread_seconds"].get<double>()) + " thread-s)";
+    };
+    printField("landscape", "march " + seconds("march") + ", Embree " + seconds("embree") +
+                                ", relative RMSE " +
+                                formatNumber(l["relative_rmse"].get<double>()));
+  }
+  printField("wrote", cmd.out + "/terrain.json (run it: radkit run " + cmd.out + "/terrain.json)");
+}
+
+}  // namespace
+
+void addTerrainCommand(CLI::App& app) {
+  auto cmd = std::make_shared<TerrainCommand>();
+  CLI::App* sub = app.add_subcommand(
+      "terrain", "Generate a procedural landscape (meshes and a scene under a sky)");
+  terrain::TerrainSettings& s = cmd->settings;
+  sub->add_option("--type", cmd->type, "Noise: ridged (multifractal) or fbm")
+      ->check(CLI::IsMember({"ridged", "fbm"}))
+      ->capture_default_str();
+  sub->add_option("--octaves", s.fractal.octaves, "Octaves of noise")
+      ->check(CLI::Range(1, 24))
+      ->capture_default_str();
+  sub->add_option("--lacunarity", s.fractal.lacunarity, "Frequency ratio between octaves")
+      ->check(FiniteRange(1.01, 16))
+      ->capture_default_str();
+  sub->add_option("--H", s.fractal.H, "Fractal increment: octave i weighs lacunarity^(-iH)")
+      ->check(FiniteRange(0, 4))
+      ->capture_default_str();
+  sub->add_option("--gain", s.fractal.gain, "Ridged: how much a ridge damps finer octaves")
+      ->check(FiniteRange(0, 16))
+      ->capture_default_str();
+  sub->add_option("--offset", s.fractal.offset, "Ridged: ridge height before squaring")
+      ->check(FiniteRange(0, 4))
+      ->capture_default_str();
+  sub->add_option("--seed", s.fractal.seed, "Seed: the same seed gives the same terrain")
+      ->capture_default_str();
+  sub->add_option("--resolution", s.resolution, "Vertices along each side (2 triangles a cell)")
+      ->check(CLI::Range(2, 4097))
+      ->capture_default_str();
+  sub->add_option("--size", s.size, "Metres along each side")
+      ->check(FinitePositive)
+      ->capture_default_str();
+  sub->add_option("--height", s.height, "Metres from the lowest to the highest point")
+      ->check(FiniteNonNegative)
+      ->capture_default_str();
+  sub->add_option("--feature-size", s.featureSize, "Metres: wavelength of the first octave")
+      ->check(FinitePositive)
+      ->capture_default_str();
+  sub->add_option("--snow-line", s.snowLine, "Fraction of the height above which snow lies")
+      ->check(FiniteRange(0, 1))
+      ->capture_default_str();
+  sub->add_option("--rock-slope", s.rockSlopeDeg, "Degrees: steeper faces are rock")
+      ->check(FiniteRange(0, 90))
+      ->capture_default_str();
+  sub->add_option("--format", cmd->format, "Mesh files: obj or ply")
+      ->check(CLI::IsMember({"obj", "ply"}))
+      ->capture_default_str();
+  sub->add_option("--sky", cmd->sky, "The scene's sky: physical, cie-overcast or uniform")
+      ->check(CLI::IsMember({"physical", "cie-overcast", "uniform"}))
+      ->capture_default_str();
+  sub->add_option("--sun-elevation", cmd->sunElevation, "Physical sky: sun elevation, degrees")
+      ->check(FiniteRange(-90, 90))
+      ->capture_default_str();
+  sub->add_option("--sun-azimuth", cmd->sunAzimuth, "Physical sky: degrees clockwise from north")
+      ->check(FiniteRange(-360, 360))
+      ->capture_default_str();
+  sub->add_option("--sky-samples", cmd->skySamples, "The scene's sky rays per patch")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  sub->add_flag("--image", cmd->image,
+                "Render the landscape by ray marching and by Embree (the reference) and compare");
+  sub->add_option("--image-width", cmd->landscape.width, "Landscape image width")
+      ->check(CLI::Range(8, 8192))
+      ->capture_default_str();
+  sub->add_option("--image-height", cmd->landscape.height, "Landscape image height")
+      ->check(CLI::Range(8, 8192))
+      ->capture_default_str();
+  sub->add_option("--march-steps", cmd->landscape.maxSteps, "Ray-marching steps per ray")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  sub->add_option("--sun-rays", cmd->landscape.sunSamples, "Reference: shadow rays per pixel")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  sub->add_option("--aerial-samples", cmd->landscape.aerialSamples,
+                  "Samples along each view ray for aerial perspective")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  sub->add_option("--exposure", cmd->exposure, "Image exposure (default: automatic)")
+      ->check(FiniteNonNegative);
+  sub->add_option("--out", cmd->out, "Output folder")->capture_default_str();
+  sub->callback([cmd] { runTerrain(*cmd); });
+}
+
+}  // namespace radkit::app
