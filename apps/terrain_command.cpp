@@ -166,20 +166,23 @@ void runTerrain(TerrainCommand& cmd) {
     materials[name] = {{"reflectance", vec3Json(terrain::kTerrainReflectance[m])}};
     surfaces.push_back({{"name", name}, {"material", name}, {"mesh", file}});
   }
-  json scene{
-      {"name", "terrain"},
-      {"description", "radkit terrain: " + cmd.type + " heightfield, seed " +
-                          std::to_string(s.fractal.seed) + ", " + std::to_string(s.resolution) +
-                          "² vertices over " + formatNumber(s.size) + " m"},
-      {"units", "m"},
-      {"materials", materials},
-      {"surfaces", surfaces},
-      {"camera",
-       {{"position", vec3Json(terrainCamera(s).position)},
-        {"look_at", vec3Json(terrainCamera(s).lookAt)},
-        {"up", {0, 0, 1}},
-        {"fov_deg", terrainCamera(s).fovDeg}}},
-      {"sky", skyJson(cmd)}};
+  // In the order a person reads a scene file (nlohmann::json would sort the keys).
+  const auto ordered = [](const json& j) { return nlohmann::ordered_json::parse(j.dump()); };
+  nlohmann::ordered_json scene;
+  // Named after its folder, so `radkit run` writes to out/<folder>.
+  const std::string folderName = std::filesystem::path(cmd.out).filename().string();
+  scene["name"] = folderName.empty() ? "terrain" : folderName;
+  scene["description"] = "radkit terrain: " + cmd.type + " heightfield, seed " +
+                         std::to_string(s.fractal.seed) + ", " + std::to_string(s.resolution) +
+                         "² vertices over " + formatNumber(s.size) + " m";
+  scene["units"] = "m";
+  scene["materials"] = ordered(materials);
+  scene["surfaces"] = ordered(surfaces);
+  scene["camera"] = ordered({{"position", vec3Json(terrainCamera(s).position)},
+                             {"look_at", vec3Json(terrainCamera(s).lookAt)},
+                             {"up", {0, 0, 1}},
+                             {"fov_deg", terrainCamera(s).fovDeg}});
+  scene["sky"] = ordered(skyJson(cmd));
   writeFileAtomically(folder.path("terrain.json"), scene.dump(1) + "\n");
   writeHeightMap(folder.path("heightmap.png"), field, s.height);
   const terrain::FractalSettings& f = s.fractal;
