@@ -16,6 +16,7 @@
 #include "atmosphere/atmosphere.h"
 #include "atmosphere/comparison.h"
 #include "atmosphere/sky_image.h"
+#include "render/exr_io.h"
 #include "render/hdr_io.h"
 #include "render/radiosity_image.h"
 #include "util/canvas.h"
@@ -33,14 +34,12 @@ struct SkyCommand {
   int size = 512;
   std::string projection = "all", out = "out/sky";
   atmo::SkySettings sky;
-  bool noMultipleScattering = false;
+  bool noMultipleScattering = false, exr = false;
   std::vector<double> cameraDirection{180, 20};  ///< azimuth, elevation (degrees)
   long long compare = 0;
   std::vector<double> compareElevations{2, 10, 30, 60, 90};
   std::uint64_t seed = 1;
 };
-
-json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 
 /// Maps the 95th percentile of the luminance of the pixels with a direction to 0.8, as
 /// render's automatic exposure does.
@@ -61,12 +60,12 @@ json comparisonJson(const std::vector<atmo::ComparisonRow>& rows) {
   for (const atmo::ComparisonRow& r : rows)
     a.push_back({{"sun_elevation_deg", r.sunElevationDeg},
                  {"quantity", r.quantity},
-                 {"direction", triple(r.direction)},
-                 {"single_scattering", triple(r.singleScattering)},
-                 {"single_scattering_fine", triple(r.singleScatteringFine)},
-                 {"single_plus_multiple_scattering", triple(r.withMultipleScattering)},
-                 {"reference", triple(r.reference.mean)},
-                 {"reference_standard_error", triple(r.reference.standardError)},
+                 {"direction", vec3Json(r.direction)},
+                 {"single_scattering", vec3Json(r.singleScattering)},
+                 {"single_scattering_fine", vec3Json(r.singleScatteringFine)},
+                 {"single_plus_multiple_scattering", vec3Json(r.withMultipleScattering)},
+                 {"reference", vec3Json(r.reference.mean)},
+                 {"reference_standard_error", vec3Json(r.reference.standardError)},
                  {"reference_paths", r.reference.paths},
                  {"reference_seconds", r.seconds}});
   return a;
@@ -108,6 +107,7 @@ void run(const SkyCommand& cmd) {
     image.exposure = cmd.exposure > 0 ? cmd.exposure : skyExposure(image.radiance, s);
     const std::string name = std::string("sky-") + atmo::projectionName(projection);
     writePfm(folder.path(name + ".pfm"), image);
+    if (cmd.exr) writeExr(folder.path(name + ".exr"), image);
     writePng(folder.path(name + ".png"), toneMapCurve(image, image.exposure, ToneCurve::Filmic));
     images.push_back({{"projection", atmo::projectionName(projection)},
                       {"width", s.width},
@@ -145,13 +145,13 @@ void run(const SkyCommand& cmd) {
                 {"seed", cmd.seed}}},
               {"images", images},
               {"radiance",
-               {{"zenith", triple(zenith)},
-                {"horizon_toward_sun_2deg", triple(towardSun)},
-                {"horizon_away_from_sun_2deg", triple(awayFromSun)}}},
+               {{"zenith", vec3Json(zenith)},
+                {"horizon_toward_sun_2deg", vec3Json(towardSun)},
+                {"horizon_away_from_sun_2deg", vec3Json(awayFromSun)}}},
               {"irradiance",
-               {{"diffuse_horizontal", triple(diffuse)},
-                {"direct_horizontal", triple(direct)},
-                {"direct_normal", triple(air.sunIrradiance(eye, sun))}}}};
+               {{"diffuse_horizontal", vec3Json(diffuse)},
+                {"direct_horizontal", vec3Json(direct)},
+                {"direct_normal", vec3Json(air.sunIrradiance(eye, sun))}}}};
   printField("zenith",
              fmt("%.4g", zenith.x) + fmt(" %.4g", zenith.y) + fmt(" %.4g W m⁻² sr⁻¹", zenith.z));
   printField("diffuse E_h",
@@ -242,6 +242,7 @@ void addSkyCommand(CLI::App& app) {
   sub->add_option("--seed", cmd->seed, "Random seed of the reference path tracer")
       ->check(Unsigned)
       ->capture_default_str();
+  sub->add_flag("--exr", cmd->exr, "Also write each image as OpenEXR (linear, float)");
   sub->add_option("--out", cmd->out, "Output folder")->capture_default_str();
   sub->callback([cmd] {
     if (std::fabs(cmd->cameraDirection[1]) > 90)

@@ -70,11 +70,12 @@ TEST(SkyCli, WritesImagesAndRefusesBadSuns) {
   test::TempDir dir;
   const std::string out = dir.path("sky");
   test::RunResult r =
-      test::runRadkit("sky --size 24 --elevation 20 --projection all --out " + out, 300);
+      test::runRadkit("sky --size 24 --elevation 20 --projection all --exr --out " + out, 300);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const char* p : {"fisheye", "panorama", "camera"}) {
     EXPECT_TRUE(fs::exists(out + "/sky-" + std::string(p) + ".pfm")) << p;
     EXPECT_TRUE(fs::exists(out + "/sky-" + std::string(p) + ".png")) << p;
+    EXPECT_TRUE(fs::exists(out + "/sky-" + std::string(p) + ".exr")) << p;
   }
   EXPECT_TRUE(fs::exists(out + "/report.json"));
   r = test::runRadkit("sky --elevation 95 --out " + dir.path("bad"), 60);
