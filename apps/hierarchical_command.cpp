@@ -75,6 +75,7 @@ void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalRe
   s.smooth = true;          // leaves differ in size by orders of magnitude: flat shading shows the
                             // hierarchy, not the light
   RayScene rays(r.leaves);  // the image needs the leaf under each pixel
+  if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
   writeRadiosityPng(folder.path("render.png"), scene, r.leaves, rays, r.radiosity, s);
 }
 

@@ -97,6 +97,7 @@ void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult&
   ImageSettings s;
   s.width = s.height = cmd.imageSize;
   s.smooth = cmd.smooth;
+  if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
   writeRadiosityPng(folder.path("render.png"), scene, r.mesh, *r.rays, r.radiosity, s);
 }
 

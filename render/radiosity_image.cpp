@@ -34,7 +34,10 @@ RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, con
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
           Vec3 dir = cam.direction(x + (i + 0.5) / n, y + (j + 0.5) / n);
-          if (auto hit = rays.closestHit(cam.origin(), dir, 0.0)) sum += shade(dir, *hit);
+          if (auto hit = rays.closestHit(cam.origin(), dir, 0.0))
+            sum += shade(dir, *hit);
+          else if (s.background)
+            sum += s.background(dir);
         }
       img.radiance[std::size_t(y) * s.width + x] = sum / double(n * n);
       if (auto hit = rays.closestHit(cam.origin(), cam.direction(x + 0.5, y + 0.5), 0.0))

@@ -2,6 +2,7 @@
 // (vertex-interpolated) shading, exposure and sRGB. Also picking: the patch under a pixel.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,9 @@ struct ImageSettings {
   bool smooth = false;       ///< interpolate radiosity between patches (SmoothRadiosity)
   SmoothSettings smoothing;  ///< crease angle and jump test of the smooth reconstruction
   double exposure = 0;       ///< multiplier on radiance; 0 picks one automatically
+  /// Radiance of a ray that leaves the scene along a unit direction (a scene's sky); black
+  /// when empty.
+  std::function<Vec3(const Vec3& direction)> background;
 };
 
 /// Linear radiance image (W/m²/sr per channel) and the patch seen at each pixel centre.
