@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-folders=${RADKIT_SANITIZE_FOLDERS:-solvers;bsdf;geometry;atmosphere;daylight;terrain;radiosity;output;hierarchy;render;photon;viewer;apps;extending}
+folders=${RADKIT_SANITIZE_FOLDERS:-solvers;bsdf;geometry;atmosphere;media;daylight;terrain;radiosity;output;hierarchy;render;photon;viewer;apps;extending}
 CC=clang CXX=clang++ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DRADKIT_TESTS=ON -DRADKIT_TEST_FOLDERS="$folders" \
   -DRADKIT_WERROR="${RADKIT_WERROR:-OFF}" -DRADKIT_SANITIZE="address;undefined" -DRADKIT_FUZZ=ON -DRADKIT_PYTHON=OFF \
