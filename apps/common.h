@@ -79,5 +79,7 @@ void addBrdfCommand(CLI::App& app);
 void addPhotonsCommand(CLI::App& app);
 void addTerrainCommand(CLI::App& app);
 void addSkyCommand(CLI::App& app);
+void addCloudsCommand(CLI::App& app);
+void addPillarsCommand(CLI::App& app);
 
 }  // namespace radkit::app

@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
   radkit::app::addPhotonsCommand(app);
   radkit::app::addTerrainCommand(app);
   radkit::app::addSkyCommand(app);
+  radkit::app::addCloudsCommand(app);
+  radkit::app::addPillarsCommand(app);
   addThreadsOption(app);
   try {
     app.parse(argc, argv);

@@ -64,6 +64,9 @@ class DoubleHenyeyGreensteinPhase final : public PhaseFunction {
   double sample(double u, double& pdf) const override;
   double meanCosine() const override { return m_w * m_g1 + (1 - m_w) * m_g2; }
   std::string name() const override { return "double-henyey-greenstein"; }
+  double g1() const { return m_g1; }
+  double g2() const { return m_g2; }
+  double w() const { return m_w; }
 
  private:
   double m_g1, m_g2, m_w;

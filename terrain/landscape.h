@@ -1,5 +1,5 @@
-// Landscape images of a heightfield under the atmosphere's sun and sky, two ways: the founding
-// document's heightfield ray marching with soft shadows, and Embree on the exported triangles
+// Landscape images of a heightfield under the atmosphere's sun and sky, two ways: real-time
+// heightfield ray marching with soft shadows, and Embree on the exported triangles
 // with shadow rays to the sun's disc as the reference. Both shade alike (Lambertian albedo by
 // material, sun with transmittance, an isotropic sky term) and add aerial perspective from the
 // same atmosphere, so their difference is the marcher's hits and shadows alone.
@@ -50,7 +50,7 @@ struct MarchHit {
 std::optional<MarchHit> marchTerrain(const TerrainSurface& surface, const Vec3& o, const Vec3& d,
                                      int maxSteps, int* steps = nullptr);
 
-/// \brief The founding document's soft shadow: march from x towards the sun and keep the
+/// \brief The real-time soft shadow: march from x towards the sun and keep the
 /// smallest angle α = gap/t by which the ray clears the terrain; the visible share of a disc
 /// of angular radius δ is taken as clamp(½ + α/(2δ), 0, 1).
 double softShadow(const TerrainSurface& surface, const Vec3& x, const Vec3& sun, double radius,
