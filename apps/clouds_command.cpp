@@ -42,15 +42,6 @@ struct CloudsCommand {
   std::string out = "out/clouds";
 };
 
-RadianceImage toRadianceImage(const media::VolumeImage& v, double exposure) {
-  RadianceImage img;
-  img.width = v.width, img.height = v.height;
-  img.radiance = v.radiance;
-  img.patch.assign(v.radiance.size(), -1);
-  img.exposure = exposure;
-  return img;
-}
-
 /// (Σ a − Σ reference)/Σ reference over pixels and channels: the brightness bias, which the
 /// reference's noise averages out of.
 double relativeBias(const std::vector<Vec3>& a, const std::vector<Vec3>& reference) {
@@ -160,19 +151,14 @@ void runClouds(CloudsCommand& cmd) {
                      {"relative_bias", relativeBias(img.radiance, reference.radiance)},
                      {"speedup", reference.seconds / std::max(img.seconds, 1e-9)}});
   }
-  writePfm(folder.path("clouds-reference.pfm"), toRadianceImage(reference, exposure));
-  writePng(folder.path("clouds-reference.png"),
-           toneMapCurve(toRadianceImage(reference, exposure), exposure, ToneCurve::Filmic));
-  writePfm(folder.path("clouds-realtime.pfm"), toRadianceImage(*defaults, exposure));
-  writePng(folder.path("clouds-realtime.png"),
-           toneMapCurve(toRadianceImage(*defaults, exposure), exposure, ToneCurve::Filmic));
-  RadianceImage diff = toRadianceImage(*defaults, 1);
-  for (std::size_t i = 0; i < diff.radiance.size(); ++i) {
-    const double ref = luminance(reference.radiance[i]);
-    const double rel = ref > 0 ? std::fabs(luminance(defaults->radiance[i]) - ref) / ref : 0;
-    diff.radiance[i] = Vec3{1, 1, 1} * std::min(1.0, 5 * rel);  // 20 % is white
-  }
-  writePng(folder.path("clouds-difference.png"), toneMapCurve(diff, 1, ToneCurve::Srgb));
+  writeLinearAndPng(folder.path("clouds-reference"),
+                    pixelImage(cmd.width, cmd.height, reference.radiance, exposure));
+  writeLinearAndPng(folder.path("clouds-realtime"),
+                    pixelImage(cmd.width, cmd.height, defaults->radiance, exposure));
+  writePng(folder.path("clouds-difference.png"),
+           toneMapCurve(relativeDifferenceImage(cmd.width, cmd.height, defaults->radiance,
+                                                reference.radiance),
+                        1, ToneCurve::Srgb));
 
   const media::CloudLayerSettings& l = cmd.layer;
   json report{{"radkit", RADKIT_VERSION},

@@ -33,15 +33,6 @@ struct PillarsCommand {
   std::string out = "out/pillars";
 };
 
-RadianceImage toRadianceImage(const media::PillarImage& p, double exposure) {
-  RadianceImage img;
-  img.width = p.width, img.height = p.height;
-  img.radiance = p.radiance;
-  img.patch.assign(p.radiance.size(), -1);
-  img.exposure = exposure;
-  return img;
-}
-
 /// Maps the 99th percentile of the lit pixels' luminance to 0.8: pillars cover few pixels.
 double pillarsExposure(const media::PillarImage& image) {
   std::vector<double> lum;
@@ -104,13 +95,10 @@ void run(const PillarsCommand& cmd) {
   const media::PillarComparison cmp = media::pillarCompare(closed, mc);
 
   const double exposure = cmd.exposure > 0 ? cmd.exposure : pillarsExposure(closed);
-  const RadianceImage closedImage = toRadianceImage(closed, exposure);
-  const RadianceImage mcImage = toRadianceImage(mc, exposure);
-  writePfm(folder.path("pillars-closed.pfm"), closedImage);
-  writePng(folder.path("pillars-closed.png"),
-           toneMapCurve(closedImage, exposure, ToneCurve::Filmic));
-  writePfm(folder.path("pillars-mc.pfm"), mcImage);
-  writePng(folder.path("pillars-mc.png"), toneMapCurve(mcImage, exposure, ToneCurve::Filmic));
+  writeLinearAndPng(folder.path("pillars-closed"),
+                    pixelImage(closed.width, closed.height, closed.radiance, exposure));
+  writeLinearAndPng(folder.path("pillars-mc"),
+                    pixelImage(mc.width, mc.height, mc.radiance, exposure));
   writePng(folder.path("pillars-difference.png"), differenceCanvas(closed, mc));
 
   json report{{"radkit", RADKIT_VERSION},

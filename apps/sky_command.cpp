@@ -106,9 +106,8 @@ void run(const SkyCommand& cmd) {
     const atmo::SkyBenchmark bench = atmo::benchmarkSky(air, sun, s, &image.radiance);
     image.exposure = cmd.exposure > 0 ? cmd.exposure : skyExposure(image.radiance, s);
     const std::string name = std::string("sky-") + atmo::projectionName(projection);
-    writePfm(folder.path(name + ".pfm"), image);
+    writeLinearAndPng(folder.path(name), image);
     if (cmd.exr) writeExr(folder.path(name + ".exr"), image);
-    writePng(folder.path(name + ".png"), toneMapCurve(image, image.exposure, ToneCurve::Filmic));
     images.push_back({{"projection", atmo::projectionName(projection)},
                       {"width", s.width},
                       {"height", s.height},

@@ -55,15 +55,6 @@ Camera terrainCamera(const terrain::TerrainSettings& s) {
   return c;
 }
 
-RadianceImage toImage(const terrain::LandscapeImage& l, int w, int h, double exposure) {
-  RadianceImage img;
-  img.width = w, img.height = h;
-  img.radiance = l.radiance;
-  img.patch.assign(l.radiance.size(), -1);
-  img.exposure = exposure;
-  return img;
-}
-
 /// Both landscape images, their difference, and what each cost.
 json renderLandscapes(TerrainCommand& cmd, OutputFolder& folder,
                       const terrain::Heightfield& field) {
@@ -85,14 +76,9 @@ json renderLandscapes(TerrainCommand& cmd, OutputFolder& folder,
   const double exposure = cmd.exposure > 0 ? cmd.exposure : (mean > 0 ? 0.18 / mean : 1);
   json out = json::object();
   double sumSq = 0, refSq = 0, hitMismatch = 0, depthError = 0, both = 0;
-  RadianceImage diff = toImage(embree, ls.width, ls.height, 1);
   for (std::size_t i = 0; i < embree.radiance.size(); ++i) {
     const Vec3 e = march.radiance[i] - embree.radiance[i];
     sumSq += dot(e, e) / 3, refSq += dot(embree.radiance[i], embree.radiance[i]) / 3;
-    const double rel = luminance(embree.radiance[i]) > 0
-                           ? std::fabs(luminance(e)) / luminance(embree.radiance[i])
-                           : 0;
-    diff.radiance[i] = Vec3{1, 1, 1} * std::min(1.0, 5 * rel);  // 20 % is white
     const bool a = march.depth[i] >= 0, b = embree.depth[i] >= 0;
     hitMismatch += a != b;
     if (a && b)
@@ -102,17 +88,18 @@ json renderLandscapes(TerrainCommand& cmd, OutputFolder& folder,
   for (const auto& [name, image] :
        {std::pair<std::string, const terrain::LandscapeImage*>{"march", &march},
         {"embree", &embree}}) {
-    const RadianceImage img = toImage(*image, ls.width, ls.height, exposure);
-    writePfm(folder.path("landscape-" + name + ".pfm"), img);
-    writePng(folder.path("landscape-" + name + ".png"),
-             toneMapCurve(img, exposure, ToneCurve::Filmic));
+    writeLinearAndPng(folder.path("landscape-" + name),
+                      pixelImage(ls.width, ls.height, image->radiance, exposure));
     out[name] = {{"seconds", image->seconds},
                  {"visibility_thread_seconds", image->visibilitySeconds},
                  {"rays", image->rays},
                  {"rays_per_second", image->rays / std::max(image->seconds, 1e-9)}};
     if (name == "march") out[name]["steps"] = image->steps;
   }
-  writePng(folder.path("landscape-difference.png"), toneMapCurve(diff, 1, ToneCurve::Srgb));
+  writePng(
+      folder.path("landscape-difference.png"),
+      toneMapCurve(relativeDifferenceImage(ls.width, ls.height, march.radiance, embree.radiance), 1,
+                   ToneCurve::Srgb));
   out["relative_rmse"] = refSq > 0 ? std::sqrt(sumSq / refSq) : 0.0;
   out["hit_mismatch_pixels"] = hitMismatch;
   out["mean_relative_depth_difference"] = both > 0 ? depthError / both : 0.0;

@@ -13,17 +13,6 @@
 
 namespace radkit {
 
-namespace {
-
-/// A unit direction in the cone of half-angle acos(cosMax) around `axis`, uniform in solid
-/// angle: what the sun's disc of uniform radiance needs.
-Vec3 sampleCone(const Frame& axis, double cosMax, double u0, double u1) {
-  const double mu = 1 - u0 * (1 - cosMax);
-  return axis.toWorld(localDirection(mu, 2 * M_PI * u1));
-}
-
-}  // namespace
-
 Daylight computeDaylight(const PatchMesh& mesh, const RayScene& rays, const SkyModel& sky,
                          std::uint64_t seed) {
   const auto start = std::chrono::steady_clock::now();
@@ -78,7 +67,7 @@ Daylight computeDaylight(const PatchMesh& mesh, const RayScene& rays, const SkyM
       double cosSum = 0;
       for (int j = 0; j < sunSamples; ++j) {
         const double* s = &u[std::size_t(j) * 4];
-        const Vec3 dir = sampleCone(sunFrame, sky.sunCosRadius(), s[2], s[3]);
+        const Vec3 dir = sunFrame.toWorld(sampleUniformCone(sky.sunCosRadius(), s[2], s[3]));
         const double c = dot(dir, p.normal);
         if (c <= 0) continue;
         const Vec3 x = samplePatchUniform(polygon.data(), p.vertexCount, split, s[0], s[1]);

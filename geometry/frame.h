@@ -37,6 +37,12 @@ inline Vec3 sampleCosineHemisphere(double u0, double u1) {
   return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u0))};
 }
 
+/// \brief Direction uniform in solid angle in the cone cos θ ≥ cosMax around z (a disc light
+/// of uniform radiance, the sun). u in [0,1)²; density 1/(2π(1 − cosMax)).
+inline Vec3 sampleUniformCone(double cosMax, double u0, double u1) {
+  return localDirection(1 - u0 * (1 - cosMax), 2 * M_PI * u1);
+}
+
 /// \brief Density per steradian of sampleCosineHemisphere: cos θ / π (0 below the horizon).
 inline double cosineHemispherePdf(const Vec3& local) { return local.z > 0 ? local.z / M_PI : 0.0; }
 

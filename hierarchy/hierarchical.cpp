@@ -230,22 +230,7 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
   if (daylight)
     for (int i = 0; i < r.leaves.size(); ++i) r.irradiance[i] += faceDaylight[leafFace[i]];
   r.surfaces = surfaceResults(scene, r.leaves, r.radiosity, r.irradiance);
-  if (daylight) {
-    // Per surface, area-weighted over the leaves, each with its face's daylight.
-    for (std::size_t s = 0; s < r.surfaces.size(); ++s) {
-      SurfaceResult& out = r.surfaces[s];
-      double area = 0, svf = 0;
-      Vec3 light{0, 0, 0};
-      for (int i = r.leaves.surfaceBegin[s]; i < r.leaves.surfaceBegin[s + 1]; ++i) {
-        const double a = r.leaves.patches[i].area;
-        area += a, svf += daylight->skyViewFactor[leafFace[i]] * a;
-        light += faceDaylight[leafFace[i]] * a;
-      }
-      out.daylit = true;
-      if (area > 0) out.skyViewFactor = svf / area, out.daylight = light / area;
-      out.daylightIlluminance = kLumensPerWatt * luminance(out.daylight);
-    }
-  }
+  if (daylight) addDaylightToSurfaces(r.leaves, *daylight, r.surfaces, &leafFace);
   // Power bookkeeping as for a dense run, with each leaf's escape fraction measured by rays
   // rather than taken from the links (an emitter, ρ = 0, gathers through coarse links that
   // need not add up), so the balance checks the links' transport independently.

@@ -154,23 +154,25 @@ void addDaylight(const Scene& scene, const PipelineSettings& settings, PipelineR
   if (log.progress) log.progress("daylight", 1.0);
 }
 
+}  // namespace
+
 void addDaylightToSurfaces(const PatchMesh& mesh, const Daylight& d,
-                           std::vector<SurfaceResult>& surfaces) {
+                           std::vector<SurfaceResult>& surfaces,
+                           const std::vector<int>* daylightIndex) {
   for (std::size_t s = 0; s < surfaces.size(); ++s) {
     SurfaceResult& out = surfaces[s];
     double area = 0, svf = 0;
     Vec3 light{0, 0, 0};
     for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i) {
+      const int k = daylightIndex ? (*daylightIndex)[i] : i;
       const double a = mesh.patches[i].area;
-      area += a, svf += d.skyViewFactor[i] * a, light += d.total(i) * a;
+      area += a, svf += d.skyViewFactor[k] * a, light += d.total(k) * a;
     }
     out.daylit = true;
     if (area > 0) out.skyViewFactor = svf / area, out.daylight = light / area;
     out.daylightIlluminance = kLumensPerWatt * luminance(out.daylight);
   }
 }
-
-}  // namespace
 
 SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system,
                       const SolverSettings& stopping, const PipelineLog& log) {

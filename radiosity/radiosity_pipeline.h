@@ -84,6 +84,13 @@ double gatheredLightNoise(const FormFactorMatrix& f, const PatchMesh& mesh,
                           const std::vector<Vec3>& b, int samples,
                           std::vector<double>* variance = nullptr);
 
+/// \brief Fills each surface's daylight fields (sky view factor, daylight, its illuminance)
+/// with area-weighted means over its patches; patch i's daylight is d's entry
+/// (*daylightIndex)[i] when given (hierarchical leaves take their input face's), else i.
+void addDaylightToSurfaces(const PatchMesh& mesh, const Daylight& d,
+                           std::vector<SurfaceResult>& surfaces,
+                           const std::vector<int>* daylightIndex = nullptr);
+
 /// \brief Solves one system with one solver from B = E, reporting progress after each step.
 SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system,
                       const SolverSettings& stopping, const PipelineLog& log = {});

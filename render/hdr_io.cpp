@@ -89,4 +89,29 @@ Canvas toneMapCurve(const RadianceImage& image, double exposure, ToneCurve curve
   return c;
 }
 
+RadianceImage pixelImage(int width, int height, std::vector<Vec3> radiance, double exposure) {
+  RadianceImage img;
+  img.width = width, img.height = height;
+  img.patch.assign(radiance.size(), -1);
+  img.radiance = std::move(radiance);
+  img.exposure = exposure;
+  return img;
+}
+
+void writeLinearAndPng(const std::string& stem, const RadianceImage& image) {
+  writePfm(stem + ".pfm", image);
+  writePng(stem + ".png", toneMapCurve(image, image.exposure, ToneCurve::Filmic));
+}
+
+RadianceImage relativeDifferenceImage(int width, int height, const std::vector<Vec3>& image,
+                                      const std::vector<Vec3>& reference) {
+  std::vector<Vec3> grey(reference.size());
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    const double ref = luminance(reference[i]);
+    const double rel = ref > 0 ? std::fabs(luminance(image[i]) - ref) / ref : 0;
+    grey[i] = Vec3{1, 1, 1} * std::min(1.0, 5 * rel);
+  }
+  return pixelImage(width, height, std::move(grey), 1);
+}
+
 }  // namespace radkit

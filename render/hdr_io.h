@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "render/radiosity_image.h"
 #include "util/canvas.h"
@@ -29,5 +30,19 @@ enum class ToneCurve {
 
 /// \brief 8-bit image of `image` × exposure through the chosen curve.
 Canvas toneMapCurve(const RadianceImage& image, double exposure, ToneCurve curve);
+
+/// \brief A RadianceImage of linear pixels (row-major, top row first) that show no patch, to
+/// be tone mapped at `exposure`: what images rendered without a patch mesh (sky, clouds,
+/// landscapes, pillars) are written as.
+RadianceImage pixelImage(int width, int height, std::vector<Vec3> radiance, double exposure);
+
+/// \brief Writes `stem`.pfm (linear) and `stem`.png (ACES filmic at image.exposure), each
+/// atomically.
+void writeLinearAndPng(const std::string& stem, const RadianceImage& image);
+
+/// \brief Grey image of |Y(image) − Y(reference)| / Y(reference) per pixel, white at 20 % or
+/// more (0 where the reference is black); tone map it with the sRGB curve at exposure 1.
+RadianceImage relativeDifferenceImage(int width, int height, const std::vector<Vec3>& image,
+                                      const std::vector<Vec3>& reference);
 
 }  // namespace radkit

@@ -227,8 +227,7 @@ LandscapeImage renderLandscape(const TerrainSurface& s, const atmosphere::Atmosp
             latinHypercube(settings.sunSamples, 2, rng, u, scratch);
             const double cosMax = std::cos(radius);
             for (int k = 0; k < settings.sunSamples; ++k) {
-              const double mu = 1 - u[2 * k] * (1 - cosMax);
-              const Vec3 dir = sunFrame.toWorld(localDirection(mu, 2 * M_PI * u[2 * k + 1]));
+              const Vec3 dir = sunFrame.toWorld(sampleUniformCone(cosMax, u[2 * k], u[2 * k + 1]));
               visible += !rays->occludedRaw(lifted, dir, 0, kInf);
             }
             visible /= settings.sunSamples;
