@@ -83,6 +83,7 @@ void runClouds(CloudsCommand& cmd) {
   light.sunIrradiance =
       air.sunIrradiance(air.pointAtAltitude((cmd.layer.bottom + cmd.layer.top) / 2), sunLocal);
   light.sky = [&](const Vec3& d) { return sky.radiance(d); };
+  light.skySampler = std::make_shared<const media::SkySampler>(light.sky);
   cmd.march.ambientTop = sky.horizontalSky() / M_PI;  // cosine-weighted mean sky radiance
   cmd.march.ambientBottom = {0, 0, 0};                // black ground, as the reference's
 

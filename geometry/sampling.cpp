@@ -77,4 +77,36 @@ Vec3 samplePatchUniform(const Vec3* v, int count, double split, double u0, doubl
   return sampleUniformTriangle(v[0], v[2], v[3], std::min((u0 - split) / (1 - split), 1.0), u1);
 }
 
+DiscreteDistribution::DiscreteDistribution(const std::vector<double>& weights) {
+  double total = 0;
+  for (double w : weights) total += w > 0 ? w : 0;  // negative and NaN weights count as 0
+  if (!(total > 0) || !std::isfinite(total)) return;
+  m_cdf.resize(weights.size());
+  double running = 0;
+  for (std::size_t i = 0; i < weights.size(); ++i) {
+    running += weights[i] > 0 ? weights[i] : 0;
+    m_cdf[i] = running / total;
+  }
+  m_cdf.back() = 1;
+}
+
+std::size_t DiscreteDistribution::sample(double u, double* remapped) const {
+  // The first entry whose cumulative probability exceeds u; zero-weight entries have empty
+  // intervals and are never chosen.
+  const std::size_t i = std::min<std::size_t>(
+      std::size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u) - m_cdf.begin()),
+      m_cdf.size() - 1);
+  if (remapped) {
+    const double lo = i ? m_cdf[i - 1] : 0, width = m_cdf[i] - lo;
+    *remapped =
+        width > 0 ? std::min(std::max((u - lo) / width, 0.0), std::nextafter(1.0, 0.0)) : 0.5;
+  }
+  return i;
+}
+
+double DiscreteDistribution::probability(std::size_t i) const {
+  if (i >= m_cdf.size()) return 0;
+  return m_cdf[i] - (i ? m_cdf[i - 1] : 0);
+}
+
 }  // namespace radkit

@@ -47,4 +47,20 @@ double patchSplit(const Vec3* v, int count);
 /// \brief Density per unit area of samplePatchUniform: 1/area on the patch.
 inline double patchUniformPdf(double area) { return 1.0 / area; }
 
+/// Indices 0..n−1 drawn with probability proportional to non-negative weights, by binary
+/// search of the cumulative sum. An all-zero (or empty) table draws nothing: size() == 0.
+class DiscreteDistribution {
+ public:
+  DiscreteDistribution() = default;
+  explicit DiscreteDistribution(const std::vector<double>& weights);
+  /// \brief The index whose CDF interval holds u ∈ [0, 1); `remapped`, when given, gets u's
+  /// position inside that interval, a fresh uniform number for the next choice.
+  std::size_t sample(double u, double* remapped = nullptr) const;
+  double probability(std::size_t i) const;
+  std::size_t size() const { return m_cdf.size(); }
+
+ private:
+  std::vector<double> m_cdf;  ///< m_cdf[i] = P(index ≤ i), m_cdf.back() == 1
+};
+
 }  // namespace radkit

@@ -1,7 +1,8 @@
 // The volumetric path tracer (volume_tracer.h): delta tracking (Woodcock et al. 1965) for free
-// flights, ratio tracking (Novák, Selle & Jarosz 2014) for the sun's transmittance, next-event
-// estimation to the sun at every vertex, the sky where paths escape, an optional Lambertian
-// ground at z = 0, and Russian roulette.
+// flights, ratio tracking (Novák, Selle & Jarosz 2014) for transmittance, next-event estimation
+// to the sun at every vertex and to the sky at every scattering event (weighted against phase
+// sampling by Veach's power heuristic), an optional Lambertian ground at z = 0, and Russian
+// roulette.
 #include "media/volume_tracer.h"
 
 #include <tbb/blocked_range.h>
@@ -38,6 +39,17 @@ double groundDistance(const Lighting& light, const Vec3& o, const Vec3& d) {
   return -o.z / d.z;
 }
 
+/// Veach's power heuristic (β = 2): the weight of the strategy with density a against b.
+double powerHeuristic(double a, double b) {
+  const double a2 = a * a, b2 = b * b;
+  return a2 + b2 > 0 ? a2 / (a2 + b2) : 0.0;
+}
+
+/// True when the ground hides the sky in direction w from x (above the ground).
+bool groundHides(const Lighting& light, const Vec3& x, const Vec3& w) {
+  return light.groundAlbedo > 0 && w.z <= 0 && x.z >= 0;
+}
+
 /// Transmittance from x towards the sun (0 when the ground hides it).
 double sunTransmittance(const Medium& medium, const Lighting& light, const Vec3& x, Rng& rng) {
   const double tGround = groundDistance(light, x, light.sunDirection);
@@ -47,6 +59,61 @@ double sunTransmittance(const Medium& medium, const Lighting& light, const Vec3&
 
 }  // namespace tracerimpl
 }  // namespace
+
+SkySampler::SkySampler(const SkyRadiance& sky, bool upperOnly, int rows, int columns,
+                       double uniformFraction)
+    : m_rows(std::max(1, rows)),
+      m_columns(std::max(1, columns)),
+      m_uniform(std::min(std::max(uniformFraction, 0.0), 1.0)) {
+  // Each cell spans the same solid angle 4π/(rows·columns); its weight is the mean radiance at
+  // 2 × 2 points inside it, so a bright sun aureole is not missed between cell centres.
+  std::vector<double> weights(std::size_t(m_rows) * m_columns, 0.0);
+  for (int r = 0; r < m_rows; ++r)
+    for (int c = 0; c < m_columns; ++c) {
+      double w = 0;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+          const double mu = 1 - 2 * (r + (i + 0.5) / 2) / m_rows;
+          if (upperOnly && mu <= 0) continue;
+          const Vec3 L = sky(localDirection(mu, 2 * kPi * (c + (j + 0.5) / 2) / m_columns));
+          if (std::isfinite(L.x + L.y + L.z)) w += std::max(0.0, (L.x + L.y + L.z) / 3);
+        }
+      weights[std::size_t(r) * m_columns + c] = w;
+    }
+  m_cells = DiscreteDistribution(weights);
+  if (m_cells.size() == 0) m_uniform = 1;  // a black sky: uniform directions only
+}
+
+std::size_t SkySampler::cell(const Vec3& d) const {
+  const int r = std::min(m_rows - 1, std::max(0, int((1 - d.z) / 2 * m_rows)));
+  double phi = std::atan2(d.y, d.x);
+  if (phi < 0) phi += 2 * kPi;
+  const int c = std::min(m_columns - 1, std::max(0, int(phi / (2 * kPi) * m_columns)));
+  return std::size_t(r) * m_columns + c;
+}
+
+Vec3 SkySampler::sample(double u0, double u1, double u2, double& pdf) const {
+  Vec3 d;
+  if (u0 < m_uniform) {
+    d = localDirection(1 - 2 * u1, 2 * kPi * u2);
+  } else {
+    // A cell by its weight, then a uniform point in it (uniform in cos θ and φ is uniform in
+    // solid angle); u1 remapped inside the chosen cell's interval picks the row offset.
+    double v;
+    const std::size_t i = m_cells.sample(u1, &v);
+    const int r = int(i / std::size_t(m_columns)), c = int(i % std::size_t(m_columns));
+    d = localDirection(1 - 2 * (r + v) / m_rows, 2 * kPi * (c + u2) / m_columns);
+  }
+  pdf = this->pdf(d);
+  return d;
+}
+
+double SkySampler::pdf(const Vec3& d) const {
+  const double uniform = 1 / (4 * kPi);
+  if (m_uniform >= 1) return uniform;
+  const double cellSolidAngle = 4 * kPi / (double(m_rows) * m_columns);
+  return m_uniform * uniform + (1 - m_uniform) * m_cells.probability(cell(d)) / cellSolidAngle;
+}
 
 double deltaTrack(const Medium& medium, const Vec3& o, const Vec3& d, double tMax, Rng& rng) {
   double t0, t1;
@@ -82,10 +149,14 @@ Vec3 traceVolumePath(const Medium& medium, const Lighting& light, const Vec3& o,
                      Rng& rng, int rouletteDepth) {
   using namespace tracerimpl;
   const bool sunOn = maxComponent(light.sunIrradiance) > 0;
+  const SkySampler* skyNee = light.sky ? light.skySampler.get() : nullptr;
   const double albedo = medium.albedo();
   const PhaseFunction& phase = medium.phase();
   Vec3 radiance{0, 0, 0}, x = o, w = d;
   double beta = 1;  // grey media and a grey ground: the throughput is a scalar
+  // The phase density that drew w, when the sky's next-event estimation also reaches it (a
+  // scattering event with a sampler); negative otherwise (the camera ray, a ground bounce).
+  double phasePdf = -1;
   for (int events = 0;; ++events) {
     const double tGround = groundDistance(light, x, w);
     const double t = deltaTrack(medium, x, w, tGround, rng);
@@ -99,10 +170,26 @@ Vec3 traceVolumePath(const Medium& medium, const Lighting& light, const Vec3& o,
         if (T > 0)
           radiance += light.sunIrradiance * (beta * phase.eval(dot(light.sunDirection, w)) * T);
       }
+      if (skyNee) {
+        // The sky from a direction drawn by its radiance, weighted against the chance that
+        // phase sampling below draws the same direction and sees the sky on escape.
+        const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        double lightPdf;
+        const Vec3 wl = skyNee->sample(u0, u1, u2, lightPdf);
+        const double f = phase.eval(dot(wl, w));
+        if (lightPdf > 0 && f > 0 && !groundHides(light, x, wl)) {
+          const Vec3 L = light.sky(wl);
+          if (maxComponent(L) > 0) {
+            const double T = ratioTrack(medium, x, wl, INFINITY, rng);
+            if (T > 0) radiance += L * (beta * f * T * powerHeuristic(lightPdf, f) / lightPdf);
+          }
+        }
+      }
       // Sampling cos θ by the phase function makes its weight eval/pdf = 1.
       double pdf;
       const double mu = phase.sample(rng.uniform(), pdf);
       w = normalize(Frame(w).toWorld(localDirection(mu, 2 * kPi * rng.uniform())));
+      phasePdf = skyNee ? phase.eval(mu) : -1;
     } else if (std::isfinite(tGround)) {
       // The Lambertian ground: the sun through the medium, then a cosine-weighted bounce
       // whose weight (ρ/π · cos / (cos/π)) is ρ.
@@ -115,9 +202,14 @@ Vec3 traceVolumePath(const Medium& medium, const Lighting& light, const Vec3& o,
       }
       const double u0 = rng.uniform(), u1 = rng.uniform();
       w = sampleCosineHemisphere(u0, u1);
+      phasePdf = -1;
     } else {
-      // Escaped: the sky's radiance (a camera ray that never scattered sees the sky behind).
-      if (light.sky) radiance += light.sky(w) * beta;
+      // Escaped: the sky's radiance (a camera ray that never scattered sees the sky behind),
+      // with the phase-sampling side of the MIS weight after a scattering event.
+      if (light.sky) {
+        const double weight = phasePdf >= 0 ? powerHeuristic(phasePdf, skyNee->pdf(w)) : 1.0;
+        if (weight > 0) radiance += light.sky(w) * (beta * weight);
+      }
       return radiance;
     }
     if (events + 1 >= rouletteDepth) {

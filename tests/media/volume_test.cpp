@@ -1,7 +1,9 @@
 // Cloud noise, media and the volumetric path tracer against oracles outside the code: the
 // periodicity the noise promises, Beer-Lambert transmittance and exponential free paths, the
 // furnace (albedo 1 under a uniform sky sees exactly the sky), the closed-form single-scattering
-// integral of a thin slab, the cloud layer's cover against its setting, and determinism.
+// integral of a thin slab, the cloud layer's cover against its setting, the sky sampler against
+// the CIE overcast sky's irradiance, next-event estimation to the sky against escape-only paths,
+// and determinism.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -17,6 +19,7 @@
 #include "media/noise.h"
 #include "media/phase.h"
 #include "media/volume_tracer.h"
+#include "tests/common/statistics.h"
 
 namespace radkit::media {
 namespace {
@@ -407,35 +410,38 @@ TEST(VolumeTracer, DeltaTrackingFreePathsAreExponential) {
 
 TEST(VolumeTracer, FurnaceSeesTheSkyExactly) {
   // Albedo 1 under a uniform sky L: every path escapes eventually and carries L, whatever it
-  // scattered; camera rays from outside and from inside the box, both phase functions.
+  // scattered; camera rays from outside and from inside the box, both phase functions, with
+  // and without next-event estimation to the sky.
   const Vec3 L{0.3, 0.6, 1.2};
   Lighting light;
   light.sky = [L](const Vec3&) { return L; };
   Bounds3 b;
   b.extend(Vec3{-1, -2, 0});
   b.extend(Vec3{1, 2, 3});
-  for (const char* params : {"", "g=0.8"}) {
-    auto phase = std::make_unique<VolumeCountingPhase>(
-        params[0] ? makePhaseFunction("henyey-greenstein", params)
-                  : makePhaseFunction("isotropic"));
-    const VolumeCountingPhase* counter = phase.get();
-    const HomogeneousBox box(b, 2.0, 1, std::move(phase));
-    Rng rng(12, params[0], 0);
-    VolumeMoments m[3];
-    const int n = 20000;
-    for (int i = 0; i < n; ++i) {
-      const Vec3 dir = normalize(Vec3{rng.uniform() - 0.5, rng.uniform() - 0.5, 1});
-      const Vec3 outside = traceVolumePath(box, light, {0, 0, -2}, dir, rng);
-      const Vec3 inside = traceVolumePath(box, light, {0.2, 0.5, 1.5},
-                                          normalize(Vec3{rng.uniform() - 0.5, 1, 0.3}), rng);
-      m[0].add(outside.x), m[1].add(outside.z), m[2].add(inside.y);
+  for (int nee = 0; nee < 2; ++nee)
+    for (const char* params : {"", "g=0.8"}) {
+      light.skySampler = nee ? std::make_shared<const SkySampler>(light.sky) : nullptr;
+      auto phase = std::make_unique<VolumeCountingPhase>(
+          params[0] ? makePhaseFunction("henyey-greenstein", params)
+                    : makePhaseFunction("isotropic"));
+      const VolumeCountingPhase* counter = phase.get();
+      const HomogeneousBox box(b, 2.0, 1, std::move(phase));
+      Rng rng(12, params[0], nee);
+      VolumeMoments m[3];
+      const int n = 20000;
+      for (int i = 0; i < n; ++i) {
+        const Vec3 dir = normalize(Vec3{rng.uniform() - 0.5, rng.uniform() - 0.5, 1});
+        const Vec3 outside = traceVolumePath(box, light, {0, 0, -2}, dir, rng);
+        const Vec3 inside = traceVolumePath(box, light, {0.2, 0.5, 1.5},
+                                            normalize(Vec3{rng.uniform() - 0.5, 1, 0.3}), rng);
+        m[0].add(outside.x), m[1].add(outside.z), m[2].add(inside.y);
+      }
+      EXPECT_NEAR(m[0].mean(), L.x, 4 * m[0].se() + 1e-12);
+      EXPECT_NEAR(m[1].mean(), L.z, 4 * m[1].se() + 1e-12);
+      EXPECT_NEAR(m[2].mean(), L.y, 4 * m[2].se() + 1e-12);
+      // Not trivially: the box is optically thick (τ ≥ 4 across), so paths scatter many times.
+      EXPECT_GT(counter->count(), 2 * n) << params;
     }
-    EXPECT_NEAR(m[0].mean(), L.x, 4 * m[0].se() + 1e-12);
-    EXPECT_NEAR(m[1].mean(), L.z, 4 * m[1].se() + 1e-12);
-    EXPECT_NEAR(m[2].mean(), L.y, 4 * m[2].se() + 1e-12);
-    // Not trivially: the box is optically thick (τ ≥ 4 across), so paths scatter many times.
-    EXPECT_GT(counter->count(), 2 * n) << params;
-  }
 }
 
 TEST(VolumeTracer, RussianRouletteIsUnbiased) {
@@ -511,6 +517,105 @@ TEST(VolumeTracer, LambertianGroundUnderSunAndSky) {
   EXPECT_EQ(traceVolumePath(empty, light, {0, 0, 5}, normalize(Vec3{0.3, 0, -1}), rng).y, 0.0);
   // A camera ray that escapes unscattered sees the sky, not the sun's disc.
   EXPECT_EQ(traceVolumePath(empty, light, {0, 0, 5}, light.sunDirection, rng).x, 0.1);
+}
+
+/// A sky with a small bright cap: CIE overcast (Moon & Spencer 1942, L(θ) = L_z(1 + 2 cos θ)/3)
+/// above the horizon, black below, plus radiance `capL` within `capDeg` of `capDir`.
+SkyRadiance volumeCapSky(const Vec3& capDir, double capDeg, double capL) {
+  const double cosCap = std::cos(capDeg * kPi / 180);
+  return [=](const Vec3& w) {
+    if (w.z <= 0) return Vec3{0, 0, 0};
+    const double cie = (1 + 2 * w.z) / 3;
+    const double cap = dot(w, capDir) >= cosCap ? capL : 0.0;
+    return Vec3{cie + cap, 0.5 * cie + cap, 0.25 * cie + cap};
+  };
+}
+
+TEST(VolumeSkySampler, DensityIntegratesToOneAndDrawsFollowIt) {
+  const SkySampler sampler(volumeCapSky(normalize(Vec3{1, 0.5, 0.4}), 4, 200));
+  // ∫ pdf dω by the midpoint rule on a grid 8 × 8 finer than the sampler's 64 × 128 cells, where
+  // the density is constant: exact but for rounding.
+  const int rows = 512, cols = 1024;
+  double integral = 0;
+  const double dOmega = 4 * kPi / (double(rows) * cols);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c)
+      integral +=
+          sampler.pdf(localDirection(1 - 2 * (r + 0.5) / rows, 2 * kPi * (c + 0.5) / cols)) *
+          dOmega;
+  EXPECT_NEAR(integral, 1.0, 1e-9);
+  // χ² of draws in 16 × 32 equal-area bins against the density's integral over each bin.
+  const int br = 16, bc = 32, n = 400000;
+  std::vector<double> expected(br * bc, 0.0), observed(br * bc, 0.0);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c)
+      expected[(r * br / rows) * bc + c * bc / cols] +=
+          n * dOmega *
+          sampler.pdf(localDirection(1 - 2 * (r + 0.5) / rows, 2 * kPi * (c + 0.5) / cols));
+  Rng rng(31, 0, 0);
+  for (int i = 0; i < n; ++i) {
+    double pdf;
+    const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    const Vec3 d = sampler.sample(u0, u1, u2, pdf);
+    ASSERT_NEAR(length(d), 1.0, 1e-12);
+    ASSERT_DOUBLE_EQ(pdf, sampler.pdf(d));
+    double phi = std::atan2(d.y, d.x);
+    if (phi < 0) phi += 2 * kPi;
+    const int r = std::min(br - 1, int((1 - d.z) / 2 * br)),
+              c = std::min(bc - 1, int(phi / (2 * kPi) * bc));
+    observed[r * bc + c] += 1;
+  }
+  EXPECT_GT(test::chiSquarePValue(observed, expected, "media_sky_sampler", 1e-3), 1e-3);
+}
+
+TEST(VolumeSkySampler, EstimatesTheOvercastSkysIrradiance) {
+  // The CIE overcast sky's horizontal irradiance is 7πL_z/9 (Moon & Spencer 1942). Estimated
+  // with the sampler's directions it is within 4 standard errors, and far less noisy than with
+  // uniform directions (the sampler follows the sky's gradient).
+  const SkyRadiance cie = [](const Vec3& w) {
+    const double l = w.z > 0 ? (1 + 2 * w.z) / 3 : 0.0;
+    return Vec3{l, l, l};
+  };
+  const SkySampler fitted(cie, true), uniform(cie, true, 64, 128, 1.0);
+  VolumeMoments m[2];
+  for (int k = 0; k < 2; ++k) {
+    const SkySampler& s = k == 0 ? fitted : uniform;
+    Rng rng(32, k, 0);
+    for (int i = 0; i < 200000; ++i) {
+      double pdf;
+      const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+      const Vec3 d = s.sample(u0, u1, u2, pdf);
+      m[k].add(cie(d).x * std::max(0.0, d.z) / pdf);
+    }
+    EXPECT_NEAR(m[k].mean(), 7 * kPi / 9, 4 * m[k].se()) << k;
+  }
+  EXPECT_LT(m[0].se(), 0.5 * m[1].se());
+}
+
+TEST(VolumeTracer, SkyNextEventEstimationAgreesWithEscapeAndCutsNoise) {
+  // A slab of optical depth 1 (albedo 0.9, HG g = 0.6) under the overcast sky with a bright
+  // 3° cap low in the east, seen from below at an angle: next-event estimation to the sky with
+  // MIS and escape-only paths are both unbiased, so they agree within 4 combined standard
+  // errors; the cap, which phase sampling rarely finds, makes escape-only far noisier.
+  const HomogeneousBox slab =
+      volumeSlab(100, 0.01, 0.9, makePhaseFunction("henyey-greenstein", "g=0.6"));
+  Lighting plain;
+  plain.sky = volumeCapSky(normalize(Vec3{1, 0, 0.3}), 3, 300);
+  Lighting nee = plain;
+  nee.skySampler = std::make_shared<const SkySampler>(nee.sky);
+  const Vec3 dir = normalize(Vec3{0.5, 0.2, 1});
+  VolumeMoments m[2][3];
+  for (int k = 0; k < 2; ++k) {
+    Rng rng(33, k, 0);
+    for (int i = 0; i < 100000; ++i) {
+      const Vec3 v = traceVolumePath(slab, k == 0 ? nee : plain, {0, 0, -1}, dir, rng);
+      m[k][0].add(v.x), m[k][1].add(v.y), m[k][2].add(v.z);
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(m[0][c].mean(), m[1][c].mean(), 4 * std::hypot(m[0][c].se(), m[1][c].se())) << c;
+    EXPECT_LT(m[0][c].se(), 0.5 * m[1][c].se()) << c;
+  }
 }
 
 TEST(VolumeTracer, RenderIsTheSameOnAnyThreadCount) {
