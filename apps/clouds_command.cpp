@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "daylight/sky.h"
 #include "media/cloud_marcher.h"
 #include "media/medium.h"
+#include "media/medium_json.h"
 #include "media/volume_tracer.h"
 #include "render/camera.h"
 #include "render/hdr_io.h"
@@ -40,7 +42,14 @@ struct CloudsCommand {
   std::uint64_t seed = 1;
   media::MarchSettings march;
   std::string out = "out/clouds";
+  std::string scene;  ///< a volume scene file (--scene): medium, sun, camera, ground
+  // Options that, given explicitly, override the scene file's values.
+  CLI::Option *sunElevationOption = nullptr, *sunAzimuthOption = nullptr,
+              *cameraElevationOption = nullptr, *fovOption = nullptr;
 };
+
+/// Whether an option was given on the command line (its default does not count).
+bool given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
 
 /// (Σ a − Σ reference)/Σ reference over pixels and channels: the brightness bias, which the
 /// reference's noise averages out of.
@@ -64,35 +73,80 @@ double relativeRmse(const std::vector<Vec3>& a, const std::vector<Vec3>& referen
 }
 
 void runClouds(CloudsCommand& cmd) {
-  OutputFolder folder(cmd.out);
+  // The scene file is read before the output folder exists: a bad file leaves nothing behind.
   const auto start = std::chrono::steady_clock::now();
-  media::CloudLayer layer(cmd.layer, media::makePhaseFunction(cmd.phase, cmd.phaseParams));
+  std::optional<media::VolumeScene> scene;
+  std::unique_ptr<media::Medium> medium;
+  std::string kind = "cloud-layer", phaseName = cmd.phase;
+  if (!cmd.scene.empty()) {
+    scene = media::loadVolumeScene(cmd.scene);
+    medium = std::move(scene->medium);
+    kind = scene->kind, phaseName = scene->phaseName;
+    if (scene->sunElevationDeg && !given(cmd.sunElevationOption))
+      cmd.sunElevation = *scene->sunElevationDeg;
+    if (scene->sunAzimuthDeg && !given(cmd.sunAzimuthOption))
+      cmd.sunAzimuth = *scene->sunAzimuthDeg;
+  } else {
+    cmd.layer.seed = std::uint32_t(cmd.seed);  // without a scene file --seed seeds the noise too
+    medium = std::make_unique<media::CloudLayer>(
+        cmd.layer, media::makePhaseFunction(cmd.phase, cmd.phaseParams));
+  }
+  const media::Medium& layer = *medium;
+  const double groundAlbedo = scene ? scene->groundAlbedo : 0.0;
   const double layerSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  OutputFolder folder(cmd.out);
 
-  // Sun and sky from the atmosphere: the sun's irradiance at the layer's middle altitude, the
-  // sky tabulated as daylight/ does for scenes (black ground below the horizon).
+  // Sun and sky from the atmosphere: the sun's irradiance at the medium's middle altitude, the
+  // sky tabulated as daylight/ does for scenes. Below the horizon the sky is the ground's glow
+  // ρ E_h/π (black by default).
   SkyDescription sd;
   sd.type = SkyDescription::Type::Physical;
   sd.sun = true, sd.sunElevationDeg = cmd.sunElevation, sd.sunAzimuthDeg = cmd.sunAzimuth;
+  sd.groundReflectance = groundAlbedo;
   const SkyModel sky(sd);
+  const Bounds3 bounds = layer.bounds();
   const atmosphere::Atmosphere air;
   const Vec3 sunLocal = atmosphere::sunDirection(cmd.sunElevation, cmd.sunAzimuth);
   media::Lighting light;
   light.sunDirection = sunLocal;
   light.sunIrradiance =
-      air.sunIrradiance(air.pointAtAltitude((cmd.layer.bottom + cmd.layer.top) / 2), sunLocal);
+      air.sunIrradiance(air.pointAtAltitude((bounds.lo.z + bounds.hi.z) / 2), sunLocal);
   light.sky = [&](const Vec3& d) { return sky.radiance(d); };
-  light.skySampler = std::make_shared<const media::SkySampler>(light.sky);
+  // The path tracer bounces paths off a Lambertian ground at z = 0; the real-time model has no
+  // ground, so it sees the ground as the sky's glow below the horizon and gets it as its
+  // ambient light from below: ρ (E_sky + E_sun)/π, unshadowed by the medium (an overestimate
+  // under thick cover).
+  light.groundAlbedo = groundAlbedo;
+  // Next-event estimation to the sky; a ground hides the sky's lower half from the medium.
+  light.skySampler = std::make_shared<const media::SkySampler>(light.sky, groundAlbedo > 0);
   cmd.march.ambientTop = sky.horizontalSky() / M_PI;  // cosine-weighted mean sky radiance
-  cmd.march.ambientBottom = {0, 0, 0};                // black ground, as the reference's
+  cmd.march.ambientBottom = (sky.horizontalSky() + sky.horizontalSun()) * (groundAlbedo / M_PI);
 
+  // The file's camera unless --camera-elevation or --fov overrides it; otherwise on the ground
+  // looking north, --camera-elevation above the horizon.
   Camera camera;
-  camera.position = {0, 0, 1.7};
   const double e = cmd.cameraElevation * M_PI / 180;
-  camera.lookAt = camera.position + Vec3{0, std::cos(e), std::sin(e)};
-  camera.up = {0, 0, 1};
-  camera.fovDeg = cmd.fov;
+  if (scene && scene->camera) {
+    camera = *scene->camera;
+    if (given(cmd.cameraElevationOption)) {
+      // Keep the file's position and heading; tilt to the given elevation.
+      const Vec3 f = camera.lookAt - camera.position;
+      const double h = std::hypot(f.x, f.y);
+      const double hx = h > 0 ? f.x / h : 0, hy = h > 0 ? f.y / h : 1;
+      camera.lookAt = camera.position + Vec3{hx * std::cos(e), hy * std::cos(e), std::sin(e)};
+    }
+    if (given(cmd.fovOption)) camera.fovDeg = cmd.fov;
+  } else {
+    camera.position = {0, 0, 1.7};
+    camera.lookAt = camera.position + Vec3{0, std::cos(e), std::sin(e)};
+    camera.up = {0, 0, 1};
+    camera.fovDeg = cmd.fov;
+  }
+  const Vec3 forward = normalize(camera.lookAt - camera.position);
+  const double cameraElevation = scene && scene->camera && !given(cmd.cameraElevationOption)
+                                     ? std::asin(std::clamp(forward.z, -1.0, 1.0)) * 180 / M_PI
+                                     : cmd.cameraElevation;
   const PinholeCamera pinhole(camera, cmd.width, cmd.height);
   const auto ray = [&](double x, double y) { return pinhole.direction(x, y); };
 
@@ -161,26 +215,35 @@ void runClouds(CloudsCommand& cmd) {
                                                 reference.radiance),
                         1, ToneCurve::Srgb));
 
-  const media::CloudLayerSettings& l = cmd.layer;
-  json report{{"radkit", RADKIT_VERSION},
-              {"command", "clouds"},
-              {"settings",
-               {{"width", cmd.width},
+  json settings{{"width", cmd.width},
                 {"height", cmd.height},
                 {"samples", cmd.samples},
                 {"seed", cmd.seed},
-                {"phase", cmd.phase},
+                {"scene", scene ? json(cmd.scene) : json(nullptr)},
+                {"medium", kind},
+                {"phase", phaseName},
                 {"phase_mean_cosine", layer.phase().meanCosine()},
-                {"bottom_m", l.bottom},
-                {"top_m", l.top},
-                {"coverage", l.coverage},
-                {"cloud_type", l.cloudType},
-                {"extinction_per_m", l.extinction},
-                {"albedo", l.albedo},
+                {"bottom_m", bounds.lo.z},
+                {"top_m", bounds.hi.z},
+                {"albedo", layer.albedo()},
+                {"ground_albedo", groundAlbedo},
                 {"sun_elevation_deg", cmd.sunElevation},
                 {"sun_azimuth_deg", cmd.sunAzimuth},
                 {"sun_irradiance_W_m2", vec3Json(light.sunIrradiance)},
-                {"camera_elevation_deg", cmd.cameraElevation}}},
+                {"camera_elevation_deg", cameraElevation},
+                {"fov_deg", camera.fovDeg}};
+  if (const auto* cloud = dynamic_cast<const media::CloudLayer*>(&layer)) {
+    settings["coverage"] = cloud->settings().coverage;
+    settings["cloud_type"] = cloud->settings().cloudType;
+    settings["extinction_per_m"] = cloud->settings().extinction;
+  } else {
+    settings["extinction_per_m"] = layer.majorant();  // homogeneous: σ_t everywhere inside
+    settings["box_min_m"] = vec3Json(bounds.lo);
+    settings["box_max_m"] = vec3Json(bounds.hi);
+  }
+  json report{{"radkit", RADKIT_VERSION},
+              {"command", "clouds"},
+              {"settings", settings},
               {"reference",
                {{"seconds", reference.seconds},
                 {"paths", reference.paths},
@@ -191,9 +254,10 @@ void runClouds(CloudsCommand& cmd) {
   writeFileAtomically(folder.path("report.json"), report.dump(2) + "\n");
   folder.commit();
 
-  printField("clouds", std::to_string(cmd.width) + "x" + std::to_string(cmd.height) + ", " +
-                           cmd.phase + " phase (g " + fmt("%.3f", layer.phase().meanCosine()) +
-                           "), layer " + fmt("%.2f s", layerSeconds));
+  printField("clouds", std::to_string(cmd.width) + "x" + std::to_string(cmd.height) + ", " + kind +
+                           ", " + phaseName + " phase (g " +
+                           fmt("%.3f", layer.phase().meanCosine()) + "), layer " +
+                           fmt("%.2f s", layerSeconds));
   printField("reference", fmt("%.2f s", reference.seconds) + ", " + std::to_string(cmd.samples) +
                               " paths per pixel, relative noise " + fmt("%.3f", noiseFloor));
   for (const json& row : table)
@@ -202,6 +266,7 @@ void runClouds(CloudsCommand& cmd) {
                    fmt("%.3f", row["relative_rmse"].get<double>()) + ", bias " +
                    fmt("%+.3f", row["relative_bias"].get<double>()) + ", " +
                    fmt("%.0fx faster", row["speedup"].get<double>()));
+  if (scene) printField("scene", cmd.scene);
   printField("wrote", cmd.out);
 }
 
@@ -223,42 +288,57 @@ void addCloudsCommand(CLI::App& app) {
   sub->add_option("--samples", cmd->samples, "Reference paths per pixel")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
-  sub->add_option("--phase", cmd->phase,
-                  "Phase function: isotropic, rayleigh, henyey-greenstein, "
-                  "double-henyey-greenstein or mie-cloud")
+  CLI::Option* sceneOption =
+      sub->add_option("--scene", cmd->scene,
+                      "Volume scene file (JSON, docs/formats.md): medium, sun, camera and ground; "
+                      "--sun-*, --camera-elevation and --fov given override it");
+  CLI::Option* phaseOption =
+      sub->add_option("--phase", cmd->phase,
+                      "Phase function: isotropic, rayleigh, henyey-greenstein, "
+                      "double-henyey-greenstein or mie-cloud")
+          ->capture_default_str();
+  CLI::Option* phaseParamsOption =
+      sub->add_option("--phase-params", cmd->phaseParams, "Its parameters, e.g. \"g=0.85\"");
+  CLI::Option* coverageOption = sub->add_option("--coverage", l.coverage, "Cloud cover in [0, 1]")
+                                    ->check(FiniteRange(0, 1))
+                                    ->capture_default_str();
+  CLI::Option* cloudTypeOption =
+      sub->add_option("--cloud-type", l.cloudType, "0 stratus, 0.5 stratocumulus, 1 cumulus")
+          ->check(FiniteRange(0, 1))
+          ->capture_default_str();
+  CLI::Option* extinctionOption =
+      sub->add_option("--extinction", l.extinction,
+                      "Extinction of dense cloud, 1/m (OPAC: 0.04-0.12)")
+          ->check(FinitePositive)
+          ->capture_default_str();
+  CLI::Option* albedoOption = sub->add_option("--albedo", l.albedo, "Single-scattering albedo")
+                                  ->check(FiniteRange(0, 1))
+                                  ->capture_default_str();
+  CLI::Option* bottomOption = sub->add_option("--bottom", l.bottom, "Layer bottom, m")
+                                  ->check(FiniteNonNegative)
+                                  ->capture_default_str();
+  CLI::Option* topOption =
+      sub->add_option("--top", l.top, "Layer top, m")->check(FinitePositive)->capture_default_str();
+  // The layer's own options describe the medium the scene file gives.
+  for (CLI::Option* layerOption : {phaseOption, phaseParamsOption, coverageOption, cloudTypeOption,
+                                   extinctionOption, albedoOption, bottomOption, topOption})
+    sceneOption->excludes(layerOption);
+  sub->add_option("--seed", cmd->seed, "Seed of the samples, and of the cloud noise unless --scene gives the medium")
       ->capture_default_str();
-  sub->add_option("--phase-params", cmd->phaseParams, "Its parameters, e.g. \"g=0.85\"");
-  sub->add_option("--coverage", l.coverage, "Cloud cover in [0, 1]")
-      ->check(FiniteRange(0, 1))
-      ->capture_default_str();
-  sub->add_option("--cloud-type", l.cloudType, "0 stratus, 0.5 stratocumulus, 1 cumulus")
-      ->check(FiniteRange(0, 1))
-      ->capture_default_str();
-  sub->add_option("--extinction", l.extinction, "Extinction of dense cloud, 1/m (OPAC: 0.04-0.12)")
-      ->check(FinitePositive)
-      ->capture_default_str();
-  sub->add_option("--albedo", l.albedo, "Single-scattering albedo")
-      ->check(FiniteRange(0, 1))
-      ->capture_default_str();
-  sub->add_option("--bottom", l.bottom, "Layer bottom, m")
-      ->check(FiniteNonNegative)
-      ->capture_default_str();
-  sub->add_option("--top", l.top, "Layer top, m")->check(FinitePositive)->capture_default_str();
-  sub->add_option("--seed", cmd->seed, "Seed of the noise and of the samples")
-      ->capture_default_str();
-  sub->add_option("--sun-elevation", cmd->sunElevation, "Degrees")
-      ->check(FiniteRange(-90, 90))
-      ->capture_default_str();
-  sub->add_option("--sun-azimuth", cmd->sunAzimuth, "Degrees clockwise from north")
-      ->check(FiniteRange(-360, 360))
-      ->capture_default_str();
-  sub->add_option("--camera-elevation", cmd->cameraElevation,
-                  "Degrees above the horizon (looking north)")
-      ->check(FiniteRange(-89, 89))
-      ->capture_default_str();
-  sub->add_option("--fov", cmd->fov, "Vertical field of view, degrees")
-      ->check(FiniteRange(1, 179))
-      ->capture_default_str();
+  cmd->sunElevationOption = sub->add_option("--sun-elevation", cmd->sunElevation, "Degrees")
+                                ->check(FiniteRange(-90, 90))
+                                ->capture_default_str();
+  cmd->sunAzimuthOption =
+      sub->add_option("--sun-azimuth", cmd->sunAzimuth, "Degrees clockwise from north")
+          ->check(FiniteRange(-360, 360))
+          ->capture_default_str();
+  cmd->cameraElevationOption = sub->add_option("--camera-elevation", cmd->cameraElevation,
+                                               "Degrees above the horizon (looking north)")
+                                   ->check(FiniteRange(-89, 89))
+                                   ->capture_default_str();
+  cmd->fovOption = sub->add_option("--fov", cmd->fov, "Vertical field of view, degrees")
+                       ->check(FiniteRange(1, 179))
+                       ->capture_default_str();
   sub->add_option("--primary-steps", cmd->march.primarySteps, "Real-time model: view steps")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -272,7 +352,7 @@ void addCloudsCommand(CLI::App& app) {
       ->check(FiniteNonNegative);
   sub->add_option("--out", cmd->out, "Output folder")->capture_default_str();
   sub->callback([cmd] {
-    if (!(cmd->layer.top > cmd->layer.bottom))
+    if (cmd->scene.empty() && !(cmd->layer.top > cmd->layer.bottom))
       throw CLI::ValidationError("--top", "must be above --bottom");
     runClouds(*cmd);
   });

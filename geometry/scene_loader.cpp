@@ -8,11 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 #include <string>
 
+#include "geometry/json_reader.h"
 #include "geometry/mesh_reader.h"
 #include "geometry/mesh_structure.h"
 #include "geometry/validation.h"
@@ -44,70 +44,6 @@ bool isKnownUnit(const std::string& unit) {
     if (known.first == unit) return true;
   return false;
 }
-
-/// Reads typed fields of one JSON object and rejects keys nobody asked for.
-class ObjectReader {
- public:
-  ObjectReader(const json& object, std::string where, const std::string& file)
-      : m_object(object), m_where(std::move(where)), m_file(file) {
-    if (!m_object.is_object()) fail("must be a JSON object");
-  }
-
-  /// Rejects every key not in `known`; called first, so a misspelt key is what the user
-  /// hears about rather than the missing key it was meant to be.
-  void allowOnly(std::initializer_list<const char*> known) const {
-    for (auto it = m_object.begin(); it != m_object.end(); ++it)
-      if (std::none_of(known.begin(), known.end(), [&](const char* k) { return it.key() == k; })) {
-        std::string list;
-        for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
-        fail("has an unknown key \"" + it.key() + "\". Fix: use one of: " + list);
-      }
-  }
-  bool has(const std::string& key) const { return m_object.contains(key); }
-  const json& get(const std::string& key) {
-    if (!has(key)) fail("is missing the required key \"" + key + "\"");
-    return m_object.at(key);
-  }
-  std::string string(const std::string& key, const std::string& fallback) {
-    if (!has(key)) return fallback;
-    if (!m_object.at(key).is_string()) fail("\"" + key + "\" must be a string");
-    return m_object.at(key).get<std::string>();
-  }
-  double number(const std::string& key, double fallback) {
-    if (!has(key)) return fallback;
-    return toNumber(m_object.at(key), key);
-  }
-  bool boolean(const std::string& key, bool fallback) {
-    if (!has(key)) return fallback;
-    if (!m_object.at(key).is_boolean()) fail("\"" + key + "\" must be true or false");
-    return m_object.at(key).get<bool>();
-  }
-  Vec3 vec3(const std::string& key, const Vec3& fallback) {
-    if (!has(key)) return fallback;
-    return toVec3(m_object.at(key), key);
-  }
-  Vec3 toVec3(const json& j, const std::string& what) {
-    if (!j.is_array() || j.size() != 3) fail("\"" + what + "\" must be an array of 3 numbers");
-    return {toNumber(j[0], what), toNumber(j[1], what), toNumber(j[2], what)};
-  }
-  double toNumber(const json& j, const std::string& what) {
-    // JSON has no NaN or infinity literals; a number too large for a double parses to inf.
-    if (!j.is_number()) fail("\"" + what + "\" must be a number");
-    double v = j.get<double>();
-    if (!std::isfinite(v)) fail("\"" + what + "\" is not a finite number");
-    return v;
-  }
-  [[noreturn]] void fail(const std::string& what) const {
-    const bool stop = !what.empty() && what.back() == '.';  // a nested message ends in its own
-    throw InputError(m_file + ": " + m_where + " " + what + (stop ? "" : "."));
-  }
-  const std::string& where() const { return m_where; }
-
- private:
-  const json& m_object;
-  std::string m_where;
-  const std::string& m_file;
-};
 
 /// A material: "brdf" names the BSDF, "emission" and "two_sided" belong to every material, and
 /// every other key is the BSDF's own, read and range-checked by it (bsdf/registry.cpp).
@@ -407,18 +343,7 @@ Camera readCamera(const json& j, const std::string& file) {
 }
 
 Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadReport& report) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the scene file. Fix: check the path.");
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const json::parse_error& e) {
-    // nlohmann's message carries the line and column of the error.
-    throw InputError(path + ": malformed JSON: " + e.what());
-  } catch (const json::exception& e) {
-    throw InputError(path + ": unreadable JSON (" + e.what() +
-                     "). Fix: numbers must fit a double.");
-  }
+  const json root = readJsonFile(path, "scene file");
   Scene scene;
   scene.file = path;
   ObjectReader r(root, "the scene", path);
