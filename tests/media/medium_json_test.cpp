@@ -196,7 +196,8 @@ TEST(VolumeScene, RefusesBadInputNamingTheFileAndTheKey) {
 
 TEST(CloudsCli, SceneFileOfTheDefaultsGivesTheDefaultImages) {
   test::TempDir dir;
-  const std::string size = "--width 16 --height 8 --samples 2 --seed 3 ";
+  // Seed 1 is the file's noise seed: without --scene, --seed seeds the noise as well.
+  const std::string size = "--width 16 --height 8 --samples 2 --seed 1 ";
   const test::RunResult a =
       test::runRadkit("clouds " + size + "--scene '" + test::dataPath("clouds/cumulus.json") +
                           "' --out " + dir.path("file"),
