@@ -119,7 +119,7 @@ void runClouds(CloudsCommand& cmd) {
   // under thick cover).
   light.groundAlbedo = groundAlbedo;
   // Next-event estimation to the sky; a ground hides the sky's lower half from the medium.
-  light.skySampler = std::make_shared<const media::SkySampler>(light.sky, groundAlbedo > 0);
+  light.skySampler = std::make_shared<const SkySampler>(light.sky, groundAlbedo > 0);
   cmd.march.ambientTop = sky.horizontalSky() / M_PI;  // cosine-weighted mean sky radiance
   cmd.march.ambientBottom = (sky.horizontalSky() + sky.horizontalSun()) * (groundAlbedo / M_PI);
 
@@ -323,7 +323,8 @@ void addCloudsCommand(CLI::App& app) {
   for (CLI::Option* layerOption : {phaseOption, phaseParamsOption, coverageOption, cloudTypeOption,
                                    extinctionOption, albedoOption, bottomOption, topOption})
     sceneOption->excludes(layerOption);
-  sub->add_option("--seed", cmd->seed, "Seed of the samples, and of the cloud noise unless --scene gives the medium")
+  sub->add_option("--seed", cmd->seed,
+                  "Seed of the samples, and of the cloud noise unless --scene gives the medium")
       ->capture_default_str();
   cmd->sunElevationOption = sub->add_option("--sun-elevation", cmd->sunElevation, "Degrees")
                                 ->check(FiniteRange(-90, 90))

@@ -173,6 +173,7 @@ ModeImage renderRadiosityMode(const ModeInput& in) {
   ImageSettings s;
   s.width = in.width, s.height = in.height, s.smooth = in.cmd.smooth,
   s.smoothing = in.cmd.smoothing;
+  if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
   const std::vector<bool> twoSided = in.scene.twoSidedSurfaces();
   RadianceImage img = renderRadiosity(r.mesh, *r.rays, in.camera, r.radiosity, twoSided, s);
   return finish(std::move(img), in.scene, r.mesh, std::to_string(r.mesh.size()) + " patches");
@@ -256,6 +257,12 @@ ModeImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, in
                      parseSamplerType(cmd.sampler),
                      parseLightSampling(cmd.lightSampling),
                      cmd.ff.settings.seed};
+  // Daylight reaches the radiosity solution and the path tracer; the other modes would
+  // silently leave it out (their escaping rays and light sampling know only emitters).
+  if (scene.sky && cmd.shading != "radiosity" && cmd.shading != "path-trace")
+    throw InputError(scene.file + ": --shading " + cmd.shading +
+                     " does not light by the scene's \"sky\" yet, so its image would miss "
+                     "the daylight. Fix: use --shading path-trace or --shading radiosity");
   for (const RenderMode& mode : kRenderModes)
     if (cmd.shading == mode.name) return mode.render(in);
   throw InputError("unknown --shading " + cmd.shading);

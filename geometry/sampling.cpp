@@ -109,4 +109,59 @@ double DiscreteDistribution::probability(std::size_t i) const {
   return m_cdf[i] - (i ? m_cdf[i - 1] : 0);
 }
 
+SkySampler::SkySampler(const std::function<Vec3(const Vec3&)>& sky, bool upperOnly, int rows,
+                       int columns, double uniformFraction)
+    : m_rows(std::max(1, rows)),
+      m_columns(std::max(1, columns)),
+      m_uniform(std::min(std::max(uniformFraction, 0.0), 1.0)) {
+  // Each cell spans the same solid angle 4π/(rows·columns); its weight is the mean radiance at
+  // 2 × 2 points inside it, so a bright sun aureole is not missed between cell centres.
+  std::vector<double> weights(std::size_t(m_rows) * m_columns, 0.0);
+  for (int r = 0; r < m_rows; ++r)
+    for (int c = 0; c < m_columns; ++c) {
+      double w = 0;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+          const double mu = 1 - 2 * (r + (i + 0.5) / 2) / m_rows;
+          if (upperOnly && mu <= 0) continue;
+          const Vec3 L = sky(localDirection(mu, 2 * kPi * (c + (j + 0.5) / 2) / m_columns));
+          if (std::isfinite(L.x + L.y + L.z)) w += std::max(0.0, (L.x + L.y + L.z) / 3);
+        }
+      weights[std::size_t(r) * m_columns + c] = w;
+    }
+  m_cells = DiscreteDistribution(weights);
+  if (m_cells.size() == 0) m_uniform = 1;  // a black sky: uniform directions only
+}
+
+std::size_t SkySampler::cell(const Vec3& d) const {
+  const int r = std::min(m_rows - 1, std::max(0, int((1 - d.z) / 2 * m_rows)));
+  double phi = std::atan2(d.y, d.x);
+  if (phi < 0) phi += 2 * kPi;
+  const int c = std::min(m_columns - 1, std::max(0, int(phi / (2 * kPi) * m_columns)));
+  return std::size_t(r) * m_columns + c;
+}
+
+Vec3 SkySampler::sample(double u0, double u1, double u2, double& pdf) const {
+  Vec3 d;
+  if (u0 < m_uniform) {
+    d = localDirection(1 - 2 * u1, 2 * kPi * u2);
+  } else {
+    // A cell by its weight, then a uniform point in it (uniform in cos θ and φ is uniform in
+    // solid angle); u1 remapped inside the chosen cell's interval picks the row offset.
+    double v;
+    const std::size_t i = m_cells.sample(u1, &v);
+    const int r = int(i / std::size_t(m_columns)), c = int(i % std::size_t(m_columns));
+    d = localDirection(1 - 2 * (r + v) / m_rows, 2 * kPi * (c + u2) / m_columns);
+  }
+  pdf = this->pdf(d);
+  return d;
+}
+
+double SkySampler::pdf(const Vec3& d) const {
+  const double uniform = 1 / (4 * kPi);
+  if (m_uniform >= 1) return uniform;
+  const double cellSolidAngle = 4 * kPi / (double(m_rows) * m_columns);
+  return m_uniform * uniform + (1 - m_uniform) * m_cells.probability(cell(d)) / cellSolidAngle;
+}
+
 }  // namespace radkit

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "geometry/frame.h"
@@ -61,6 +62,28 @@ class DiscreteDistribution {
 
  private:
   std::vector<double> m_cdf;  ///< m_cdf[i] = P(index ≤ i), m_cdf.back() == 1
+};
+
+/// \brief Directions drawn in proportion to a sky's radiance (the mean of its channels),
+/// tabulated on an equal-area grid of cells in (cos θ, φ) and mixed with uniform sampling of
+/// the sphere, so every direction keeps a density of at least uniformFraction/(4π): light a
+/// cell's 2 × 2 probe points missed is still reached, and the estimator stays unbiased.
+class SkySampler {
+ public:
+  /// The grid's axis is z. `upperOnly` leaves the cells with z < 0 empty (a ground there hides
+  /// the sky).
+  explicit SkySampler(const std::function<Vec3(const Vec3&)>& sky, bool upperOnly = false,
+                      int rows = 64, int columns = 128, double uniformFraction = 0.1);
+  /// A unit direction from three uniform numbers in [0, 1), with its density per steradian.
+  Vec3 sample(double u0, double u1, double u2, double& pdf) const;
+  /// Density per steradian of sample() drawing the unit direction d.
+  double pdf(const Vec3& d) const;
+
+ private:
+  std::size_t cell(const Vec3& d) const;
+  int m_rows, m_columns;
+  double m_uniform;
+  DiscreteDistribution m_cells;  ///< row-major, row 0 at the zenith (cos θ from 1 down)
 };
 
 }  // namespace radkit

@@ -16,27 +16,6 @@ namespace radkit::media {
 
 using SkyRadiance = std::function<Vec3(const Vec3& direction)>;
 
-/// \brief Directions drawn in proportion to a sky's radiance (the mean of its channels),
-/// tabulated on an equal-area grid of cells in (cos θ, φ) and mixed with uniform sampling of
-/// the sphere, so every direction keeps a density of at least uniformFraction/(4π): light a
-/// cell's 2 × 2 probe points missed is still reached, and the estimator stays unbiased.
-class SkySampler {
- public:
-  /// `upperOnly` leaves the table's cells below the horizon empty (a ground hides them).
-  explicit SkySampler(const SkyRadiance& sky, bool upperOnly = false, int rows = 64,
-                      int columns = 128, double uniformFraction = 0.1);
-  /// A unit direction from three uniform numbers in [0, 1), with its density per steradian.
-  Vec3 sample(double u0, double u1, double u2, double& pdf) const;
-  /// Density per steradian of sample() drawing the unit direction d.
-  double pdf(const Vec3& d) const;
-
- private:
-  std::size_t cell(const Vec3& d) const;
-  int m_rows, m_columns;
-  double m_uniform;
-  DiscreteDistribution m_cells;  ///< row-major, row 0 at the zenith (cos θ from 1 down)
-};
-
 /// Light from outside the medium.
 struct Lighting {
   Vec3 sunDirection{0, 0, 1};   ///< unit, towards the sun

@@ -117,14 +117,18 @@ void addStats(PhotonTraceStats& a, const PhotonTraceStats& b) {
 }  // namespace
 
 EmitterSampler photonEmitters(const Scene& scene, const PatchMesh& mesh) {
+  // Photons start only from emitting surfaces: under a "sky" the result would silently lack
+  // the daylight.
+  if (scene.sky)
+    throw InputError(scene.file +
+                     ": photons do not start from the \"sky\" yet, so photon mapping would "
+                     "miss the daylight. Fix: solve daylight with `radkit run` or render it "
+                     "with `radkit render --shading path-trace`");
   EmitterSampler emitters(scene, mesh);
   if (emitters.empty())
-    throw InputError(
-        scene.file + ": no surface emits, so no photon can start" +
-        (scene.sky ? " (photons do not start from the \"sky\" yet: daylight is solved by "
-                     "`radkit run`)"
-                   : "") +
-        ". Fix: give a material an \"emission\" above zero");
+    throw InputError(scene.file +
+                     ": no surface emits, so no photon can start. Fix: give a material an "
+                     "\"emission\" above zero");
   return emitters;
 }
 

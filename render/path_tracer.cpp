@@ -14,7 +14,11 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
   for (int depth = 0; depth < settings.maxDepth; ++depth) {
     ++rays;
     std::optional<SurfaceHit> hit = scene.intersect(o, d);
-    if (!hit) break;
+    if (!hit) {
+      // Left the scene: daylight, weighted against skyLight()'s sampling.
+      if (scene.hasSky()) radiance += mul(beta, scene.escaped(d, bsdfPdf, specular));
+      break;
+    }
     // Emission found by the BSDF-sampled ray, weighted against light sampling.
     const Vec3 le = scene.emitted(*hit);
     if (maxComponent(le) > 0) {
@@ -22,7 +26,10 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
       radiance += mul(beta, le) * w;
     }
     if (!hit->bsdf) break;  // the back of a one-sided surface absorbs
-    if (!hit->bsdf->isDelta()) radiance += mul(beta, scene.directLight(*hit, sampler, rays));
+    if (!hit->bsdf->isDelta()) {
+      radiance += mul(beta, scene.directLight(*hit, sampler, rays));
+      if (scene.hasSky()) radiance += mul(beta, scene.skyLight(*hit, sampler, rays));
+    }
 
     const double u0 = sampler.get1D();
     const auto [u1, u2] = sampler.get2D();

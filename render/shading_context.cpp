@@ -46,6 +46,18 @@ ShadingScene::ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visi
     m_emission.push_back(m.emission);
   }
   for (const Surface& s : scene.surfaces) m_material.push_back(s.material);
+  if (scene.sky) {
+    m_sky.emplace(*scene.sky);
+    const SkyModel& sky = *m_sky;
+    // Below the horizon the sky model gives the ground's glow, which rays also meet there.
+    m_skySampler = std::make_unique<SkySampler>([&sky](const Vec3& d) { return sky.radiance(d); });
+    if (sky.hasSun() && maxComponent(sky.sunIrradiance()) > 0) {
+      // A disc of uniform radiance whose irradiance at normal incidence is E_n (the disc's
+      // cos θ across it differs from 1 by < 1e-5 for the real sun).
+      m_sunSolidAngle = 2 * M_PI * (1 - sky.sunCosRadius());
+      m_sunRadiance = sky.sunIrradiance() / m_sunSolidAngle;
+    }
+  }
 }
 
 std::optional<SurfaceHit> ShadingScene::intersect(const Vec3& origin, const Vec3& dir,
@@ -111,6 +123,43 @@ Vec3 ShadingScene::directLight(const SurfaceHit& hit, Sampler& sampler, long lon
   if (m_rays.occluded(hit.point, m_mesh.patches[hit.patch].normal, e.point, e.normal)) return {};
   const double weight = powerHeuristic(pdfLight, hit.bsdf->pdf(hit.wo, wiLocal));
   return mul(f, e.emission / M_PI) * (std::fabs(wiLocal.z) * weight / pdfLight);
+}
+
+Vec3 ShadingScene::skyLight(const SurfaceHit& hit, Sampler& sampler, long long& rays) const {
+  const double u0 = sampler.get1D();
+  const auto [u1, u2] = sampler.get2D();
+  const auto [v1, v2] = sampler.get2D();
+  if (!m_sky || !hit.bsdf || hit.bsdf->isDelta()) return {};
+  Vec3 sum;
+  // One direction by the sky's radiance, one in the sun's disc (uniform in its solid angle):
+  // each counts only if its ray leaves the scene.
+  const auto add = [&](const Vec3& wi, double pdfLight, const Vec3& radiance) {
+    const Vec3 wiLocal = hit.frame.toLocal(wi);
+    const Vec3 f = hit.bsdf->eval(hit.wo, wiLocal);
+    if (maxComponent(f) <= 0 || maxComponent(radiance) <= 0 || !(pdfLight > 0)) return;
+    ++rays;
+    if (m_rays.closestHit(spawn(hit, wi), wi, 0)) return;
+    const double weight = powerHeuristic(pdfLight, hit.bsdf->pdf(hit.wo, wiLocal));
+    sum += mul(f, radiance) * (std::fabs(wiLocal.z) * weight / pdfLight);
+  };
+  double pdfSky;
+  const Vec3 wSky = m_skySampler->sample(u0, u1, u2, pdfSky);
+  add(wSky, pdfSky, m_sky->radiance(wSky));
+  if (m_sunSolidAngle > 0) {
+    const Vec3 wSun =
+        Frame(m_sky->sunDirection()).toWorld(sampleUniformCone(m_sky->sunCosRadius(), v1, v2));
+    add(wSun, 1 / m_sunSolidAngle, m_sunRadiance);
+  }
+  return sum;
+}
+
+Vec3 ShadingScene::escaped(const Vec3& dir, double bsdfPdf, bool specular) const {
+  if (!m_sky) return {};
+  const Vec3 sky = m_sky->radiance(dir);
+  Vec3 l = specular ? sky : sky * powerHeuristic(bsdfPdf, m_skySampler->pdf(dir));
+  if (m_sunSolidAngle > 0 && dot(dir, m_sky->sunDirection()) >= m_sky->sunCosRadius())
+    l += specular ? m_sunRadiance : m_sunRadiance * powerHeuristic(bsdfPdf, 1 / m_sunSolidAngle);
+  return l;
 }
 
 double ShadingScene::lightPdf(const SurfaceHit& light, const Vec3& from) const {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bsdf/bsdf.h"
+#include "daylight/sky.h"
 #include "geometry/patch_mesh.h"
 #include "geometry/ray_scene.h"
 #include "geometry/sampling.h"
@@ -117,6 +118,18 @@ class ShadingScene {
   double lightPdf(const SurfaceHit& light, const Vec3& from) const;
   LightSampling lightSampling() const { return m_lightSampling; }
 
+  /// Whether the scene declares a "sky" (daylight: a sky, and perhaps the sun's disc).
+  bool hasSky() const { return m_sky.has_value(); }
+  /// \brief Next-event estimate of the daylight reflected at a non-delta hit: one direction
+  /// drawn by the sky's radiance (SkySampler) and one in the sun's disc, each with a ray that
+  /// must leave the scene, each weighted against BSDF sampling by the power heuristic. Zero
+  /// without a sky. Always takes one 1-D and two 2-D samples from `sampler`.
+  Vec3 skyLight(const SurfaceHit& hit, Sampler& sampler, long long& rays) const;
+  /// \brief Radiance of a ray that leaves the scene along unit `dir`: the sky and, inside its
+  /// disc, the sun. After a non-specular bounce (`bsdfPdf` the density that drew dir) each is
+  /// weighted against skyLight()'s sampling; after the camera or a delta lobe (`specular`) not.
+  Vec3 escaped(const Vec3& dir, double bsdfPdf, bool specular) const;
+
   /// Below this solid angle (sr) rectangles are sampled by area: the angle sum that gives Ω
   /// loses relative precision as Ω shrinks (measured: 4e-10 at 4e-3 sr, 1e-5 at 2e-4 sr),
   /// and so small a light is nearly uniform in solid angle anyway.
@@ -135,6 +148,10 @@ class ShadingScene {
   std::vector<int> m_material;                 ///< per surface
   std::vector<bool> m_twoSided, m_transmits;   ///< per material
   std::vector<Vec3> m_emission;                ///< per material
+  std::optional<SkyModel> m_sky;               ///< the scene's "sky", if it has one
+  std::unique_ptr<SkySampler> m_skySampler;    ///< directions by the sky's radiance
+  Vec3 m_sunRadiance;                          ///< E_n / Ω over the sun's disc (0: no sun)
+  double m_sunSolidAngle = 0;                  ///< Ω = 2π(1 − cos r)
 };
 
 /// \brief The BSDF a material is shaded with under `glossy` (the table of substitutions).

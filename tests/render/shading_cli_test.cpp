@@ -37,6 +37,36 @@ TEST(RenderCommand, WritesPngAndPfm) {
   EXPECT_EQ(readPng(dir.path("d.png")).width(), 8);
 }
 
+TEST(RenderCommand, DaylightScenesPathTraceAndTheOtherModesRefuse) {
+  // The path tracer lights a sky scene (its image was black before it knew the sky; the
+  // closed forms are in daylight_path_test.cpp); the modes that would leave the daylight out
+  // refuse, naming the file and the fix, and write nothing.
+  test::TempDir dir;
+  const std::string scene = "'" + test::dataPath("street-canyon.json") + "'";
+  test::RunResult r = test::runRadkit(
+      "render " + scene + " --shading path-trace --spp 2 --size 16x12 --out " + dir.path("pt.pfm"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const RadianceImage img = readPfm(dir.path("pt.pfm"));
+  // Nearly every pixel sees the street, a wall or the sky, all lit (every pixel was black
+  // before the path tracer knew the sky); below the horizon, past the street's end, the
+  // ground is black.
+  std::size_t lit = 0;
+  for (const Vec3& v : img.radiance) lit += v.y > 0;
+  EXPECT_GT(lit, img.radiance.size() * 9 / 10);
+  for (const char* mode : {"final-gather", "phong", "cook-torrance", "photon-map"}) {
+    r = test::runRadkit("render " + scene + " --shading " + mode + " --size 8x8 --out " +
+                        dir.path(std::string(mode) + ".png"));
+    EXPECT_NE(r.exitCode, 0) << mode;
+    EXPECT_NE(r.output.find("street-canyon.json"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("Fix: use --shading path-trace"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.path(std::string(mode) + ".png"))) << mode;
+  }
+  r = test::runRadkit("photons " + scene + " --out " + dir.path("photons"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("photons do not start from the \"sky\""), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("photons")));
+}
+
 TEST(RenderCommand, ComparesWithReferenceRenders) {
   // Two independent path-traced references, then a final gather measured against them.
   test::TempDir dir;
