@@ -114,11 +114,15 @@ struct Gather {
     for (int depth = 0; depth <= settings.maxSpecularDepth; ++depth) {
       ++rays;
       std::optional<SurfaceHit> hit = scene.intersect(o, d);
-      if (!hit) break;
+      if (!hit) {  // the camera's ray, or a mirror's, sees the sky at full weight
+        radiance += mul(beta, scene.escaped(d, 0, true));
+        break;
+      }
       radiance += mul(beta, scene.emitted(*hit));
       if (!hit->bsdf) break;
       if (!hit->bsdf->isDelta()) {
         radiance += mul(beta, scene.directLight(*hit, sampler, rays));
+        if (scene.hasSky()) radiance += mul(beta, scene.skyLight(*hit, sampler, rays));
         radiance += mul(beta, guided(*hit, sampler, rays));
       }
       const double u0 = sampler.get1D();
@@ -140,6 +144,8 @@ struct Gather {
                       powerHeuristic(bs->pdf, scene.lightPdf(*next, hit->point));
         const double w = guide ? powerHeuristic(bs->pdf, guidePdf(hit->patch, *next)) : 1.0;
         radiance += mul(beta, mul(bs->weight, reflected(*next))) * w;
+      } else if (scene.hasSky()) {
+        radiance += mul(beta, mul(bs->weight, scene.escaped(wi, bs->pdf, false)));
       }
       break;
     }

@@ -10,10 +10,25 @@ RadiosityLighting radiosityLighting(const PipelineResult& r) {
   RadiosityLighting l;
   l.radiosity = r.radiosity;
   l.emission = toVec3(r.system.emission);
-  const std::vector<Vec3> direct = irradiance(r.formFactors->matrix, r.system.emission);
+  std::vector<Vec3> daylight(r.radiosity.size());
+  if (r.daylight) {
+    // Under a sky the system's emission holds the daylight's first reflection ρD as well; the
+    // surfaces' own emission is what is left (the image modes estimate D itself directly).
+    const std::vector<Vec3> rho = toVec3(r.system.reflectance);
+    for (std::size_t i = 0; i < daylight.size(); ++i) {
+      daylight[i] = r.daylight->sky[i] + r.daylight->sun[i];
+      const Vec3 e = l.emission[i] - mul(rho[i], daylight[i]);
+      l.emission[i] = {std::max(0.0, e.x), std::max(0.0, e.y), std::max(0.0, e.z)};
+    }
+  }
+  Channels emission = makeChannels(int(l.emission.size()));
+  for (std::size_t i = 0; i < l.emission.size(); ++i)
+    for (int c = 0; c < 3; ++c) emission[c][i] = l.emission[i][c];
+  const std::vector<Vec3> direct = irradiance(r.formFactors->matrix, emission);
   l.indirectIrradiance.resize(r.irradiance.size());
   for (std::size_t i = 0; i < r.irradiance.size(); ++i) {
-    const Vec3 h = r.irradiance[i] - direct[i];
+    // r.irradiance is FB (+ D under a sky): FB − FE is the light the other surfaces reflect.
+    const Vec3 h = r.irradiance[i] - daylight[i] - direct[i];
     l.indirectIrradiance[i] = {std::max(0.0, h.x), std::max(0.0, h.y), std::max(0.0, h.z)};
   }
   return l;
@@ -37,7 +52,10 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
   for (int depth = 0; depth <= s.maxSpecularDepth; ++depth) {
     ++rays;
     std::optional<SurfaceHit> hit = scene.intersect(o, d);
-    if (!hit) break;
+    if (!hit) {  // the camera's ray, or a mirror's, sees the sky at full weight
+      radiance += mul(beta, scene.escaped(d, 0, true));
+      break;
+    }
     radiance += mul(beta, scene.emitted(*hit));
     if (!hit->bsdf) break;
     const double u0 = sampler.get1D();
@@ -51,6 +69,7 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
       continue;
     }
     radiance += mul(beta, scene.directLight(*hit, sampler, rays));
+    if (scene.hasSky()) radiance += mul(beta, scene.skyLight(*hit, sampler, rays));
     const Vec3 diffuse = hit->bsdf->diffuseAlbedo();
     radiance += mul(beta, mul(diffuse, lighting.indirectIrradiance[hit->patch])) / M_PI;
     if (std::optional<BsdfSample> bs = hit->bsdf->sample(hit->wo, u0, u1, u2)) {
@@ -66,6 +85,9 @@ Vec3 twoPassRadiance(const ShadingScene& scene, const RadiosityLighting& lightin
         if (maxComponent(glossy) > 0)
           radiance +=
               mul(beta, mul(glossy, reflectedRadiosity(*next, lighting))) * (bs->wi.z / bs->pdf);
+      } else if (scene.hasSky()) {
+        // Every lobe's share of the daylight, weighted against skyLight()'s sampling.
+        radiance += mul(beta, mul(bs->weight, scene.escaped(wi, bs->pdf, false)));
       }
     }
     break;

@@ -188,6 +188,19 @@ TEST(CloudsCli, WritesTheTableAndRefusesAnUnknownPhase) {
     EXPECT_TRUE(std::isfinite(row["relative_rmse"].get<double>()));
     EXPECT_GT(row["seconds"].get<double>(), 0);
   }
+  // Another phase function without parameters takes its own defaults (HG's g = 0.86 does not
+  // carry over), and the sky's next-event estimation can be switched on.
+  r = test::runRadkit(
+      "clouds --width 8 --height 8 --samples 1 --extinction 0.01 --phase "
+      "mie-cloud --sky-nee --out " +
+          dir.path("mie"),
+      600);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream mie(dir.path("mie") + "/report.json");
+  const nlohmann::json mieReport = nlohmann::json::parse(mie);
+  EXPECT_EQ(mieReport["settings"]["phase"], "mie-cloud");
+  EXPECT_TRUE(mieReport["settings"]["sky_nee"].get<bool>());
+  EXPECT_GT(mieReport["settings"]["phase_mean_cosine"].get<double>(), 0.8);
   r = test::runRadkit("clouds --width 8 --height 8 --phase fog --out " + dir.path("bad"), 60);
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("fog"), std::string::npos) << r.output;

@@ -7,12 +7,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
+#include <string>
 #include <vector>
 
 #include "geometry/sampling.h"
 #include "media/pillars.h"
 #include "tests/common/statistics.h"
+#include "tests/common/test_util.h"
 
 namespace radkit::media {
 namespace {
@@ -424,6 +429,51 @@ TEST(Pillars, NightSceneIsValidAndRendersDeterministically) {
   PillarScene bad = s;
   bad.boxes.push_back({s.lamps[0].position - Vec3{1, 1, 1}, s.lamps[0].position + Vec3{1, 1, 1}});
   EXPECT_THROW(pillarValidate(bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace radkit::media
+
+namespace radkit::media {
+namespace {
+
+TEST(PillarsCli, WritesBothImagesAndRefusesBadSettingsLeavingNothing) {
+  test::TempDir dir;
+  const std::string small = "pillars --size 16 10 --samples 40 --seed 2 --out ";
+  test::RunResult r = test::runRadkit(small + dir.path("a"), 600);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* f : {"pillars-closed.pfm", "pillars-closed.png", "pillars-mc.pfm",
+                        "pillars-mc.png", "pillars-difference.png", "report.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir.path("a") + "/" + f)) << f;
+  // The same seed gives the same Monte Carlo image.
+  r = test::runRadkit(small + dir.path("b"), 600);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream fa(dir.path("a") + "/pillars-mc.pfm", std::ios::binary),
+      fb(dir.path("b") + "/pillars-mc.pfm", std::ios::binary);
+  const std::string ia((std::istreambuf_iterator<char>(fa)), {}),
+      ib((std::istreambuf_iterator<char>(fb)), {});
+  EXPECT_FALSE(ia.empty());
+  EXPECT_EQ(ia, ib);
+  // Refusals: a lamp larger than the street allows (the scene's validation, with its fix),
+  // and options outside their ranges or not numbers. None leaves an output folder.
+  const struct {
+    std::string args, says;
+  } bad[] = {
+      {"--lamp-radius 6", "Fix:"},
+      {"--slab-top 5", "--slab-top"},
+      {"--sigma-tilt nan", "--sigma-tilt"},
+      {"--cut 0", "--cut"},
+      {"--size 4 4", "--size"},
+      {"--plate-density -1", "--plate-density"},
+  };
+  int k = 0;
+  for (const auto& b : bad) {
+    const std::string out = dir.path("bad" + std::to_string(k++));
+    r = test::runRadkit("pillars --size 16 10 --samples 4 " + b.args + " --out " + out, 600);
+    EXPECT_NE(r.exitCode, 0) << b.args;
+    EXPECT_NE(r.output.find(b.says), std::string::npos) << b.args << ": " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out)) << b.args;
+  }
 }
 
 }  // namespace
