@@ -115,7 +115,7 @@ json surfacesJson(const std::vector<SurfaceEstimate>& surfaces) {
   return a;
 }
 
-json statsJson(const PhotonTrace& t, const EmitterSampler& emitters) {
+json statsJson(const PhotonTrace& t) {
   const PhotonTraceStats& s = t.stats;
   return {{"emitted", s.emitted},
           {"stored", s.stored},
@@ -125,7 +125,8 @@ json statsJson(const PhotonTrace& t, const EmitterSampler& emitters) {
           {"truncated", s.truncated},
           {"rays", s.rays},
           {"emitted_power", vec3Json(t.emittedPower)},
-          {"total_power", vec3Json(emitters.totalPower())}};
+          {"total_power", vec3Json(t.sourcePower)},
+          {"sky_and_sun_power", vec3Json(t.skyPower)}};
 }
 
 /// Everything one run computes, in the order it is computed.
@@ -285,7 +286,7 @@ json reportJson(const PhotonsCommand& cmd, const PhotonRun& r, const json& rates
                 {"gather_rays", ps.gatherRays},
                 {"direct_rays", ps.directRays},
                 {"image_size", cmd.noImage ? 0 : cmd.imageSize}}},
-              {"photons", statsJson(r.trace, *r.emitters)},
+              {"photons", statsJson(r.trace)},
               {"rates", rates},
               {"seconds", r.seconds},
               {"memory",

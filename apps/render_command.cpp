@@ -257,12 +257,6 @@ ModeImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, in
                      parseSamplerType(cmd.sampler),
                      parseLightSampling(cmd.lightSampling),
                      cmd.ff.settings.seed};
-  // Photons start only from emitting surfaces: a sky scene's image would lack the daylight.
-  if (scene.sky && cmd.shading == "photon-map")
-    throw InputError(scene.file +
-                     ": --shading photon-map does not light by the scene's \"sky\" yet, so "
-                     "its image would miss the daylight. Fix: use --shading path-trace, "
-                     "final-gather or radiosity");
   for (const RenderMode& mode : kRenderModes)
     if (cmd.shading == mode.name) return mode.render(in);
   throw InputError("unknown --shading " + cmd.shading);

@@ -14,6 +14,21 @@ namespace radkit {
 
 namespace {
 
+/// The render samplers' interface over one random stream (ShadingScene's estimators take it).
+class RngSampler final : public Sampler {
+ public:
+  explicit RngSampler(Rng& rng) : m_rng(rng) {}
+  void start(std::uint64_t, int) override {}
+  double get1D() override { return m_rng.uniform(); }
+  std::array<double, 2> get2D() override {
+    const double a = m_rng.uniform();
+    return {a, m_rng.uniform()};
+  }
+
+ private:
+  Rng& m_rng;
+};
+
 /// The first non-delta point along a ray, after any mirror and glass bounces.
 struct ShadedHit {
   SurfaceHit hit;
@@ -25,11 +40,20 @@ class PhotonShader {
   PhotonShader(const PhotonScene& in, const PhotonSettings& s)
       : m_in(in), m_settings(s), m_shading(in.scene, in.mesh, in.rays, s.bsdf) {}
 
-  /// Follows a ray through delta BSDFs to a hit on a non-delta BSDF.
-  std::optional<ShadedHit> findNonDelta(Vec3 origin, Vec3 dir, Rng& rng) const {
+  /// Follows a ray through delta BSDFs to a hit on a non-delta BSDF. A ray that leaves the
+  /// scene sets *escaped (when given) to the daylight it carries: weighted against
+  /// skyLight()'s sampling when it left straight from a BSDF sample of density bsdfPdf ≥ 0,
+  /// at full weight from the camera or after a mirror.
+  std::optional<ShadedHit> findNonDelta(Vec3 origin, Vec3 dir, Rng& rng, Vec3* escaped = nullptr,
+                                        double bsdfPdf = -1) const {
     Vec3 throughput{1, 1, 1};
+    if (escaped) *escaped = {};
     for (int depth = 0; depth <= m_settings.maxSpecularDepth; ++depth) {
       std::optional<SurfaceHit> hit = m_shading.intersect(origin, dir);
+      if (!hit && escaped && m_shading.hasSky()) {
+        const bool mis = depth == 0 && bsdfPdf >= 0;
+        *escaped = mul(throughput, m_shading.escaped(dir, mis ? bsdfPdf : 0, !mis));
+      }
       if (!hit || !hit->bsdf) return std::nullopt;
       if (!hit->bsdf->isDelta()) return ShadedHit{*hit, throughput};
       const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
@@ -64,11 +88,19 @@ class PhotonShader {
 
   /// L_direct = ∫_emitters f L_e cos θ_x cos θ_e V / d² dA, estimated with M emitter samples
   /// of density p_A: (1/M) Σ f (E/π) cos θ_x cos θ_e V / (d² p_A).
+  /// Under a "sky", each sample also estimates the sky and the sun (ShadingScene::skyLight,
+  /// MIS against the gather rays, which take the other half where they leave the scene).
   Vec3 direct(const SurfaceHit& h, Rng& rng) const {
     const int count = m_settings.directRays;
     const Vec3 n = h.frame.n;
     Vec3 sum;
     for (int s = 0; s < count; ++s) {
+      if (m_shading.hasSky()) {
+        RngSampler sampler(rng);
+        long long rays = 0;
+        sum += m_shading.skyLight(h, sampler, rays);
+      }
+      if (m_in.emitters.empty()) continue;
       const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
       EmitterSample e = m_in.emitters.sample(u0, u1, u2);
       const Vec3 d = e.point - h.point;
@@ -96,8 +128,13 @@ class PhotonShader {
       const std::optional<BsdfSample> s = h.bsdf->sample(h.wo, u0, u1, u2);
       if (!s || s->delta) continue;  // delta lobes of a mixed BSDF: light left to the maps
       const Vec3 dir = h.frame.toWorld(s->wi);
-      std::optional<ShadedHit> y = findNonDelta(m_shading.spawn(h, dir), dir, rng);
-      if (!y) continue;
+      Vec3 escaped;
+      std::optional<ShadedHit> y =
+          findNonDelta(m_shading.spawn(h, dir), dir, rng, &escaped, s->pdf);
+      if (!y) {
+        sum += mul(s->weight, escaped);
+        continue;
+      }
       const SurfaceHit& yh = y->hit;
       Vec3 ly;
       if (yh.bsdf->lambertian() && m_in.global.hasPrecomputed())
@@ -145,8 +182,9 @@ RadianceImage renderPhotonImage(const PhotonScene& in, const Camera& camera, int
       const double jx = rng.uniform(), jy = rng.uniform();
       const Vec3 dir = cam.direction(x + jx, y + jy);
       if (auto first = in.rays.closestHit(cam.origin(), dir, 0)) img.patch[pixel] = first->patch;
-      std::optional<ShadedHit> h = shader.findNonDelta(cam.origin(), dir, rng);
-      if (h) img.radiance[pixel] = shader.radiance(*h, view, rng);
+      Vec3 sky;  // what a camera ray that leaves the scene sees
+      std::optional<ShadedHit> h = shader.findNonDelta(cam.origin(), dir, rng, &sky);
+      img.radiance[pixel] = h ? shader.radiance(*h, view, rng) : sky;
     }
   });
   return img;

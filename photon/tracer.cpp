@@ -4,8 +4,10 @@
 
 #include <chrono>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
+#include "daylight/sky.h"
 #include "geometry/ray_scene.h"
 #include "geometry/sampling.h"
 #include "geometry/scene_loader.h"
@@ -38,12 +40,73 @@ Photon makePhoton(const Vec3& x, const Vec3& power, const Vec3& incoming, int pa
   return p;
 }
 
+/// Photons from a scene's sky and sun: they start on a disc of radius R (the scene's bounding
+/// sphere) facing the direction ω they come from, centred R beyond the sphere's centre along
+/// ω, and travel along −ω. A direction with density p_ω and a disc point with density 1/(πR²)
+/// carry Φ = L(ω) πR² / p_ω (the sun: E_n πR²), before dividing by the photons allotted.
+class SkySource {
+ public:
+  SkySource(const SkyDescription& description, const PatchMesh& mesh)
+      : m_sky(description), m_sampler([this](const Vec3& d) { return m_sky.radiance(d); }) {
+    Bounds3 b;
+    for (const Vec3& v : mesh.vertices) b.extend(v);
+    m_centre = (b.lo + b.hi) * 0.5;
+    m_radius = 0.5 * length(b.hi - b.lo) * 1.01 + 1e-9;
+    const double disc = kPi * m_radius * m_radius;
+    // ∫ L dω over the sphere by the midpoint rule on 128 × 256 equal-area cells.
+    const int rows = 128, cols = 256;
+    Vec3 integral;
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c)
+        integral +=
+            m_sky.radiance(localDirection(1 - 2 * (r + 0.5) / rows, 2 * kPi * (c + 0.5) / cols));
+    m_skyPower = integral * (4 * kPi / (double(rows) * cols) * disc);
+    if (m_sky.hasSun()) {
+      m_sunPower = m_sky.sunIrradiance() * disc;
+      m_sunSolidAngle = 2 * kPi * (1 - m_sky.sunCosRadius());
+    }
+  }
+  Vec3 skyPower() const { return m_skyPower; }
+  Vec3 sunPower() const { return m_sunPower; }
+
+  /// A photon from the sky (sun = false) or the sun's disc, its power before allotment.
+  PhotonEmission emit(bool sun, double u0, double u1, double u2, double u3, double u4) const {
+    Vec3 omega, radiancePerPdf;
+    if (sun) {
+      omega = Frame(m_sky.sunDirection()).toWorld(sampleUniformCone(m_sky.sunCosRadius(), u0, u1));
+      radiancePerPdf = m_sky.sunIrradiance();  // (E_n/Ω) / (1/Ω)
+    } else {
+      double pdf;
+      omega = m_sampler.sample(u0, u1, u2, pdf);
+      radiancePerPdf = pdf > 0 ? m_sky.radiance(omega) / pdf : Vec3{};
+    }
+    const Frame frame(omega);
+    const double r = m_radius * std::sqrt(u3), phi = 2 * kPi * u4;
+    PhotonEmission e;
+    e.origin =
+        m_centre + omega * m_radius + frame.toWorld(Vec3{r * std::cos(phi), r * std::sin(phi), 0});
+    e.direction = e.normal = -omega;
+    e.power = radiancePerPdf * (kPi * m_radius * m_radius);
+    return e;
+  }
+
+ private:
+  SkyModel m_sky;
+  SkySampler m_sampler;
+  Vec3 m_centre;
+  double m_radius = 0, m_sunSolidAngle = 0;
+  Vec3 m_skyPower, m_sunPower;
+};
+
 /// Context of one tracing run, shared read-only by every thread.
 struct Tracer {
   const ShadingScene& shading;
   const Visibility& rays;
   const EmitterSampler& emitters;
   const PhotonSettings& settings;
+  const SkySource* sky;  ///< null without a "sky"
+  /// Chances a photon starts from the emitting surfaces, the sky, the sun (sum 1).
+  double pSurfaces = 1, pSky = 0, pSun = 0;
 
   /// Follows photon `index` from its emitter until absorption, escape or the bounce cap.
   /// Every bounce samples the hit's BSDF, whatever its model.
@@ -51,8 +114,22 @@ struct Tracer {
     Rng rng(settings.seed, index, 0);
     double u[5];
     for (double& v : u) v = rng.uniform();
-    PhotonEmission e =
-        samplePhotonEmission(emitters, settings.photons, u[0], u[1], u[2], u[3], u[4]);
+    PhotonEmission e;
+    if (sky) {
+      // The source by its share of the power; the photon's power divided by that chance.
+      const double pick = rng.uniform();
+      const double n = double(settings.photons);
+      if (pick < pSurfaces) {
+        e = samplePhotonEmission(emitters, settings.photons, u[0], u[1], u[2], u[3], u[4]);
+        e.power = e.power / pSurfaces;
+      } else {
+        const bool sun = pSun > 0 && (pick >= pSurfaces + pSky || !(pSky > 0));
+        e = sky->emit(sun, u[0], u[1], u[2], u[3], u[4]);
+        e.power = e.power / (n * (sun ? pSun : pSky));
+      }
+    } else {
+      e = samplePhotonEmission(emitters, settings.photons, u[0], u[1], u[2], u[3], u[4]);
+    }
     out.emittedPower += e.power;
     ++out.stats.emitted;
     Vec3 origin = e.origin + e.normal * rays.epsilon(), dir = e.direction, power = e.power;
@@ -117,18 +194,11 @@ void addStats(PhotonTraceStats& a, const PhotonTraceStats& b) {
 }  // namespace
 
 EmitterSampler photonEmitters(const Scene& scene, const PatchMesh& mesh) {
-  // Photons start only from emitting surfaces: under a "sky" the result would silently lack
-  // the daylight.
-  if (scene.sky)
-    throw InputError(scene.file +
-                     ": photons do not start from the \"sky\" yet, so photon mapping would "
-                     "miss the daylight. Fix: solve daylight with `radkit run` or render it "
-                     "with `radkit render --shading path-trace`");
   EmitterSampler emitters(scene, mesh);
-  if (emitters.empty())
+  if (emitters.empty() && !scene.sky)
     throw InputError(scene.file +
-                     ": no surface emits, so no photon can start. Fix: give a material an "
-                     "\"emission\" above zero");
+                     ": no surface emits and there is no \"sky\", so no photon can start. "
+                     "Fix: give a material an \"emission\" above zero, or the scene a \"sky\"");
   return emitters;
 }
 
@@ -152,15 +222,32 @@ double photonEmissionPdf(const EmitterSampler& emitters, int patch, const Vec3& 
 
 PhotonTrace tracePhotons(const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
                          const EmitterSampler& emitters, const PhotonSettings& settings) {
-  if (emitters.empty())
+  if (emitters.empty() && !scene.sky)
     throw std::invalid_argument(
-        "the scene has no emitters: photon mapping needs a surface whose material has "
-        "\"emission\" > 0");
+        "the scene has no emitters and no sky: photon mapping needs a surface whose material "
+        "has \"emission\" > 0, or a \"sky\"");
   if (settings.photons == 0 || settings.photons >= std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("photon count must lie in [1, 2^32 - 1)");
   const auto start = std::chrono::steady_clock::now();
   const ShadingScene shading(scene, mesh, rays, settings.bsdf);
-  const Tracer tracer{shading, rays, emitters, settings};
+  std::optional<SkySource> sky;
+  Tracer tracer{shading, rays, emitters, settings, nullptr};
+  PhotonTrace trace;
+  trace.sourcePower = emitters.empty() ? Vec3{} : emitters.totalPower();
+  if (scene.sky) {
+    sky.emplace(*scene.sky, mesh);
+    tracer.sky = &*sky;
+    trace.skyPower = sky->skyPower() + sky->sunPower();
+    trace.sourcePower += trace.skyPower;
+    // Shares by the channels' mean power.
+    const auto mean = [](const Vec3& v) { return (v.x + v.y + v.z) / 3; };
+    const double total = mean(trace.sourcePower);
+    if (!(total > 0))
+      throw std::invalid_argument(scene.file + ": neither the emitters nor the sky send any light");
+    tracer.pSky = mean(sky->skyPower()) / total;
+    tracer.pSun = mean(sky->sunPower()) / total;
+    tracer.pSurfaces = emitters.empty() ? 0.0 : 1 - tracer.pSky - tracer.pSun;
+  }
   const std::size_t blocks = (settings.photons + kBlockSize - 1) / kBlockSize;
   std::vector<BlockResult> results(blocks);
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
@@ -170,7 +257,6 @@ PhotonTrace tracePhotons(const Scene& scene, const PatchMesh& mesh, const Visibi
     for (std::size_t i = b * kBlockSize; i < end; ++i) tracer.trace(i, out);
   });
   // Concatenate in block order: the same photons in the same order for any thread count.
-  PhotonTrace trace;
   std::size_t total = 0;
   for (const BlockResult& r : results) total += r.photons.size();
   trace.photons.reserve(total);

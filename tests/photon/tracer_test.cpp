@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "daylight/sky.h"
 #include "geometry/ray_scene.h"
 #include "geometry/sampling.h"
 #include "geometry/scene_loader.h"
@@ -175,6 +176,63 @@ TEST(PhotonTracer, ConstructRejectsSceneWithoutEmitters) {
   RayScene rays(mesh);
   EmitterSampler emitters(scene, mesh);
   EXPECT_THROW(tracePhotons(scene, mesh, rays, emitters, PhotonSettings{}), std::invalid_argument);
+}
+
+TEST(PhotonTracer, StatisticalSkyAndSunPhotonsGiveTheSquaresIrradiance) {
+  // Photons from a uniform sky L_s and the sun (normal irradiance E_n) onto a lone 1 m square
+  // of ρ = 0.5 tilted by β: the power they deposit per unit area is its irradiance
+  // πL_s(1 + cos β)/2 + E_n cos θ (a black ground: nothing from below the horizon). The
+  // standard error is the spread of the photons' deposits; sky and sun photons start on a
+  // disc of the scene's bounding radius, so most of them miss the square.
+  test::TempDir dir;
+  for (double tilt : {0.0, -60.0}) {
+    const double t = tilt * M_PI / 180;
+    const Vec3 u{1, 0, 0}, v{0, std::cos(t), -std::sin(t)};
+    auto p = [&](double a, double b) {
+      const Vec3 x = u * a + v * b;
+      return "[" + std::to_string(x.x) + ", " + std::to_string(x.y) + ", " + std::to_string(x.z) +
+             "]";
+    };
+    const Scene scene = loadScene(dir.file(
+        "square.json",
+        R"({"materials": {"g": {"reflectance": [0.5, 0.5, 0.5]}}, "surfaces": [{"name": "s",
+        "material": "g", "polygon": [)" +
+            p(-0.5, -0.5) + ", " + p(0.5, -0.5) + ", " + p(0.5, 0.5) + ", " + p(-0.5, 0.5) +
+            R"(]}], "sky": {"type": "uniform", "radiance": [10, 20, 40], "up": [0, 0, 1],
+        "north": [0, 1, 0], "sun": {"elevation": 40, "azimuth": 135,
+        "irradiance": [300, 500, 700]}}})"));
+    const PatchMesh mesh = subdivide(scene, {1, 0});
+    const RayScene rays(mesh);
+    const EmitterSampler emitters = photonEmitters(scene, mesh);
+    ASSERT_TRUE(emitters.empty());
+    PhotonSettings s;
+    s.photons = 400000;
+    const PhotonTrace trace = tracePhotons(scene, mesh, rays, emitters, s);
+    const SkyModel model(*scene.sky);
+    const Vec3 normal = mesh.patches[0].normal;
+    const double cosSun = dot(normal, model.sunDirection());
+    ASSERT_GT(cosSun, 0.1);
+    const Vec3 expected =
+        Vec3{10, 20, 40} * (M_PI * (1 + normal.z) / 2) + Vec3{300, 500, 700} * cosSun;
+    Vec3 sum, sum2;
+    for (const Photon& ph : trace.photons) sum += ph.flux(), sum2 += mul(ph.flux(), ph.flux());
+    double area = 0;  // the square's patches'
+    for (const Patch& patch : mesh.patches) area += patch.area;
+    const double n = double(s.photons);
+    for (int c = 0; c < 3; ++c) {
+      const double se = std::sqrt(std::max(0.0, sum2[c] - sum[c] * sum[c] / n)) / area;
+      EXPECT_NEAR(sum[c] / area, expected[c], 4 * se) << "tilt " << tilt << " channel " << c;
+      EXPECT_LT(se, 0.03 * expected[c]);
+      // Teeth: without the sun, or without the sky, far off.
+      EXPECT_GT(std::fabs(sum[c] / area - (expected[c] - Vec3{300, 500, 700}[c] * cosSun)), 8 * se);
+      EXPECT_GT(std::fabs(sum[c] / area - Vec3{300, 500, 700}[c] * cosSun), 8 * se);
+    }
+    // The sources' power through the same disc πR²: the sky's 2πL_s (above the horizon; the
+    // grid's rows meet at the horizon, so its midpoint integral of a constant is exact) and the
+    // sun's E_n. Their ratio between channels does not depend on R.
+    EXPECT_NEAR(trace.skyPower.x / trace.skyPower.z, (2 * M_PI * 10 + 300) / (2 * M_PI * 40 + 700),
+                1e-9);
+  }
 }
 
 }  // namespace
