@@ -40,7 +40,9 @@ class ObjectReader {
   }
   bool has(const std::string& key) const { return m_object.contains(key); }
   const json& get(const std::string& key) {
-    if (!has(key)) fail("is missing the required key \"" + key + "\"");
+    if (!has(key))
+      fail("is missing the required key \"" + key + "\". Fix: add \"" + key +
+           "\" (docs/formats.md lists every key)");
     return m_object.at(key);
   }
   std::string string(const std::string& key, const std::string& fallback) {

@@ -61,10 +61,7 @@ class SkySource {
         integral +=
             m_sky.radiance(localDirection(1 - 2 * (r + 0.5) / rows, 2 * kPi * (c + 0.5) / cols));
     m_skyPower = integral * (4 * kPi / (double(rows) * cols) * disc);
-    if (m_sky.hasSun()) {
-      m_sunPower = m_sky.sunIrradiance() * disc;
-      m_sunSolidAngle = 2 * kPi * (1 - m_sky.sunCosRadius());
-    }
+    if (m_sky.hasSun()) m_sunPower = m_sky.sunIrradiance() * disc;
   }
   Vec3 skyPower() const { return m_skyPower; }
   Vec3 sunPower() const { return m_sunPower; }
@@ -94,7 +91,7 @@ class SkySource {
   SkyModel m_sky;
   SkySampler m_sampler;
   Vec3 m_centre;
-  double m_radius = 0, m_sunSolidAngle = 0;
+  double m_radius = 0;
   Vec3 m_skyPower, m_sunPower;
 };
 

@@ -54,7 +54,9 @@ ShadingScene::ShadingScene(const Scene& scene, const PatchMesh& mesh, const Visi
     if (sky.hasSun() && maxComponent(sky.sunIrradiance()) > 0) {
       // A disc of uniform radiance whose irradiance at normal incidence is E_n (the disc's
       // cos θ across it differs from 1 by < 1e-5 for the real sun).
-      m_sunSolidAngle = 2 * M_PI * (1 - sky.sunCosRadius());
+      // Ω = 2π(1 − cos r) = 4π sin²(r/2), the latter exact for the tiniest discs too.
+      const double half = sky.description().sunAngularRadiusDeg * M_PI / 360;
+      m_sunSolidAngle = 4 * M_PI * std::sin(half) * std::sin(half);
       m_sunRadiance = sky.sunIrradiance() / m_sunSolidAngle;
     }
   }

@@ -137,7 +137,7 @@ TEST(VolumeScene, RefusesBadInputNamingTheFileAndTheKey) {
   struct Case {
     const char* name;
     std::string text, key;
-    bool fix = true;  ///< the message says how to fix it (the JSON parser's and "missing" do not)
+    bool fix = true;  ///< the message says how to fix it (the JSON parser's does not)
   };
   const Case cases[] = {
       {"type.json", R"({"medium": {"type": "fog"}})", "fog"},
@@ -170,7 +170,15 @@ TEST(VolumeScene, RefusesBadInputNamingTheFileAndTheKey) {
       {"fov.json",
        R"({"medium": {"type": "cloud-layer"}, "camera": {"look_at": [0, 1, 2], "fov_deg": 180}})",
        "fov_deg"},
-      {"no-medium.json", R"({"sun": {"elevation": 10}})", "medium", false},
+      {"no-medium.json", R"({"sun": {"elevation": 10}})", "medium"},
+      {"low-camera.json",
+       R"({"medium": {"type": "cloud-layer"}, "ground_albedo": 0.2,
+           "camera": {"position": [0, 0, -1], "look_at": [0, 1, 0]}})",
+       "camera"},
+      {"buried-box.json",
+       R"({"medium": {"type": "homogeneous-box", "min": [0, 0, -5], "max": [1, 1, 1],
+           "extinction": 0.1}, "ground_albedo": 0.2})",
+       "reaches below the ground"},
   };
   for (const Case& c : cases) {
     const std::string message = refusal(dir, c.name, c.text);
