@@ -2,7 +2,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -40,10 +42,12 @@ Photon makePhoton(const Vec3& x, const Vec3& power, const Vec3& incoming, int pa
   return p;
 }
 
-/// Photons from a scene's sky and sun: they start on a disc of radius R (the scene's bounding
-/// sphere) facing the direction ω they come from, centred R beyond the sphere's centre along
-/// ω, and travel along −ω. A direction with density p_ω and a disc point with density 1/(πR²)
-/// carry Φ = L(ω) πR² / p_ω (the sun: E_n πR²), before dividing by the photons allotted.
+/// Photons from a scene's sky and sun. A photon coming from direction ω starts on the
+/// rectangle, across ω and R beyond the scene's centre (R its bounding-sphere radius), that
+/// the scene's bounding box projects to, so every ray along −ω that can meet the scene crosses
+/// it; it travels along −ω. A direction of density p_ω and a uniform point of the rectangle
+/// (area A(ω)) carry Φ = L(ω) A(ω) / p_ω (the sun: E_n A(ω)), before dividing by the photons
+/// allotted.
 class SkySource {
  public:
   SkySource(const SkyDescription& description, const PatchMesh& mesh)
@@ -52,16 +56,22 @@ class SkySource {
     for (const Vec3& v : mesh.vertices) b.extend(v);
     m_centre = (b.lo + b.hi) * 0.5;
     m_radius = 0.5 * length(b.hi - b.lo) * 1.01 + 1e-9;
-    const double disc = kPi * m_radius * m_radius;
-    // ∫ L dω over the sphere by the midpoint rule on 128 × 256 equal-area cells.
+    for (int k = 0; k < 8; ++k)
+      m_corners[k] =
+          Vec3{k & 1 ? b.hi.x : b.lo.x, k & 2 ? b.hi.y : b.lo.y, k & 4 ? b.hi.z : b.lo.z} -
+          m_centre;
+    // ∫ L(ω) A(ω) dω by the midpoint rule on 128 × 256 equal-area cells: each source's share
+    // of the photons (their powers are exact whatever the shares).
     const int rows = 128, cols = 256;
     Vec3 integral;
     for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < cols; ++c)
-        integral +=
-            m_sky.radiance(localDirection(1 - 2 * (r + 0.5) / rows, 2 * kPi * (c + 0.5) / cols));
-    m_skyPower = integral * (4 * kPi / (double(rows) * cols) * disc);
-    if (m_sky.hasSun()) m_sunPower = m_sky.sunIrradiance() * disc;
+      for (int c = 0; c < cols; ++c) {
+        const Vec3 w = localDirection(1 - 2 * (r + 0.5) / rows, 2 * kPi * (c + 0.5) / cols);
+        integral += m_sky.radiance(w) * window(Frame(w)).area();
+      }
+    m_skyPower = integral * (4 * kPi / (double(rows) * cols));
+    if (m_sky.hasSun())
+      m_sunPower = m_sky.sunIrradiance() * window(Frame(m_sky.sunDirection())).area();
   }
   Vec3 skyPower() const { return m_skyPower; }
   Vec3 sunPower() const { return m_sunPower; }
@@ -78,19 +88,34 @@ class SkySource {
       radiancePerPdf = pdf > 0 ? m_sky.radiance(omega) / pdf : Vec3{};
     }
     const Frame frame(omega);
-    const double r = m_radius * std::sqrt(u3), phi = 2 * kPi * u4;
+    const Window w = window(frame);
     PhotonEmission e;
-    e.origin =
-        m_centre + omega * m_radius + frame.toWorld(Vec3{r * std::cos(phi), r * std::sin(phi), 0});
+    e.origin = m_centre + omega * m_radius +
+               frame.toWorld(Vec3{w.x0 + u3 * (w.x1 - w.x0), w.y0 + u4 * (w.y1 - w.y0), 0});
     e.direction = e.normal = -omega;
-    e.power = radiancePerPdf * (kPi * m_radius * m_radius);
+    e.power = radiancePerPdf * w.area();
     return e;
   }
 
  private:
+  struct Window {
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    double area() const { return (x1 - x0) * (y1 - y0); }
+  };
+  /// The bounding box's projection on the plane across frame.n, in the frame's (s, t).
+  Window window(const Frame& frame) const {
+    Window w{INFINITY, -INFINITY, INFINITY, -INFINITY};
+    for (const Vec3& c : m_corners) {
+      const Vec3 l = frame.toLocal(c);
+      w.x0 = std::min(w.x0, l.x), w.x1 = std::max(w.x1, l.x);
+      w.y0 = std::min(w.y0, l.y), w.y1 = std::max(w.y1, l.y);
+    }
+    return w;
+  }
+
   SkyModel m_sky;
   SkySampler m_sampler;
-  Vec3 m_centre;
+  Vec3 m_centre, m_corners[8];
   double m_radius = 0;
   Vec3 m_skyPower, m_sunPower;
 };

@@ -47,8 +47,8 @@ struct PhotonTrace {
   std::vector<Photon> photons;
   Vec3 emittedPower;  ///< Σ of the emitted photons' powers (double), scene units² · W/m²
   /// The power the sources send: the emitters' plus, under a "sky", the sky's and the sun's
-  /// through the disc photons start from (πR² · ∫L dω and πR² · E_n); emittedPower's
-  /// expectation.
+  /// through the windows photons start from (∫ L(ω) A(ω) dω by quadrature, and E_n A(ω_sun));
+  /// emittedPower's expectation.
   Vec3 sourcePower;
   Vec3 skyPower;  ///< of which the sky and the sun (0 without a "sky")
   PhotonTraceStats stats;
@@ -78,10 +78,10 @@ EmitterSampler photonEmitters(const Scene& scene, const PatchMesh& mesh);
 
 /// \brief Traces settings.photons paths in parallel (TBB) over blocks of photons; the result
 /// depends only on the scene and the settings, not on the thread count.
-/// Under a "sky", photons also start from the sky and the sun's disc: from a disc of the
-/// scene's bounding-sphere radius R facing the direction they come from, the directions drawn
-/// by the sky's radiance (SkySampler) or uniform in the sun's disc; each source gets photons
-/// in proportion to its power. Throws std::invalid_argument when the scene has no emitters
+/// Under a "sky", photons also start from the sky and the sun's disc: from the rectangle, across
+/// the direction they come from, that the scene's bounding box projects to, the directions
+/// drawn by the sky's radiance (SkySampler) or uniform in the sun's disc; each source gets
+/// photons in proportion to its power. Throws std::invalid_argument when the scene has no emitters
 /// and no sky, or photons is 0 or ≥ 2³².
 PhotonTrace tracePhotons(const Scene& scene, const PatchMesh& mesh, const Visibility& rays,
                          const EmitterSampler& emitters, const PhotonSettings& settings);

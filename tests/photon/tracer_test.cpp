@@ -182,8 +182,9 @@ TEST(PhotonTracer, StatisticalSkyAndSunPhotonsGiveTheSquaresIrradiance) {
   // Photons from a uniform sky L_s and the sun (normal irradiance E_n) onto a lone 1 m square
   // of ρ = 0.5 tilted by β: the power they deposit per unit area is its irradiance
   // πL_s(1 + cos β)/2 + E_n cos θ (a black ground: nothing from below the horizon). The
-  // standard error is the spread of the photons' deposits; sky and sun photons start on a
-  // disc of the scene's bounding radius, so most of them miss the square.
+  // standard error is the spread of the photons' deposits. Sky and sun photons start on the
+  // window the scene's bounding box projects to across their direction (the tilted square's
+  // box is thick, so some miss).
   test::TempDir dir;
   for (double tilt : {0.0, -60.0}) {
     const double t = tilt * M_PI / 180;
@@ -227,11 +228,10 @@ TEST(PhotonTracer, StatisticalSkyAndSunPhotonsGiveTheSquaresIrradiance) {
       EXPECT_GT(std::fabs(sum[c] / area - (expected[c] - Vec3{300, 500, 700}[c] * cosSun)), 8 * se);
       EXPECT_GT(std::fabs(sum[c] / area - Vec3{300, 500, 700}[c] * cosSun), 8 * se);
     }
-    // The sources' power through the same disc πR²: the sky's 2πL_s (above the horizon; the
-    // grid's rows meet at the horizon, so its midpoint integral of a constant is exact) and the
-    // sun's E_n. Their ratio between channels does not depend on R.
-    EXPECT_NEAR(trace.skyPower.x / trace.skyPower.z, (2 * M_PI * 10 + 300) / (2 * M_PI * 40 + 700),
-                1e-9);
+    // The windows contain the square's outline seen from every direction, so the power
+    // through them is at least what the square intercepts (its irradiance times its area), and
+    // the photons that land carry that share of it.
+    for (int c = 0; c < 3; ++c) EXPECT_GE(trace.skyPower[c], expected[c] * area) << c;
   }
 }
 
