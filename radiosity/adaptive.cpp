@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "daylight/sky.h"
 #include "geometry/refine.h"
 #include "util/format.h"
 
@@ -83,7 +84,10 @@ std::vector<double> refinementIndicator(const Scene& scene, const PatchMesh& mes
 }
 
 std::vector<char> shadowBoundaryPatches(const Scene& scene, const PatchMesh& mesh,
-                                        const Visibility& visibility, int perSurface) {
+                                        const Visibility& visibility, int perSurface,
+                                        const SkyModel* sky) {
+  const bool sun = sky && sky->hasSun();
+  const Vec3 sunDirection = sun ? sky->sunDirection() : Vec3{0, 0, 1};
   std::vector<Vec3> points, normals;
   emitterPoints(scene, mesh, perSurface, points, normals);
   std::vector<char> shadowed(mesh.patches.size(), 0);
@@ -96,6 +100,15 @@ std::vector<char> shadowBoundaryPatches(const Scene& scene, const PatchMesh& mes
       for (int k = 0; k < p.vertexCount; ++k) {
         Vec3 corner = mesh.vertex(p, k) + (p.centroid - mesh.vertex(p, k)) * 1e-3;
         seen += !visibility.occluded(corner, p.normal, points[q], normals[q]);
+      }
+      shadowed[i] = seen > 0 && seen < p.vertexCount;
+    }
+    if (sun && !shadowed[i] && dot(sunDirection, p.normal) > 0) {
+      // The sun's shadow edges: corners that disagree on a clear line to the sun's centre.
+      int seen = 0;
+      for (int k = 0; k < p.vertexCount; ++k) {
+        const Vec3 corner = mesh.vertex(p, k) + (p.centroid - mesh.vertex(p, k)) * 1e-3;
+        seen += !visibility.closestHit(corner + p.normal * visibility.epsilon(), sunDirection, 0);
       }
       shadowed[i] = seen > 0 && seen < p.vertexCount;
     }
@@ -122,7 +135,7 @@ AdaptiveResult solveAdaptive(const Scene& scene, const PipelineSettings& setting
     t = Clock::now();
     std::vector<char> shadowed;
     if (adaptive.shadowBoundaries)
-      shadowed = shadowBoundaryPatches(scene, mesh, *m.rays, adaptive.emitterPoints);
+      shadowed = shadowBoundaryPatches(scene, mesh, *m.rays, adaptive.emitterPoints, m.sky.get());
     info.shadowPatches = int(std::count(shadowed.begin(), shadowed.end(), 1));
     std::vector<double> ind = refinementIndicator(scene, mesh, m.radiosity, shadowed);
     info.maxIndicator = ind.empty() ? 0 : *std::max_element(ind.begin(), ind.end());

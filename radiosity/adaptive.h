@@ -10,6 +10,8 @@
 
 namespace radkit {
 
+class SkyModel;
+
 /// When and where to refine. The starting mesh is PipelineSettings::mesh.
 struct AdaptiveSettings {
   int maxPatches = 2000;  ///< patch budget: stop before a round would exceed it
@@ -48,10 +50,12 @@ std::vector<double> refinementIndicator(const Scene& scene, const PatchMesh& mes
                                         const std::vector<Vec3>& radiosity,
                                         const std::vector<char>& shadowed);
 
-/// \brief Marks patches crossed by a shadow boundary: for some point on an emitter, one corner
-/// of the patch (pulled 1e-3 toward the centroid) sees it and another does not.
+/// \brief Marks patches crossed by a shadow boundary: for some point on an emitter, or for the
+/// sun's centre when `sky` has a sun up, one corner of the patch (pulled 1e-3 toward the
+/// centroid) sees it and another does not.
 std::vector<char> shadowBoundaryPatches(const Scene& scene, const PatchMesh& mesh,
-                                        const Visibility& visibility, int emitterPoints);
+                                        const Visibility& visibility, int emitterPoints,
+                                        const SkyModel* sky = nullptr);
 
 /// \brief Solves on settings.mesh, then refines and re-solves until the indicator is below
 /// adaptive.tolerance, the patch budget or maxRounds is reached. Form factors are recomputed

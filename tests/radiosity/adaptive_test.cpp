@@ -10,6 +10,8 @@
 #include "geometry/refine.h"
 #include "geometry/scene_loader.h"
 #include "radiosity/adaptive.h"
+
+#include "daylight/sky.h"
 #include "test_scenes.h"
 #include "tests/common/test_util.h"
 
@@ -176,6 +178,48 @@ TEST(Adaptive, ExactShadowBoundaryPatches) {
   }
   for (int i = 100; i < mesh.size(); ++i)
     EXPECT_FALSE(flagged[i]) << "patch " << i << " of the blocker or lamp";
+}
+
+// The sun overhead casts the blocker's square exactly (its disc's penumbra, 2.3 mm wide, lies
+// within the corners' 1e-3 pull): exactly the floor patches whose corners straddle x or y =
+// 0.425 or 0.575 inside the shadow are flagged, with no emitter in the scene.
+TEST(Adaptive, ExactSunShadowBoundaryPatches) {
+  test::TempDir dir;
+  using nlohmann::json;
+  auto sq = [](double x0, double x1, double z) {
+    return json::array({json{x0, x0, z}, json{x1, x0, z}, json{x1, x1, z}, json{x0, x1, z}});
+  };
+  json s = {{"name", "sun-shadow"}, {"units", "m"}};
+  s["materials"]["grey"] = {{"reflectance", {0.5, 0.5, 0.5}}};
+  s["surfaces"] = {{{"name", "floor"}, {"material", "grey"}, {"polygon", sq(0, 1, 0)}},
+                   {{"name", "blocker"}, {"material", "grey"}, {"polygon", sq(0.425, 0.575, 0.5)}}};
+  s["sky"] = {{"type", "uniform"},
+              {"radiance", 0},
+              {"up", {0, 0, 1}},
+              {"north", {0, 1, 0}},
+              {"sun", {{"elevation", 90}, {"irradiance", 1000}}}};
+  const Scene scene = loadScene(dir.file("sun.json", s.dump()));
+  PatchMesh mesh = subdivide(scene, {0.01, 0});
+  ASSERT_EQ(mesh.surfaceBegin[1], 100);
+  RayScene rays(mesh);
+  const SkyModel sky(*scene.sky);
+  const std::vector<char> none = shadowBoundaryPatches(scene, mesh, rays, 16);
+  EXPECT_EQ(std::count(none.begin(), none.end(), 1), 0);  // without the sky: no emitter
+  const std::vector<char> flagged = shadowBoundaryPatches(scene, mesh, rays, 16, &sky);
+  auto crosses = [](double lo, double hi) {
+    return (lo < 0.425 && hi > 0.425) || (lo < 0.575 && hi > 0.575);
+  };
+  auto inside = [](double lo, double hi) { return hi > 0.425 && lo < 0.575; };
+  for (int i = 0; i < 100; ++i) {
+    const Patch& p = mesh.patches[i];
+    const double x0 = p.centroid.x - 0.05, x1 = p.centroid.x + 0.05, y0 = p.centroid.y - 0.05,
+                 y1 = p.centroid.y + 0.05;
+    const bool expected =
+        (crosses(x0, x1) && inside(y0, y1)) || (crosses(y0, y1) && inside(x0, x1));
+    EXPECT_EQ(bool(flagged[i]), expected)
+        << "floor patch at " << p.centroid.x << ", " << p.centroid.y;
+  }
+  EXPECT_EQ(std::count(flagged.begin(), flagged.end(), 1), 4);
 }
 
 // Refinement goes where the shadow edge is: after one round every patch the edge crosses is
