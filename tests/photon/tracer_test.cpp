@@ -13,6 +13,7 @@
 #include "geometry/sampling.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
+#include "photon/image.h"
 #include "tests/common/statistics.h"
 #include "tests/common/test_util.h"
 
@@ -233,6 +234,50 @@ TEST(PhotonTracer, StatisticalSkyAndSunPhotonsGiveTheSquaresIrradiance) {
     // the photons that land carry that share of it.
     for (int c = 0; c < 3; ++c) EXPECT_GE(trace.skyPower[c], expected[c] * area) << c;
   }
+}
+
+TEST(PhotonImage, StatisticalFinalGatherUnderTheSkyMeetsTheClosedForm) {
+  // The photon final gather of a lone flat square (ρ = 0.5) under a uniform sky L_s and the
+  // sun: its direct term estimates sky and sun (MIS), its gather rays all leave the scene and
+  // carry the other half, so the image is ρ(πL_s + E_n sin 40°)/π everywhere on the square.
+  // Error bar from 8 seeds' spread of the image mean (photons and gather rays both reseeded).
+  test::TempDir dir;
+  const Scene scene = loadScene(dir.file("flat.json", R"({"materials": {"g": {"reflectance":
+      [0.5, 0.5, 0.5]}}, "surfaces": [{"name": "s", "material": "g", "polygon": [[-0.5, -0.5, 0],
+      [0.5, -0.5, 0], [0.5, 0.5, 0], [-0.5, 0.5, 0]]}], "sky": {"type": "uniform", "radiance":
+      [10, 20, 40], "up": [0, 0, 1], "north": [0, 1, 0], "sun": {"elevation": 40, "azimuth": 135,
+      "irradiance": [300, 500, 700]}}})"));
+  const PatchMesh mesh = subdivide(scene, {1, 0});
+  const RayScene rays(mesh);
+  const EmitterSampler emitters = photonEmitters(scene, mesh);
+  Camera camera;
+  camera.position = {0, 0, 1};
+  camera.lookAt = {0, 0, 0};
+  camera.up = {0, 1, 0};
+  camera.fovDeg = 30;  // sees only the square
+  const double expected = 0.5 * (M_PI * 20 + 500 * std::sin(40 * M_PI / 180)) / M_PI;
+  std::vector<double> means;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    PhotonSettings ps;
+    ps.photons = 20000;
+    ps.seed = seed;
+    ps.gatherRays = 16;
+    PhotonMaps maps = buildPhotonMaps(mesh, tracePhotons(scene, mesh, rays, emitters, ps).photons);
+    maps.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
+    const PhotonScene in{scene, mesh, rays, emitters, *maps.global, *maps.caustic};
+    const RadianceImage img = renderPhotonImage(in, camera, 8, 8, PhotonView::FinalGather, ps);
+    double m = 0;
+    for (const Vec3& v : img.radiance) m += v.y / img.radiance.size();
+    means.push_back(m);
+  }
+  double mean = 0, spread = 0;
+  for (double m : means) mean += m / means.size();
+  for (double m : means) spread += (m - mean) * (m - mean);
+  const double se = std::sqrt(spread / (means.size() - 1) / means.size());
+  // Student's t with 7 degrees of freedom at two-sided 0.001: 5.41.
+  EXPECT_NEAR(mean, expected, 5.41 * se);
+  EXPECT_LT(se, 0.01 * expected);
+  EXPECT_GT(std::fabs(mean - 0.5 * 20), 10 * se);  // the sun left out
 }
 
 }  // namespace
