@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bsdf/microfacet.h"
+#include "geometry/sampling.h"  // powerHeuristic, which every BSDF user weighs with
 #include "geometry/scene.h"
 #include "geometry/vec3.h"
 
@@ -110,11 +111,5 @@ std::unique_ptr<Bsdf> makeCookTorranceBsdf(const Vec3& base, double metallic, do
 std::unique_ptr<Bsdf> makeMirrorBsdf(const Vec3& colour);
 /// Smooth dielectric, eta = n_inside / n_outside (inside is behind the front normal).
 std::unique_ptr<Bsdf> makeGlassBsdf(double eta);
-
-/// \brief Power heuristic with β = 2 (Veach 1997, eq. 9.13): f² / (f² + g²).
-inline double powerHeuristic(double f, double g) {
-  const double f2 = f * f, g2 = g * g;
-  return f2 + g2 > 0 ? f2 / (f2 + g2) : 0.0;
-}
 
 }  // namespace radkit

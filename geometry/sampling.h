@@ -48,6 +48,13 @@ double patchSplit(const Vec3* v, int count);
 /// \brief Density per unit area of samplePatchUniform: 1/area on the patch.
 inline double patchUniformPdf(double area) { return 1.0 / area; }
 
+/// \brief Power heuristic with β = 2 (Veach 1997, eq. 9.13): f² / (f² + g²), the multiple
+/// importance sampling weight of the strategy with density f against the one with g.
+inline double powerHeuristic(double f, double g) {
+  const double f2 = f * f, g2 = g * g;
+  return f2 + g2 > 0 ? f2 / (f2 + g2) : 0.0;
+}
+
 /// Indices 0..n−1 drawn with probability proportional to non-negative weights, by binary
 /// search of the cumulative sum. An all-zero (or empty) table draws nothing: size() == 0.
 class DiscreteDistribution {

@@ -39,12 +39,6 @@ double groundDistance(const Lighting& light, const Vec3& o, const Vec3& d) {
   return -o.z / d.z;
 }
 
-/// Veach's power heuristic (β = 2): the weight of the strategy with density a against b.
-double powerHeuristic(double a, double b) {
-  const double a2 = a * a, b2 = b * b;
-  return a2 + b2 > 0 ? a2 / (a2 + b2) : 0.0;
-}
-
 /// True when the ground hides the sky in direction w from x (above the ground).
 bool groundHides(const Lighting& light, const Vec3& x, const Vec3& w) {
   return light.groundAlbedo > 0 && w.z <= 0 && x.z >= 0;

@@ -50,8 +50,9 @@ Photon makePhoton(const Vec3& x, const Vec3& power, const Vec3& incoming, int pa
 /// allotted.
 class SkySource {
  public:
-  SkySource(const SkyDescription& description, const PatchMesh& mesh)
-      : m_sky(description), m_sampler([this](const Vec3& d) { return m_sky.radiance(d); }) {
+  /// The sky and sampler the tracing's ShadingScene built (a physical sky's table is costly).
+  SkySource(const SkyModel& sky, const SkySampler& sampler, const PatchMesh& mesh)
+      : m_sky(sky), m_sampler(sampler) {
     Bounds3 b;
     for (const Vec3& v : mesh.vertices) b.extend(v);
     m_centre = (b.lo + b.hi) * 0.5;
@@ -113,8 +114,8 @@ class SkySource {
     return w;
   }
 
-  SkyModel m_sky;
-  SkySampler m_sampler;
+  const SkyModel& m_sky;
+  const SkySampler& m_sampler;
   Vec3 m_centre, m_corners[8];
   double m_radius = 0;
   Vec3 m_skyPower, m_sunPower;
@@ -256,8 +257,8 @@ PhotonTrace tracePhotons(const Scene& scene, const PatchMesh& mesh, const Visibi
   Tracer tracer{shading, rays, emitters, settings, nullptr};
   PhotonTrace trace;
   trace.sourcePower = emitters.empty() ? Vec3{} : emitters.totalPower();
-  if (scene.sky) {
-    sky.emplace(*scene.sky, mesh);
+  if (shading.sky()) {
+    sky.emplace(*shading.sky(), *shading.skySampler(), mesh);
     tracer.sky = &*sky;
     trace.skyPower = sky->skyPower() + sky->sunPower();
     trace.sourcePower += trace.skyPower;

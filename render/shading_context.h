@@ -120,6 +120,9 @@ class ShadingScene {
 
   /// Whether the scene declares a "sky" (daylight: a sky, and perhaps the sun's disc).
   bool hasSky() const { return m_sky.has_value(); }
+  /// The scene's sky and its direction sampler (null without a "sky"), for photon emission.
+  const SkyModel* sky() const { return m_sky ? &*m_sky : nullptr; }
+  const SkySampler* skySampler() const { return m_skySampler.get(); }
   /// \brief Next-event estimate of the daylight reflected at a non-delta hit: one direction
   /// drawn by the sky's radiance (SkySampler) and one in the sun's disc, each with a ray that
   /// must leave the scene, each weighted against BSDF sampling by the power heuristic. Zero

@@ -140,6 +140,27 @@ TEST(DaylightPathTracer, EscapingCameraRaysSeeTheSkyAndTheSunsDisc) {
   EXPECT_NEAR(sun.x, 1 + 1000 / solidAngle, 1e-9 * sun.x);
 }
 
+/// Mean and standard error of a render's image mean over 16 seeds (the spread of the seeds'
+/// means: Sobol samples within a pixel are not independent).
+template <class Render>
+DaylightMean daylightOverSeeds(Render render) {
+  std::vector<Vec3> means;
+  for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+    const MonteCarloImage img = render(seed);
+    Vec3 m;
+    for (const Vec3& v : img.image.radiance) m += v / double(img.image.radiance.size());
+    means.push_back(m);
+  }
+  DaylightMean out;
+  for (const Vec3& m : means) out.mean += m / double(means.size());
+  Vec3 spread;
+  for (const Vec3& m : means) spread += mul(m - out.mean, m - out.mean);
+  const double k = double(means.size());
+  out.standardError = {std::sqrt(spread.x / (k - 1) / k), std::sqrt(spread.y / (k - 1) / k),
+                       std::sqrt(spread.z / (k - 1) / k)};
+  return out;
+}
+
 TEST(DaylightImageModes, StatisticalFinalGatherAndTwoPassMeetTheClosedForm) {
   // The flat square under the uniform sky and sun again, through the radiosity solution: the
   // final gather and the two-pass modes estimate the daylight at the visible point themselves
@@ -166,52 +187,22 @@ TEST(DaylightImageModes, StatisticalFinalGatherAndTwoPassMeetTheClosedForm) {
   camera.up = {0, 1, 0};
   camera.fovDeg = 30;  // sees only the square (±0.27 m of its centre)
   for (int mode = 0; mode < 2; ++mode) {
-    std::vector<double> means;
-    for (std::uint64_t seed = 1; seed <= 16; ++seed) {
-      MonteCarloImage img;
+    const DaylightMean m = daylightOverSeeds([&](std::uint64_t seed) {
       if (mode == 0) {
         FinalGatherSettings s;
         s.width = s.height = 8, s.samplesPerPixel = 16, s.seed = seed;
-        img = renderFinalGather(shading, camera, lighting, s);
-      } else {
-        TwoPassSettings s;
-        s.width = s.height = 8, s.samplesPerPixel = 16, s.seed = seed;
-        img = renderTwoPass(shading, camera, lighting, s);
+        return renderFinalGather(shading, camera, lighting, s);
       }
-      double m = 0;
-      for (const Vec3& v : img.image.radiance) m += v.y / img.image.radiance.size();
-      means.push_back(m);
-    }
-    double mean = 0, spread = 0;
-    for (double m : means) mean += m / means.size();
-    for (double m : means) spread += (m - mean) * (m - mean);
-    const double se = std::sqrt(spread / (means.size() - 1) / means.size());
+      TwoPassSettings s;
+      s.width = s.height = 8, s.samplesPerPixel = 16, s.seed = seed;
+      return renderTwoPass(shading, camera, lighting, s);
+    });
+    const double mean = m.mean.y, se = m.standardError.y;
     EXPECT_NEAR(mean, expected, 4 * se) << (mode ? "two-pass" : "final gather");
     EXPECT_LT(se, 0.01 * expected);
     // Teeth: the daylight's reflection counted twice (once as emission) lies far off.
     EXPECT_GT(std::fabs(mean - 2 * expected), 8 * se);
   }
-}
-
-/// Mean and standard error of a render's image mean over 16 seeds (the spread of the seeds'
-/// means: Sobol samples within a pixel are not independent).
-template <class Render>
-DaylightMean daylightOverSeeds(Render render) {
-  std::vector<Vec3> means;
-  for (std::uint64_t seed = 1; seed <= 16; ++seed) {
-    const MonteCarloImage img = render(seed);
-    Vec3 m;
-    for (const Vec3& v : img.image.radiance) m += v / double(img.image.radiance.size());
-    means.push_back(m);
-  }
-  DaylightMean out;
-  for (const Vec3& m : means) out.mean += m / double(means.size());
-  Vec3 spread;
-  for (const Vec3& m : means) spread += mul(m - out.mean, m - out.mean);
-  const double k = double(means.size());
-  out.standardError = {std::sqrt(spread.x / (k - 1) / k), std::sqrt(spread.y / (k - 1) / k),
-                       std::sqrt(spread.z / (k - 1) / k)};
-  return out;
 }
 
 TEST(DaylightImageModes, StatisticalFinalGatherAndTwoPassMatchThePathTracerInACorner) {
