@@ -106,15 +106,40 @@ FormFactorMatrix computeDense(const FormFactorMethod& method, const PatchMesh& m
                               RowProgress& progress, Totals& totals) {
   const int n = mesh.size();
   DenseMatrix<T> f = DenseMatrix<T>::uninitialized(n);
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
-    for (int i = r.begin(); i < r.end(); ++i) std::fill(f.row(i), f.row(i) + n, T(0));
-  });
-  const bool upper = method.coverage() == RowCoverage::UpperTriangle;
-  // Rows write F_ij and, by reciprocity, F_ji: distinct elements, so no two threads collide.
+  if (method.coverage() == RowCoverage::FullRow) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
+      for (int i = r.begin(); i < r.end(); ++i) std::fill(f.row(i), f.row(i) + n, T(0));
+    });
+    totals = computeRows(method, n, progress, [&](int i, const RowResult& row) {
+      for (const RowEntry& e : row.entries) f(i, e.column) = T(e.value);
+    });
+    return f;
+  }
+  // Upper rows: each writes its own part j >= i in order, then the lower part F_ji =
+  // F_ij A_i/A_j is filled tile by tile. Writing F_ji as each row finished instead touched
+  // one cache line per entry down a column, 0.4 s of a 5 s single-threaded run at 5 400
+  // patches.
   totals = computeRows(method, n, progress, [&](int i, const RowResult& row) {
-    for (const RowEntry& e : row.entries) {
-      f(i, e.column) = T(e.value);
-      if (upper) f(e.column, i) = T(e.value * mesh.patches[i].area / mesh.patches[e.column].area);
+    T* out = f.row(i);
+    std::fill(out + i, out + n, T(0));
+    for (const RowEntry& e : row.entries) out[e.column] = T(e.value);
+  });
+  constexpr int kTile = 64;
+  tbb::parallel_for(tbb::blocked_range<int>(0, (n + kTile - 1) / kTile, 1),
+                    [&](const tbb::blocked_range<int>& r) {
+    for (int tile = r.begin(); tile < r.end(); ++tile) {
+      const int j0 = tile * kTile, j1 = std::min(n, j0 + kTile);  // rows written
+      for (int i0 = 0; i0 < j1; i0 += kTile) {                      // columns written
+        const int i1 = std::min(j1, i0 + kTile);
+        for (int j = j0; j < j1; ++j) {
+          const double aj = mesh.patches[j].area;
+          T* out = f.row(j);
+          for (int i = i0; i < std::min(i1, j); ++i) {
+            const double fij = double(f(i, j));
+            out[i] = fij == 0 ? T(0) : T(fij * mesh.patches[i].area / aj);
+          }
+        }
+      }
     }
   });
   return f;

@@ -20,8 +20,16 @@ class OccluderCulling {
   OccluderCulling(const PatchMesh& mesh, const PatchTable& table);
   /// \brief False only when no patch other than i and j can intersect a segment from i to j.
   bool mayBeBlocked(int i, int j) const;
+  /// \brief False only when mayBeBlocked(i, j) is false for every patch j of `surface` (the
+  /// mesh's surface index): the test above on the box of patch i and the whole surface.
+  /// Rows ask it once per surface, and the pairs of an unblockable surface skip their own.
+  bool mayBeBlockedFromSurface(int i, int surface) const;
+  /// Number of mesh surfaces (the range of `surface` above).
+  int surfaceCount() const { return static_cast<int>(m_surfaceBounds.size()); }
 
  private:
+  /// The test on a box holding every segment: patches other than i and j may block.
+  bool mayBeBlocked(const Bounds3& box, int i, int j) const;
   struct SurfaceRecord {
     int begin = 0, end = 0;  ///< patch range
     Bounds3 bounds;
@@ -31,6 +39,7 @@ class OccluderCulling {
   };
   const PatchTable& m_table;
   std::vector<SurfaceRecord> m_surfaces;
+  std::vector<Bounds3> m_surfaceBounds;  ///< by mesh surface index (empty for no patches)
 };
 
 }  // namespace radkit

@@ -26,6 +26,7 @@ class PointPolygon final : public FormFactorMethod {
  public:
   PointPolygon(const PatchMesh& mesh, const Visibility& visibility, const FormFactorSettings& s)
       : m_table(mesh),
+        m_points(m_table, s.quadrature.pairLevels),
         m_culling(mesh, m_table),
         m_visibility(visibility),
         m_settings(s),
@@ -52,15 +53,10 @@ class PointPolygon final : public FormFactorMethod {
   RowCoverage coverage() const override { return RowCoverage::UpperTriangle; }
   void computeRow(int i, RowResult& out) const override;
 
-  /// The tensor-rule points of row i, computed once per row and level.
-  struct RowPoints {
-    PatchPoints level[kMaxPairLevel + 1];
-    bool ready[kMaxPairLevel + 1] = {};
-  };
-  /// Unoccluded F_ij: the selected tensor rule, or cubature over the smaller patch; F_ji
-  /// follows by reciprocity. Counts the rule used in `out`.
-  double unoccluded(int i, int j, RowPoints& rowPoints, QuadratureStats& stats,
-                    RowResult& out) const;
+  /// Unoccluded F_ij: the selected tensor rule when the patches are in front of each other,
+  /// else cubature over the smaller patch; F_ji follows by reciprocity. Counts the rule used
+  /// in `out`.
+  double unoccluded(int i, int j, bool inFront, QuadratureStats& stats, RowResult& out) const;
   /// Unoccluded F_ij by adaptive cubature of the contour integrand.
   double adaptiveContour(int i, int j, QuadratureStats& stats) const;
   /// Buffers reused across the pairs of a row.
@@ -74,26 +70,29 @@ class PointPolygon final : public FormFactorMethod {
 
  private:
   PatchTable m_table;
+  PatchPointCache m_points;  ///< every patch's tensor-rule points, shared by the rows
   OccluderCulling m_culling;
   const Visibility& m_visibility;
   FormFactorSettings m_settings;
   AdaptiveCubature m_cubature;
 };
 
-double PointPolygon::unoccluded(int i, int j, RowPoints& rowPoints, QuadratureStats& stats,
+double PointPolygon::unoccluded(int i, int j, bool inFront, QuadratureStats& stats,
                                 RowResult& out) const {
   const QuadratureSettings& q = m_settings.quadrature;
   const PatchInfo& a = m_table[i];
   const PatchInfo& b = m_table[j];
-  if (q.pairLevels > 0 && inFrontOfEachOther(a, b, m_table.planeTolerance())) {
+  if (q.pairLevels > 0 && inFront) {
     int n = selectPairLevel(pairSeparation(a, b), q.tolerance, q.pairLevels);
     if (n > 0) {
-      if (!rowPoints.ready[n]) patchPoints(a, n, rowPoints.level[n]), rowPoints.ready[n] = true;
-      PatchPoints pb;
-      patchPoints(b, n, pb);
       ++out.pairsByRule[n];
-      out.kernelPoints += (long long)rowPoints.level[n].count * pb.count;
-      return pairRuleFormFactor(a, rowPoints.level[n], b, pb);
+      if (n == 3 && a.parallelogram && b.parallelogram) {
+        out.kernelPoints += 24;
+        return productRuleFormFactor(a, m_points.productPoints(i), b, m_points.productPoints(j));
+      }
+      PointSet pa = m_points.points(i, n), pb = m_points.points(j, n);
+      out.kernelPoints += (long long)pa.count * pb.count;
+      return pairRuleFormFactor(a, pa, b, pb);
     }
   }
   ++out.pairsByRule[0];
@@ -158,20 +157,30 @@ void PointPolygon::computeRow(int i, RowResult& out) const {
   std::vector<RowEntry> needRays;
   const int n = m_table.size();
   const long long K = m_settings.samples;
-  RowPoints rowPoints;
+  const double tolerance = m_table.planeTolerance();
+  out.entries.reserve(std::size_t(n - i));
+  // Whether anything can block the pairs of (i, surface): -1 not asked yet, 0 no, 1 maybe.
+  std::vector<signed char> surfaceMayBlock(m_culling.surfaceCount(), -1);
+  auto mayBeBlocked = [&](int j) {
+    int s = m_table[j].surface;
+    if (s < 0 || s >= int(surfaceMayBlock.size())) return m_culling.mayBeBlocked(i, j);
+    if (surfaceMayBlock[s] < 0) surfaceMayBlock[s] = m_culling.mayBeBlockedFromSurface(i, s);
+    return surfaceMayBlock[s] != 0 && m_culling.mayBeBlocked(i, j);
+  };
   for (int j = i + 1; j < n; ++j) {
-    if (!m_table.facing(i, j)) {
+    const PairSides sides = pairSides(m_table[i], m_table[j], tolerance);
+    if (!sides.facing) {
       // Coincident or overlapping coplanar patches: F = 0 (no front sees the other), reported.
-      if (m_table.coplanar(i, j) && m_table[i].bounds.overlaps(m_table[j].bounds) &&
+      if (m_table[i].bounds.overlaps(m_table[j].bounds) && m_table.coplanar(i, j) &&
           m_table.overlapArea(i, j) > 0) {
         if (out.overlappingPairs++ == 0) out.firstOverlap[0] = i, out.firstOverlap[1] = j;
       }
       continue;
     }
     ++out.pairsFacing;
-    double f = unoccluded(i, j, rowPoints, stats, out);
+    double f = unoccluded(i, j, sides.inFront, stats, out);
     if (!(f > 0)) continue;
-    if (m_settings.cullUnblockable && !m_culling.mayBeBlocked(i, j)) {
+    if (m_settings.cullUnblockable && !mayBeBlocked(j)) {
       ++out.pairsCulled;
       out.raysSaved += K;
       out.entries.push_back({j, f, 0.0});
@@ -184,14 +193,17 @@ void PointPolygon::computeRow(int i, RowResult& out) const {
 
   start = Clock::now();
   Scratch scratch;
+  std::size_t nVisible = 0;
   for (const RowEntry& e : needRays) {
     auto [v, se] = visibleFraction(i, e.column, scratch);
     out.raysCast += K;
-    if (v > 0) out.entries.push_back({e.column, e.value * v, e.value * se});
+    if (v > 0) out.entries.push_back({e.column, e.value * v, e.value * se}), ++nVisible;
   }
   out.raySeconds = secondsSince(start);
-  std::sort(out.entries.begin(), out.entries.end(),
-            [](const RowEntry& a, const RowEntry& b) { return a.column < b.column; });
+  // Culled entries and ray-traced ones each came in column order: merge the two runs.
+  std::inplace_merge(out.entries.begin(), out.entries.end() - std::ptrdiff_t(nVisible),
+                     out.entries.end(),
+                     [](const RowEntry& a, const RowEntry& b) { return a.column < b.column; });
 }
 }  // namespace
 

@@ -267,3 +267,128 @@ TEST(PairRule, DISABLED_FitBoundConstants) {
   for (int n = 1; n <= kMaxPairLevel; ++n) std::printf("C_%d fit: %.4g\n", n, worst[n]);
 }
 }  // namespace radkit
+
+namespace radkit {
+namespace {
+/// A random pair of parallelograms in front of each other (randomPair until both are).
+Pair randomParallelogramPair(Rng& rng, double rhoMin, double rhoMax) {
+  for (;;) {
+    Pair p = randomPair(rng, rhoMin, rhoMax);
+    if (p.a.parallelogram && p.b.parallelogram) return p;
+  }
+}
+
+double integralOfPower(const PatchInfo& patch, const Vec3& e, double offset, int k) {
+  // ∫ (e·(x − c) + offset)^k over the patch, triangle by triangle.
+  auto L = [&](const Vec3& x) { return dot(e, x - patch.centroid) + offset; };
+  double exact = 0;
+  for (int t = 1; t + 1 < patch.count; ++t) {
+    const Vec3 &v0 = patch.v[0], &v1 = patch.v[t], &v2 = patch.v[t + 1];
+    exact += linearPowerOverTriangle(0.5 * length(cross(v1 - v0, v2 - v0)), L(v0), L(v1), L(v2), k);
+  }
+  return exact;
+}
+}  // namespace
+
+// The 24-pair product rule integrates every polynomial of degree <= 5 on the 4-D product of
+// two parallelograms exactly (products of powers of random linear functions of x and of y
+// span them), and not all of degree 6: its degree is exactly 5, like the 7 × 7 tensor's.
+TEST(ProductRule, ExactToDegreeFiveOnTheProduct) {
+  Rng rng(8, 0, 0);
+  double worstSix = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    Pair p = randomParallelogramPair(rng, 0.1, 0.5);
+    Vec3 x[24], y[24];
+    double w[24];
+    ASSERT_EQ(productRulePairs(p.a, p.b, x, y, w), 24);
+    Vec3 ea = randomUnit(rng), eb = randomUnit(rng);
+    for (int i = 0; i <= 6; ++i)
+      for (int j = 0; i + j <= 6; ++j) {
+        double sum = 0;
+        for (int k = 0; k < 24; ++k)
+          sum += w[k] * std::pow(dot(ea, x[k] - p.a.centroid) + 0.6, i) *
+                 std::pow(dot(eb, y[k] - p.b.centroid) + 0.6, j);
+        double exact = integralOfPower(p.a, ea, 0.6, i) * integralOfPower(p.b, eb, 0.6, j);
+        double error = std::fabs(sum - exact) / std::fabs(exact);
+        if (i + j <= 5)
+          EXPECT_LT(error, 1e-12) << "degrees " << i << " + " << j;
+        else
+          worstSix = std::max(worstSix, error);
+      }
+  }
+  EXPECT_GT(worstSix, 1e-6);
+}
+
+// The kernel that reads the cached points computes the same sum as the rule's pairs.
+TEST(ProductRule, KernelMatchesItsPairs) {
+  Rng rng(9, 0, 0);
+  for (int trial = 0; trial < 200; ++trial) {
+    Pair p = randomParallelogramPair(rng, 0.02, 0.6);
+    Vec3 x[24], y[24];
+    double w[24], sum = 0;
+    int m = productRulePairs(p.a, p.b, x, y, w);
+    for (int k = 0; k < m; ++k) {
+      Vec3 d = y[k] - x[k];
+      double r2 = dot(d, d);
+      sum += w[k] * dot(p.a.normal, d) * -dot(p.b.normal, d) / (r2 * r2);
+    }
+    PatchPoints pa, pb;
+    productPoints(p.a, pa), productPoints(p.b, pb);
+    double f = productRuleFormFactor(p.a, pa, p.b, pb);
+    EXPECT_NEAR(f, sum / (M_PI * p.a.area), 1e-13 * f);
+  }
+}
+
+// pairRuleBound(3) holds for the product rule on other random pairs than the tensor rule's
+// constant came from (the rule replaces the 7 × 7 tensor at level 3 for parallelograms).
+TEST(ProductRule, LevelThreeBoundHolds) {
+  Rng rng(2026, 11, 27);
+  double worst = 0;
+  int checked = 0;
+  for (int t = 0; t < 300; ++t) {
+    Pair p = randomParallelogramPair(rng, 0.02, 0.6);
+    double bound = pairRuleBound(3, p.sep);
+    if (bound < 1e-10) continue;  // below the reference's own accuracy
+    double ref = reference(p.a, p.b);
+    PatchPoints pa, pb;
+    productPoints(p.a, pa), productPoints(p.b, pb);
+    double err = std::fabs(productRuleFormFactor(p.a, pa, p.b, pb) - ref) / ref;
+    EXPECT_LE(err, bound + 1e-11) << "rho " << p.sep.rho;
+    worst = std::max(worst, err / bound), ++checked;
+  }
+  EXPECT_GT(checked, 100);
+  std::printf("product rule: %d pairs, largest error / level-3 bound %.3g\n", checked, worst);
+}
+
+// The cache hands out the points patchPoints and productPoints compute.
+TEST(ProductRule, CacheHoldsEveryLevel) {
+  test::MeshBuilder builder;
+  builder.addRectangle("quad", {0, 0, 0}, {1, 0.2, 0}, {0.1, 1, 0}, 2, 2);
+  builder.addTriangles("tri", {{0, 0, 1}, {1, 0, 1}, {0, 1, 1.2}});
+  PatchTable table(builder.mesh());
+  PatchPointCache cache(table, kMaxPairLevel);
+  for (int i = 0; i < table.size(); ++i) {
+    for (int n = 1; n <= kMaxPairLevel; ++n) {
+      PatchPoints direct;
+      patchPoints(table[i], n, direct);
+      PointSet cached = cache.points(i, n);
+      ASSERT_EQ(cached.count, direct.count);
+      ASSERT_EQ(cached.padded, direct.padded);
+      for (int k = 0; k < direct.padded; ++k) {
+        EXPECT_EQ(cached.x[k], direct.x[k]);
+        EXPECT_EQ(cached.z[k], direct.z[k]);
+        EXPECT_EQ(cached.w[k], direct.w[k]);
+      }
+    }
+    if (table[i].parallelogram) {
+      PatchPoints direct;
+      productPoints(table[i], direct);
+      PointSet cached = cache.productPoints(i);
+      ASSERT_EQ(cached.count, 8);
+      for (int k = 0; k < 8; ++k) EXPECT_EQ(cached.y[k], direct.y[k]);
+    } else {
+      EXPECT_EQ(cache.productPoints(i).count, 0);
+    }
+  }
+}
+}  // namespace radkit

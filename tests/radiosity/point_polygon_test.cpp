@@ -243,3 +243,38 @@ TEST(PointPolygon, StatisticalVisibilityConvergence) {
 }
 
 }  // namespace radkit
+
+#include "radiosity/occluder_culling.h"
+
+namespace radkit {
+// Rows ask the culling once per (patch, surface); "nothing can block" there must imply it
+// for every pair of that surface. A room with a box inside and a crumpled (non-planar)
+// sheet: both answers occur, and no pair the surface test dismisses is blockable.
+TEST(PointPolygon, SurfaceCullingImpliesPairCulling) {
+  test::MeshBuilder builder = test::cubeInterior(4);
+  const Vec3 lo{0.3, 0.3, 0}, e{0.3, 0, 0}, f{0, 0.3, 0}, up{0, 0, 0.4};
+  builder.addRectangle("box side", lo, e, up, 2, 2);
+  builder.addRectangle("box top", lo + up, e, f, 2, 2);
+  builder.addTriangles("sheet", {{0.7, 0.7, 0.5}, {0.9, 0.7, 0.6}, {0.7, 0.9, 0.6},
+                                 {0.9, 0.7, 0.6}, {0.9, 0.9, 0.5}, {0.7, 0.9, 0.6}});
+  const PatchMesh& mesh = builder.mesh();
+  PatchTable table(mesh);
+  OccluderCulling culling(mesh, table);
+  ASSERT_EQ(culling.surfaceCount(), int(mesh.surfaceBegin.size()) - 1);
+  int clear = 0, maybe = 0;
+  for (int i = 0; i < table.size(); ++i)
+    for (int s = 0; s < culling.surfaceCount(); ++s) {
+      if (culling.mayBeBlockedFromSurface(i, s)) {
+        ++maybe;
+        continue;
+      }
+      ++clear;
+      for (int j = mesh.surfaceBegin[s]; j < mesh.surfaceBegin[s + 1]; ++j)
+        if (j != i) {
+          EXPECT_FALSE(culling.mayBeBlocked(i, j)) << i << " " << j;
+        }
+    }
+  EXPECT_GT(clear, 50);
+  EXPECT_GT(maybe, 50);
+}
+}  // namespace radkit
