@@ -73,10 +73,10 @@ void addFormFactorOptions(CLI::App& c, FormFactorOptions& o) {
       ->check(Unsigned)
       ->capture_default_str();
   c.add_option("--ff-pair-levels", o.settings.quadrature.pairLevels,
-               "point-polygon: highest tensor Gauss-Legendre level (1-4) a pair may take when "
+               "point-polygon: highest tensor Gauss-Legendre level (1-8) a pair may take when "
                "its error bound allows; 0 integrates every pair by the adaptive contour "
                "cubature (docs/formfactors.md)")
-      ->check(CLI::Range(0, 4))
+      ->check(CLI::Range(0, 8))
       ->capture_default_str();
   c.add_option("--ff-enforce", o.enforce,
                "'reciprocity': replace A_iF_ij and A_jF_ji by their mean (off by default)");

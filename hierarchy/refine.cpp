@@ -119,9 +119,7 @@ double Refiner::elementFormFactor(int r, int s, double estimate) const {
   Vec3 domain[kMaxPolygonVertices];
   int count = clipToHalfSpace(pr.v, pr.count, m_h[s].centre, ps.normal, domain);
   if (count < 3) return 0.0;
-  auto integrand = [&](const Vec3& x) {
-    return pointToPolygonFormFactor(x, pr.normal, ps.v, ps.count);
-  };
+  PlaneToPolygon integrand(pr.v[0], pr.normal, ps.v, ps.count);  // s clipped once
   QuadratureStats stats;
   const double area = m_h[r].area;
   TargetSphere target{m_h[s].centre, m_h[s].radius};

@@ -27,6 +27,7 @@
 #include "photon/tracer.h"
 #include "radiosity/form_factor_storage.h"
 #include "radiosity/form_factors.h"
+#include "radiosity/pair_rule.h"
 #include "radiosity/radiosity_solution.h"
 #include "render/camera.h"
 #include "render/path_tracer.h"
@@ -154,8 +155,9 @@ PyFormFactors formFactorsPy(const PyMesh& mesh, const std::string& method, int s
   else if (precision != "double")
     throw py::value_error("form_factors: precision '" + precision +
                           "' is not known. Fix: 'double' (default) or 'float'");
-  if (pairLevels < 0 || pairLevels > 4)
-    throw py::value_error("form_factors: pair_levels must be in 0..4");
+  if (pairLevels < 0 || pairLevels > kMaxPairLevel)
+    throw py::value_error("form_factors: pair_levels must be in 0..8. Fix: 0 (adaptive contour "
+                          "for every pair) to 8 (default)");
   settings.quadrature.pairLevels = pairLevels;
   const RayScene& rays = mesh.rayScene();
   std::shared_ptr<FormFactorResult> result;
@@ -768,7 +770,7 @@ PYBIND11_MODULE(radkit, mod) {
           "Splits a scene into about `patches` patches (or patches of at most max_area)");
   mod.def("form_factors", &formFactorsPy, py::arg("mesh"), py::arg("method") = "point-polygon",
           py::arg("samples") = 16, py::arg("seed") = 1, py::arg("precision") = "double",
-          py::arg("pair_levels") = 4,
+          py::arg("pair_levels") = kMaxPairLevel,
           "Computes F (docs/formfactors.md): method point-polygon, monte-carlo or hemisphere; "
           "samples = rays per blockable pair");
   mod.def("solve", &solvePy, py::arg("system"), py::arg("solver") = "gauss-seidel",

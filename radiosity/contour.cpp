@@ -2,6 +2,7 @@
 #include "radiosity/contour.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "util/target_clones.h"
@@ -99,6 +100,14 @@ double pointToPolygonFormFactor(const Vec3& x, const Vec3& n, const Vec3* polygo
   int m = clipToHalfSpace(polygon, count, x, n, clipped);
   if (m < 3) return 0.0;
   return unclippedContourFormFactor(x, n, clipped, m);
+}
+
+PlaneToPolygon::PlaneToPolygon(const Vec3& planePoint, const Vec3& n, const Vec3* polygon,
+                               int count)
+    : m_normal(n) {
+  if (count + 1 > kMaxPolygonVertices)
+    throw std::invalid_argument("PlaneToPolygon: polygon has too many vertices");
+  m_count = clipToHalfSpace(polygon, count, planePoint, n, m_clipped);
 }
 
 double pointToPolygonFormFactor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon) {

@@ -32,4 +32,20 @@ double pointToPolygonFormFactor(const Vec3& x, const Vec3& n, const std::vector<
 /// the tangent plane. Exposed so tests can show why clipping is needed.
 double unclippedContourFormFactor(const Vec3& x, const Vec3& n, const Vec3* polygon, int count);
 
+/// pointToPolygonFormFactor for points x of one plane (through planePoint, normal n): every
+/// such x clips the polygon by the same plane, so the clip is done once. For integrating
+/// over a patch; at most kMaxPolygonVertices − 1 vertices.
+class PlaneToPolygon {
+ public:
+  PlaneToPolygon(const Vec3& planePoint, const Vec3& n, const Vec3* polygon, int count);
+  double operator()(const Vec3& x) const {
+    return m_count < 3 ? 0.0 : unclippedContourFormFactor(x, m_normal, m_clipped, m_count);
+  }
+
+ private:
+  Vec3 m_clipped[kMaxPolygonVertices];
+  Vec3 m_normal;
+  int m_count = 0;
+};
+
 }  // namespace radkit

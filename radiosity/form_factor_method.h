@@ -35,6 +35,9 @@ struct RowEntry {
   double standardError = 0;
 };
 
+/// The rules point-polygon counts: the adaptive contour and tensor levels 1..8.
+constexpr int kPairRuleCount = 9;
+
 /// What a method returns for row i, plus its work counters.
 struct RowResult {
   std::vector<RowEntry> entries;  ///< non-zero entries only, columns ascending
@@ -46,8 +49,8 @@ struct RowResult {
   long long quadraturePoints = 0;  ///< contour-formula evaluations
   long long kernelPoints = 0;      ///< point-to-point kernel evaluations of the tensor rules
   /// Pairs integrated by each rule: [0] the adaptive contour cubature, [n] the level-n
-  /// tensor rule (pair_rule.h, levels 1..4).
-  long long pairsByRule[5] = {};
+  /// tensor rule (pair_rule.h, levels 1..kMaxPairLevel = 8).
+  long long pairsByRule[kPairRuleCount] = {};
   double raySeconds = 0;           ///< thread time spent casting (and sampling) rays
   double geometrySeconds = 0;      ///< thread time spent on everything else
   int firstOverlap[2] = {-1, -1};  ///< one overlapping pair, for the report

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <iterator>
 #include <memory>
 #include <mutex>
 
@@ -22,7 +23,7 @@ namespace {
 struct Totals {
   long long raysCast = 0, raysSaved = 0, pairsFacing = 0, pairsCulled = 0, overlapping = 0;
   long long quadraturePoints = 0, kernelPoints = 0;
-  long long pairsByRule[5] = {};
+  long long pairsByRule[kPairRuleCount] = {};
   double raySeconds = 0, geometrySeconds = 0;
   std::pair<int, int> firstOverlap{-1, -1};
   void add(const RowResult& r) {
@@ -46,7 +47,7 @@ struct Totals {
     overlapping += t.overlapping;
     quadraturePoints += t.quadraturePoints;
     kernelPoints += t.kernelPoints;
-    for (int k = 0; k < 5; ++k) pairsByRule[k] += t.pairsByRule[k];
+    for (int k = 0; k < kPairRuleCount; ++k) pairsByRule[k] += t.pairsByRule[k];
     raySeconds += t.raySeconds;
     geometrySeconds += t.geometrySeconds;
   }

@@ -18,9 +18,10 @@ namespace {
 
 // kPairBoundConstant (pair_rule.h), C_n of the bound: 3 × the largest
 // |F_n − F| / (F ρ^(2n) (1 + 1/cosA)(1 + 1/cosB)) over 20 000 random triangles,
-// parallelograms and twisted quads at ρ in [0.02, 0.6] (fitted 0.1355, 0.0337, 0.00802,
-// 0.000770 by PairRule.DISABLED_FitBoundConstants; PairRule.BoundHoldsOnRandomPairs checks
-// the bound on other pairs).
+// parallelograms and twisted quads (PairRule.DISABLED_FitBoundConstants): at ρ in
+// [0.02, 0.6] for n = 1..4 (fitted 0.1355, 0.0337, 0.00802, 0.000770), at ρ in [0.02, 0.85]
+// for n = 5..8 (fitted 1.96e-4, 2.41e-5, 3.76e-6, 7.27e-7; the same run gives n = 1..4
+// within 4 %). PairRule.BoundHoldsOnRandomPairs checks the bound on other pairs.
 
 const GaussLegendreRule& rule(int n) {
   static const std::array<GaussLegendreRule, kMaxPairLevel + 2> rules = [] {
@@ -141,7 +142,7 @@ int productRulePairs(const PatchInfo& a, const PatchInfo& b, Vec3* x, Vec3* y, d
 }
 
 PatchPointCache::PatchPointCache(const PatchTable& table, int maxLevel)
-    : m_levels(std::max(0, std::min(maxLevel, kMaxPairLevel))) {
+    : m_levels(std::max(0, std::min(maxLevel, kCachedPairLevels))) {
   const std::size_t slots = std::size_t(table.size()) * (m_levels + 1);
   m_offset.resize(slots), m_count.resize(slots), m_padded.resize(slots);
   PatchPoints points;

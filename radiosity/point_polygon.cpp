@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <sstream>
 
 #include "geometry/sampling.h"
@@ -19,6 +20,8 @@
 #include "util/format.h"
 
 namespace radkit {
+
+static_assert(kMaxPairLevel + 1 == kPairRuleCount, "one count per rule");
 
 namespace {
 
@@ -90,6 +93,12 @@ double PointPolygon::unoccluded(int i, int j, bool inFront, QuadratureStats& sta
         out.kernelPoints += 24;
         return productRuleFormFactor(a, m_points.productPoints(i), b, m_points.productPoints(j));
       }
+      if (n > kCachedPairLevels) {  // rare and dear: the points cost little next to n⁴ kernels
+        PatchPoints ownA, ownB;
+        patchPoints(a, n, ownA), patchPoints(b, n, ownB);
+        out.kernelPoints += (long long)ownA.count * ownB.count;
+        return pairRuleFormFactor(a, ownA, b, ownB);
+      }
       PointSet pa = m_points.points(i, n), pb = m_points.points(j, n);
       out.kernelPoints += (long long)pa.count * pb.count;
       return pairRuleFormFactor(a, pa, b, pb);
@@ -110,9 +119,7 @@ double PointPolygon::adaptiveContour(int i, int j, QuadratureStats& stats) const
   Vec3 domain[kMaxPolygonVertices];
   int count = clipToHalfSpace(a.v, a.count, b.centroid, b.normal, domain);
   if (count < 3) return 0.0;
-  auto integrand = [&](const Vec3& x) {
-    return pointToPolygonFormFactor(x, a.normal, b.v, b.count);
-  };
+  PlaneToPolygon integrand(a.centroid, a.normal, b.v, b.count);  // b clipped to a's front once
   double tolerance = m_settings.quadrature.tolerance * a.area;
   TargetSphere target{b.sphereCentre, b.sphereRadius};
   double fab = m_cubature.integrate(domain, count, tolerance, integrand, stats, target) / a.area;

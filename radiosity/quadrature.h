@@ -36,7 +36,8 @@ class PatchChart {
 
 /// How finely point-polygon integrates over patch i.
 struct QuadratureSettings {
-  int order = 2;  ///< Gauss–Legendre points per axis per cell (1: midpoint, no refinement)
+  int order = 3;  ///< Gauss–Legendre points per axis per cell (1: midpoint, no refinement);
+                  ///< 3, not 2: |Q3 − Q2| bounds the kept rule far more tightly (docs/formfactors.md)
   double tolerance = 1e-6;  ///< accept a cell when |Q_order − Q_order−1| <= its share (in F)
   int maxDepth = 10;        ///< quadtree depth limit per cell
   /// A cell farther than farRatio × its diameter from the target's bounding sphere takes the
@@ -46,7 +47,7 @@ struct QuadratureSettings {
   /// Per-pair selection (pair_rule.h): a pair whose patches lie wholly in front of each other
   /// takes the cheapest tensor rule of level <= pairLevels whose error bound is at most
   /// `tolerance` relative to F_ij; the others, the adaptive cubature above. 0: adaptive for all.
-  int pairLevels = 4;
+  int pairLevels = 8;
 };
 
 /// Bounding sphere of what the integrand looks at (the target patch).

@@ -47,15 +47,16 @@ def check(student_dir, radkit_binary=None):
             "modes die out, so use the tail of the history only (the last `tail` of its sweeps).")
 
     # Task 1 on a real solve: Jacobi in the furnace falls by rho = 0.5 per sweep, up to the row
-    # sums of F (1 - d), which move the factor by at most rho * d. The solve stops at 1e-10:
-    # below about 1e-11 the residual's own rounding moves the ratios by 1e-4.
+    # sums of F (1 - d), which move the factor by at most rho * d. The solve stops at 1e-8,
+    # where the residual's own rounding moves the ratios by about 1e-8 (by 2e-6 at 1e-10,
+    # by 1e-4 at 1e-12); 1e-6 is allowed for it.
     mesh = rk.mesh(rk.load_scene(str(REPO / "data" / "furnace.json")), patches=96)
     ff = rk.form_factors(mesh)
     d = ff.diagnostics["row_sum"]["max_abs_deviation_from_one"]
     furnace = rk.System(ff)
-    jacobi = rk.solve(furnace, "jacobi", tolerance=1e-10)
+    jacobi = rk.solve(furnace, "jacobi", tolerance=1e-8)
     factor = task("1", lambda: lab.convergence_factor(jacobi["history"]))
-    if factor is not None and abs(factor - 0.5) > 0.5 * d + 1e-9:
+    if factor is not None and abs(factor - 0.5) > 0.5 * d + 1e-6:
         failures.append(f"convergence_factor: Jacobi in the furnace (rho = 0.5, rows of F sum to "
                         f"1 within {d:.1e}) gave {factor:.6g}; the residual halves each sweep.")
 

@@ -163,7 +163,7 @@ TEST(PairRule, BoundHoldsOnRandomPairs) {
   int checked[kMaxPairLevel + 1] = {};
   Rng rng(2026, 11, 24);
   for (int t = 0; t < kPairs; ++t) {
-    Pair p = randomPair(rng, 0.02, 0.6);
+    Pair p = randomPair(rng, 0.02, 0.85);
     double ref = reference(p.a, p.b);
     ASSERT_GT(ref, 0);
     for (int n = 1; n <= kMaxPairLevel; ++n) {
@@ -179,7 +179,7 @@ TEST(PairRule, BoundHoldsOnRandomPairs) {
   }
   for (int n = 1; n <= kMaxPairLevel; ++n) {
     std::printf("level %d: %d pairs, largest error / bound %.3g\n", n, checked[n], worst[n]);
-    EXPECT_GT(checked[n], kPairs / 4);
+    EXPECT_GT(checked[n], kPairs / 10);
   }
 }
 
@@ -236,16 +236,15 @@ TEST(PairRule, CubeWithSelector) {
   // The shared-edge pairs' adaptive contour (1e-6 absolute per pair) sets the face error:
   // 9.9e-7 here; the tensor pairs contribute under 2e-7 (relative 1e-6 of F = 0.2).
   EXPECT_LT(worst, 1.5e-6);
-  ASSERT_EQ(r.diagnostics.pairsByRule.size(), 5u);
+  ASSERT_EQ(r.diagnostics.pairsByRule.size(), std::size_t(kMaxPairLevel + 1));
   long long tensor = 0;
   for (int n = 1; n <= kMaxPairLevel; ++n) tensor += r.diagnostics.pairsByRule[n];
   EXPECT_GT(r.diagnostics.pairsByRule[0], 0);               // shared edges
   EXPECT_GT(tensor, 5 * r.diagnostics.pairsByRule[0]);  // most pairs
-  std::printf("cube 6 x 100 patches: worst face error %.2e; pairs adaptive %lld, levels 1-4 "
-              "%lld %lld %lld %lld\n",
-              worst, r.diagnostics.pairsByRule[0], r.diagnostics.pairsByRule[1],
-              r.diagnostics.pairsByRule[2], r.diagnostics.pairsByRule[3],
-              r.diagnostics.pairsByRule[4]);
+  std::printf("cube 6 x 100 patches: worst face error %.2e; pairs adaptive %lld, levels 1-8",
+              worst, r.diagnostics.pairsByRule[0]);
+  for (int n = 1; n <= kMaxPairLevel; ++n) std::printf(" %lld", r.diagnostics.pairsByRule[n]);
+  std::printf("\n");
 }
 
 // How the constants C_n of pairRuleBound were fitted: the largest
@@ -256,12 +255,14 @@ TEST(PairRule, DISABLED_FitBoundConstants) {
   double worst[kMaxPairLevel + 1] = {};
   Rng rng(1, 0, 0);
   for (int t = 0; t < 20000; ++t) {
-    Pair p = randomPair(rng, 0.02, 0.6);
+    Pair p = randomPair(rng, 0.02, 0.85);
     double ref = reference(p.a, p.b);
     for (int n = 1; n <= kMaxPairLevel; ++n) {
       double scale = std::pow(p.sep.rho, 2 * n) * (1 + 1 / p.sep.cosA) * (1 + 1 / p.sep.cosB);
       if (scale < 1e-8) continue;  // the reference's own 1e-12 would dominate
-      worst[n] = std::max(worst[n], std::fabs(rule(p.a, p.b, n) - ref) / ref / scale);
+      double err = std::fabs(rule(p.a, p.b, n) - ref) / ref;
+      if (err < 1e-10) continue;  // nor may it make up a hundredth of the error
+      worst[n] = std::max(worst[n], err / scale);
     }
   }
   for (int n = 1; n <= kMaxPairLevel; ++n) std::printf("C_%d fit: %.4g\n", n, worst[n]);
@@ -368,7 +369,7 @@ TEST(ProductRule, CacheHoldsEveryLevel) {
   PatchTable table(builder.mesh());
   PatchPointCache cache(table, kMaxPairLevel);
   for (int i = 0; i < table.size(); ++i) {
-    for (int n = 1; n <= kMaxPairLevel; ++n) {
+    for (int n = 1; n <= kCachedPairLevels; ++n) {
       PatchPoints direct;
       patchPoints(table[i], n, direct);
       PointSet cached = cache.points(i, n);
