@@ -36,8 +36,9 @@ RADKIT_TARGET_CLONES
 double kernelSum(const PointSet& a, const PointSet& b, const double* u, const double* v) {
   // Σ_p u_p Σ_q v_q / |y_q − x_p|⁴, one accumulator per point of b: the loop over b carries
   // no reduction, so it vectorises without reassociating the sum (same result on every clone).
-  alignas(32) double acc[PatchPoints::kCapacity] = {};
+  alignas(32) double acc[PatchPoints::kCapacity];
   const int m = b.padded;
+  for (int q = 0; q < m; ++q) acc[q] = 0;  // only what is used: level 8 holds 84
   for (int p = 0; p < a.count; ++p) {
     const double ax = a.x[p], ay = a.y[p], az = a.z[p], up = u[p];
     for (int q = 0; q < m; ++q) {
