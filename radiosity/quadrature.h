@@ -36,13 +36,13 @@ class PatchChart {
 
 /// How finely point-polygon integrates over patch i.
 struct QuadratureSettings {
-  int order = 3;  ///< Gauss–Legendre points per axis per cell (1: midpoint, no refinement);
-                  ///< 3, not 2: |Q3 − Q2| bounds the kept rule far more tightly (docs/formfactors.md)
+  int order = 4;  ///< Gauss–Legendre points per axis per cell (1: midpoint, no refinement);
+                  ///< 4, not 2: |Q4 − Q3| bounds the kept rule far more tightly (docs/formfactors.md)
   double tolerance = 1e-6;  ///< accept a cell when |Q_order − Q_order−1| <= its share (in F)
   int maxDepth = 10;        ///< quadtree depth limit per cell
   /// A cell farther than farRatio × its diameter from the target's bounding sphere takes the
   /// order-n rule without an error estimate: there the integrand is smooth on the cell's
-  /// scale and the rule's error falls as (diameter/distance)^(2n) (~1e-4 relative at 2, n=2).
+  /// scale and the rule's error falls as (diameter/distance)^(2n).
   double farRatio = 2.0;
   /// Per-pair selection (pair_rule.h): a pair whose patches lie wholly in front of each other
   /// takes the cheapest tensor rule of level <= pairLevels whose error bound is at most

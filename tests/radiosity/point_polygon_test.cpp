@@ -178,7 +178,8 @@ TEST(PointPolygon, ExactQuadratureConvergence) {
     double err = std::fabs(surfaceF(r, c14, 0, 1) - exact);
     std::printf("[ quadrature ] C-14 W=H=1  tolerance %.0e  points %lld  |error| %.3e\n", tol,
                 r.diagnostics.quadraturePoints, err);
-    EXPECT_LT(err, std::max(previous, 1e-12));
+    // Non-increasing: a loose tolerance may already accept the first cells' answer.
+    EXPECT_LE(err, std::max(previous, 1e-12));
     EXPECT_LT(err, tol);
     previous = err;
   }
