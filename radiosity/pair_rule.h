@@ -145,27 +145,4 @@ double pairRuleFormFactor(const PatchInfo& a, const PointSet& pa, const PatchInf
 /// on or in front of b's (within `tolerance`): the condition for pairRuleFormFactor.
 bool inFrontOfEachOther(const PatchInfo& a, const PatchInfo& b, double tolerance);
 
-/// How two patches sit towards each other, from one pass over their vertices' heights.
-struct PairSides {
-  bool facing = false;   ///< PatchTable::facing: F_ab can be non-zero
-  bool inFront = false;  ///< inFrontOfEachOther: the tensor rules apply
-};
-/// \brief facing and inFrontOfEachOther of a pair together (each height computed once).
-inline PairSides pairSides(const PatchInfo& a, const PatchInfo& b, double tolerance) {
-  PairSides s;
-  if (!(a.area > 0) || !(b.area > 0)) return s;
-  bool bAhead = false, aAhead = false, bBehind = false, aBehind = false;
-  for (int k = 0; k < b.count; ++k) {
-    double h = a.height(b.v[k]);
-    bAhead |= h > tolerance, bBehind |= h < -tolerance;
-  }
-  for (int k = 0; k < a.count; ++k) {
-    double h = b.height(a.v[k]);
-    aAhead |= h > tolerance, aBehind |= h < -tolerance;
-  }
-  s.facing = aAhead && bAhead;
-  s.inFront = !aBehind && !bBehind;
-  return s;
-}
-
 }  // namespace radkit

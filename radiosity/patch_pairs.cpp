@@ -61,13 +61,7 @@ PatchTable::PatchTable(const PatchMesh& mesh) {
 }
 
 bool PatchTable::facing(int a, int b) const {
-  const PatchInfo& pa = m_patches[a];
-  const PatchInfo& pb = m_patches[b];
-  if (pa.area <= 0 || pb.area <= 0) return false;
-  bool bInFront = false, aInFront = false;
-  for (int k = 0; k < pb.count && !bInFront; ++k) bInFront = pa.height(pb.v[k]) > m_tolerance;
-  for (int k = 0; k < pa.count && !aInFront; ++k) aInFront = pb.height(pa.v[k]) > m_tolerance;
-  return aInFront && bInFront;
+  return pairSides(m_patches[a], m_patches[b], m_tolerance).facing;
 }
 
 bool PatchTable::coplanar(int a, int b) const {

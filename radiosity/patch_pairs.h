@@ -31,6 +31,29 @@ struct PatchInfo {
 /// area and centroid from the vertices. Tests and tools build patches with it.
 PatchInfo makePatchInfo(const Vec3* v, int count, const Vec3& normal);
 
+/// How two patches sit towards each other, from one pass over their vertices' heights.
+struct PairSides {
+  bool facing = false;   ///< PatchTable::facing: F_ab can be non-zero
+  bool inFront = false;  ///< inFrontOfEachOther (pair_rule.h): the tensor rules apply
+};
+/// \brief facing and inFrontOfEachOther of a pair together (each height computed once).
+inline PairSides pairSides(const PatchInfo& a, const PatchInfo& b, double tolerance) {
+  PairSides s;
+  if (!(a.area > 0) || !(b.area > 0)) return s;
+  bool bAhead = false, aAhead = false, bBehind = false, aBehind = false;
+  for (int k = 0; k < b.count; ++k) {
+    double h = a.height(b.v[k]);
+    bAhead |= h > tolerance, bBehind |= h < -tolerance;
+  }
+  for (int k = 0; k < a.count; ++k) {
+    double h = b.height(a.v[k]);
+    aAhead |= h > tolerance, aBehind |= h < -tolerance;
+  }
+  s.facing = aAhead && bAhead;
+  s.inFront = !aBehind && !bBehind;
+  return s;
+}
+
 /// The patch table and the tolerance used for "on the plane" decisions.
 class PatchTable {
  public:
