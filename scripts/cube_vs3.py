@@ -9,6 +9,9 @@ import sys
 
 
 def main():
+    if len(sys.argv) != 2 or not sys.argv[1].isdigit() or int(sys.argv[1]) < 1:
+        sys.exit("cube_vs3.py: expected one positive integer N (patches per face edge), got "
+                 f"{sys.argv[1:]}. Fix: scripts/cube_vs3.py 30 > cube30.vs3")
     n = int(sys.argv[1])
     # origin, u, v per face, with u x v pointing into the cube
     faces = [((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 0, 1), (0, 1, 0), (1, 0, 0)),
