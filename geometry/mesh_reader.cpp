@@ -184,7 +184,8 @@ void compactVertices(const std::vector<Vec3>& all, Surface& surface, std::vector
 }  // namespace
 
 RawMesh readMeshFile(const std::string& path, bool repair) {
-  if (!fs::exists(path))
+  std::error_code ec;
+  if (!fs::exists(path, ec))
     throw InputError(path +
                      ": mesh file not found. Fix: give a path relative to the scene "
                      "file, or an absolute path.");
@@ -254,7 +255,8 @@ Material mtlMaterial(const tinyobj::material_t& m, const std::string& path,
 }  // namespace
 
 Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) {
-  if (!fs::exists(path)) throw InputError(path + ": scene file not found.");
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path + ": scene file not found.");
   checkMeshStructure(path);
   checkTextMeshNumbers(path);
   tinyobj::ObjReader reader = parseObj(path);

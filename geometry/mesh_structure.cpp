@@ -195,7 +195,10 @@ long long checkObj(const std::string& path, const Fail& fail, const std::string&
     } else if (t[0] == "mtllib") {
       for (std::size_t k = 1; k < t.size(); ++k) {
         const fs::path mtl = fs::path(path).parent_path() / t[k];
-        if (fs::exists(mtl)) checkMtl(mtl.string());
+        // A name the file system refuses (too long, say) is a missing MTL, reported by the
+        // reader: the non-throwing overload keeps it from ending as a filesystem_error.
+        std::error_code ec;
+        if (fs::exists(mtl, ec)) checkMtl(mtl.string());
       }
     }
   }

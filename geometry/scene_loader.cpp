@@ -186,7 +186,8 @@ void includeObj(const json& j, std::size_t index, Scene& scene, const std::strin
   if (ext != ".obj")
     r.fail("includes " + objPath.string() +
            ", not an .obj. Fix: include an OBJ scene (with its MTL), or give a \"mesh\" surface");
-  if (!fs::exists(objPath))
+  std::error_code ec;
+  if (!fs::exists(objPath, ec))
     r.fail("includes " + objPath.string() +
            ", which does not exist. Fix: give the OBJ's path relative to " + file);
   Scene obj;

@@ -74,5 +74,29 @@ TEST(ObjScene, ManyGroupsAndLargeGroupsLoad) {
   EXPECT_NE(r.output.find("input faces: " + std::to_string(strip)), std::string::npos) << r.output;
 }
 
+// A file name longer than the file system allows (fuzzing found it in "mtllib") is a missing
+// file with a message, not a filesystem_error escaping the loader.
+TEST(ObjScene, OverlongFileNamesAreMissingFiles) {
+  test::TempDir dir;
+  const std::string longName(300, 'm');
+  const std::string obj = dir.file(
+      "s.obj", "mtllib " + longName + ".mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  const std::string materials = R"({"materials": {"a": {"emission": [1,1,1]}}, "surfaces": [)";
+  const std::string mesh =
+      dir.file("mesh.json", materials + R"({"name": "m", "material": "a", "mesh": ")" + longName +
+                                R"(.off"}]})");
+  const std::string include =
+      dir.file("include.json", materials + R"({"include": ")" + longName + R"(.obj"}]})");
+  for (const std::string& file : {obj, mesh, include}) {
+    try {
+      loadScene(file);
+      ADD_FAILURE() << file << " loaded";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(longName), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("Fix:"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace radkit
