@@ -156,7 +156,10 @@ ModeImage renderPhotonMapMode(const ModeInput& in) {
 
 ModeImage renderPathTraceMode(const ModeInput& in) {
   const PatchMesh mesh = ownMesh(in, false);
-  const RayScene rays(mesh);
+  // Embree's fast mode: about 15 % less time per ray, for a ray in 10⁷ that slips through a
+  // shared edge (geometry/ray_scene.h). Under a sky such a ray would fetch daylight inside a
+  // closed room, a firefly, so daylit scenes keep the robust mode.
+  const RayScene rays(mesh, 0, in.scene.sky ? RayRobustness::Robust : RayRobustness::Fast);
   const ShadingScene shading(in.scene, mesh, rays, in.bsdf, GlossyModel::AsDeclared, in.light);
   PathTraceSettings s;
   s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed,

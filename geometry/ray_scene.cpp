@@ -72,7 +72,8 @@ struct RayScene::Impl {
   }
 };
 
-RayScene::RayScene(const PatchMesh& mesh, int threads) : m_impl(std::make_unique<Impl>()) {
+RayScene::RayScene(const PatchMesh& mesh, int threads, RayRobustness robustness)
+    : m_impl(std::make_unique<Impl>()) {
   Impl& im = *m_impl;
   std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
   im.device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
@@ -86,7 +87,8 @@ RayScene::RayScene(const PatchMesh& mesh, int threads) : m_impl(std::make_unique
   im.scene = rtcNewScene(im.device);
   // Robust mode makes the triangle test watertight, so rays through shared edges of
   // neighbouring patches cannot slip through.
-  rtcSetSceneFlags(im.scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(
+      im.scene, robustness == RayRobustness::Robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
   rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_HIGH);
 
   // One quad geometry: Embree reads a quad whose last two indices repeat as a triangle, so

@@ -9,13 +9,22 @@
 
 namespace radkit {
 
+/// How Embree tests rays against the patches. Robust (RTC_SCENE_FLAG_ROBUST) keeps rays from
+/// slipping through the edges neighbouring patches share; Fast skips that care for about 15 %
+/// less time per query and lets about one random ray in 10⁷ through, but 8 % of the rays aimed
+/// exactly at an edge (tests/geometry/ray_scene_test.cpp, docs/images.md). The path tracer
+/// uses it, whose rays are never aimed at edges and whose noise dwarfs that bias; form
+/// factors and visibility stay Robust.
+enum class RayRobustness { Robust, Fast };
+
 /// Owns an Embree device and scene built from the patches (quads as quads). Movable, not
 /// copyable. Every query is const and thread-safe. Embree stores and tests geometry in
 /// float: hit distances are accurate to single precision, which is why ends are offset.
 class RayScene final : public Visibility {
  public:
   /// \param threads Embree's build threads (0: all cores).
-  explicit RayScene(const PatchMesh& mesh, int threads = 0);
+  explicit RayScene(const PatchMesh& mesh, int threads = 0,
+                    RayRobustness robustness = RayRobustness::Robust);
   ~RayScene() override;
   RayScene(RayScene&&) noexcept;
   RayScene& operator=(RayScene&&) noexcept;
