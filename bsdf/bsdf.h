@@ -52,6 +52,9 @@ class Bsdf {
   /// \brief Density per steradian with which sample() produces wi (non-delta lobes).
   virtual double pdf(const Vec3& wo, const Vec3& wi) const = 0;
 
+  /// Whether sample() reads u0 (a choice among lobes); a single-lobe BSDF says no, and path
+  /// tracers then skip that number instead of computing it.
+  virtual bool choosesLobe() const { return true; }
   /// True when every lobe is a Dirac delta (mirror, glass): no light sampling there.
   virtual bool isDelta() const { return false; }
   /// The Lambertian part's albedo ρ_d (its lobe is ρ_d / π); what two-pass shading lights

@@ -34,6 +34,7 @@ class LambertBsdf final : public Bsdf {
 
   Vec3 diffuseAlbedo() const override { return m_albedo; }
   bool lambertian() const override { return true; }
+  bool choosesLobe() const override { return false; }
 
   std::string describe() const override {
     char buf[128];

@@ -21,13 +21,16 @@ PinholeCamera::PinholeCamera(const Camera& c, int width, int height)
   m_right = normalize(right);
   m_up = cross(m_right, m_forward);
   m_tanHalfFov = std::tan(c.fovDeg * M_PI / 360.0);
+  m_pixelScale = 2 * m_tanHalfFov / m_height;  // square pixels: the same step across and down
+  m_halfWidth = m_tanHalfFov * m_width / m_height;
 }
 
 Vec3 PinholeCamera::direction(double x, double y) const {
-  double aspect = double(m_width) / m_height;
-  double sx = (2 * x / m_width - 1) * m_tanHalfFov * aspect;
-  double sy = (1 - 2 * y / m_height) * m_tanHalfFov;
-  return normalize(m_forward + m_right * sx + m_up * sy);
+  // sx = (2x/W − 1)·tan(fov/2)·W/H and sy = (1 − 2y/H)·tan(fov/2), with their factors
+  // hoisted out: this runs once per camera sample.
+  const double sx = x * m_pixelScale - m_halfWidth, sy = m_tanHalfFov - y * m_pixelScale;
+  const Vec3 d = m_forward + m_right * sx + m_up * sy;
+  return d * (1 / std::sqrt(dot(d, d)));
 }
 
 bool PinholeCamera::project(const Vec3& point, double& x, double& y) const {

@@ -32,6 +32,7 @@ class PinholeCamera {
  private:
   Vec3 m_origin, m_forward, m_right, m_up;
   double m_tanHalfFov;
+  double m_pixelScale = 0, m_halfWidth = 0;  ///< image-plane step per pixel, half the plane's width
   int m_width, m_height;
 };
 

@@ -23,6 +23,8 @@ class EmitterSampler {
   EmitterSampler(const Scene& scene, const PatchMesh& mesh);
 
   bool empty() const { return m_patches.empty(); }
+  /// How many patches emit: with one, pick() needs no number.
+  int count() const { return int(m_patches.size()); }
   /// Total emitted power per channel, Σ A_i E_i (scene units² · W/m²).
   Vec3 totalPower() const { return m_power; }
 

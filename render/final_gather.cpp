@@ -125,7 +125,7 @@ struct Gather {
         if (scene.hasSky()) radiance += mul(beta, scene.skyLight(*hit, sampler, rays));
         radiance += mul(beta, guided(*hit, sampler, rays));
       }
-      const double u0 = sampler.get1D();
+      const double u0 = sampler.get1DIfUsed(hit->bsdf->choosesLobe());
       const auto [u1, u2] = sampler.get2D();
       std::optional<BsdfSample> bs = hit->bsdf->sample(hit->wo, u0, u1, u2);
       if (!bs) break;

@@ -31,7 +31,7 @@ Vec3 pathRadiance(const ShadingScene& scene, const Vec3& origin, const Vec3& dir
       if (scene.hasSky()) radiance += mul(beta, scene.skyLight(*hit, sampler, rays));
     }
 
-    const double u0 = sampler.get1D();
+    const double u0 = sampler.get1DIfUsed(hit->bsdf->choosesLobe());
     const auto [u1, u2] = sampler.get2D();
     std::optional<BsdfSample> s = hit->bsdf->sample(hit->wo, u0, u1, u2);
     if (!s) break;

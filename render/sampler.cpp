@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace radkit {
 
 namespace {
 
 std::uint32_t reverseBits(std::uint32_t x) {
-  x = (x << 16) | (x >> 16);
-  x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+  x = __builtin_bswap32(x);  // the bytes in one instruction, then the bits within each byte
   x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
   x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
   x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
@@ -58,16 +58,33 @@ class PaddedSampler : public Sampler {
  public:
   PaddedSampler(std::uint64_t seed, std::uint64_t stream) : m_key(mix(seed, stream)) {}
   void start(std::uint64_t pixel, int index) override {
-    m_pixelKey = mix(m_key, pixel);
+    if (pixel != m_pixel || m_keys.empty()) {
+      m_pixel = pixel;
+      m_pixelKey = mix(m_key, pixel);
+      m_keys.clear();
+    }
     m_index = std::uint32_t(index);
     m_dimension = 0;
   }
+  void skip1D() override { nextDimensionKeys(); }  // hashed once per pixel, then looked up
 
  protected:
-  std::uint64_t nextDimensionKey() {
-    return splitMix64(m_pixelKey + 0x9e3779b97f4a7c15ull * ++m_dimension);
+  /// A dimension's two keys: the second, splitMix64 of the first, for a pair's other half.
+  struct Keys {
+    std::uint64_t first, second;
+  };
+  /// The keys depend on the pixel and the dimension, not on the sample: a pixel's samples
+  /// come one after another, so they are hashed once per pixel and dimension and reused.
+  const Keys& nextDimensionKeys() {
+    if (m_dimension == m_keys.size()) {
+      const std::uint64_t k = splitMix64(m_pixelKey + 0x9e3779b97f4a7c15ull * (m_dimension + 1));
+      m_keys.push_back({k, splitMix64(k)});
+    }
+    return m_keys[m_dimension++];
   }
-  std::uint64_t m_key = 0, m_pixelKey = 0, m_dimension = 0;
+  std::uint64_t m_key = 0, m_pixelKey = 0, m_pixel = ~std::uint64_t(0);
+  std::size_t m_dimension = 0;
+  std::vector<Keys> m_keys;
   std::uint32_t m_index = 0;
 };
 
@@ -82,13 +99,13 @@ class StratifiedSampler : public PaddedSampler {
         m_n(std::uint32_t(std::max(1, samples))),
         m_side(std::uint32_t(std::floor(std::sqrt(double(m_n))))) {}
   double get1D() override {
-    const std::uint64_t key = nextDimensionKey();
+    const std::uint64_t key = nextDimensionKeys().first;
     const double jitter = toUnit64(mix(key, m_index));
     if (m_index >= m_n) return jitter;
     return (shuffleIndex(m_index, m_n, key) + jitter) / m_n;
   }
   std::array<double, 2> get2D() override {
-    const std::uint64_t key = nextDimensionKey();
+    const std::uint64_t key = nextDimensionKeys().first;
     const std::uint64_t bits = mix(key, m_index);
     const double jx = toUnit(std::uint32_t(bits)), jy = toUnit(std::uint32_t(bits >> 32));
     if (m_index >= m_side * m_side) return {jx, jy};
@@ -120,11 +137,12 @@ class SobolSampler : public PaddedSampler {
   }
   // owenScramble(sobol0(i), s) = reverse(LK(i, s)): sobol0 is itself a reversal.
   double get1D() override {
-    const std::uint64_t key = nextDimensionKey();
+    const std::uint64_t key = nextDimensionKeys().first;
     return toUnit(reverseBits(laineKarras(shuffled(std::uint32_t(key)), std::uint32_t(key >> 32))));
   }
   std::array<double, 2> get2D() override {
-    const std::uint64_t key = nextDimensionKey(), key2 = splitMix64(key);
+    const Keys& keys = nextDimensionKeys();
+    const std::uint64_t key = keys.first, key2 = keys.second;
     const std::uint32_t i = shuffled(std::uint32_t(key));
     // owenScramble(sobol1(i), s) = reverse(LK(reverse(sobol1(i)), s)).
     return {toUnit(reverseBits(laineKarras(i, std::uint32_t(key >> 32)))),
@@ -198,6 +216,9 @@ Sobol1Table makeSobol1Table(bool reversed) {
 std::uint32_t applySobol1(const Sobol1Table& t, std::uint32_t index) {
   return t[0][index & 255] ^ t[1][index >> 8 & 255] ^ t[2][index >> 16 & 255] ^ t[3][index >> 24];
 }
+/// At namespace scope, not a function's static: the sampler reads it per 2-D sample, and a
+/// function-local static costs a call and a guard check there.
+const Sobol1Table kReversedSobol1 = makeSobol1Table(true);
 }  // namespace
 
 std::uint32_t sobol1(std::uint32_t index) {
@@ -205,10 +226,7 @@ std::uint32_t sobol1(std::uint32_t index) {
   return applySobol1(table, index);
 }
 
-std::uint32_t reversedSobol1(std::uint32_t index) {
-  static const Sobol1Table table = makeSobol1Table(true);
-  return applySobol1(table, index);
-}
+std::uint32_t reversedSobol1(std::uint32_t index) { return applySobol1(kReversedSobol1, index); }
 
 std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed) {
   // Reversed, the most significant digit becomes bit 0; additions and x ^= x·even then only

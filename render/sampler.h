@@ -31,6 +31,16 @@ class Sampler {
   virtual void start(std::uint64_t pixel, int index) = 0;
   virtual double get1D() = 0;
   virtual std::array<double, 2> get2D() = 0;
+  /// \brief Passes over a 1-D dimension, as get1D() would, without the number where that
+  /// saves work: the dimensions after it are the same either way.
+  virtual void skip1D() { get1D(); }
+  /// \brief get1D() if `used`, else skip1D() and 0: for numbers a scene may not need (a
+  /// choice among one emitter, or among the lobes of a single-lobe BSDF).
+  double get1DIfUsed(bool used) {
+    if (used) return get1D();
+    skip1D();
+    return 0;
+  }
 };
 
 /// \param samplesPerPixel strata count (stratified), power-of-two block of indices (Sobol)

@@ -86,7 +86,7 @@ std::optional<SurfaceHit> ShadingScene::intersect(const Vec3& origin, const Vec3
 Vec3 ShadingScene::emitted(const SurfaceHit& hit) const {
   if (!hit.front) return {};
   // A Lambertian emitter of exitance E has radiance E/π in every direction.
-  return m_emission[m_material[m_mesh.patches[hit.patch].surface]] / M_PI;
+  return m_emission[m_material[m_mesh.patches[hit.patch].surface]] * (1 / M_PI);
 }
 
 Vec3 ShadingScene::spawn(const SurfaceHit& hit, const Vec3& dir) const {
@@ -94,37 +94,45 @@ Vec3 ShadingScene::spawn(const SurfaceHit& hit, const Vec3& dir) const {
 }
 
 Vec3 ShadingScene::directLight(const SurfaceHit& hit, Sampler& sampler, long long& rays) const {
-  const double u0 = sampler.get1D();
+  const double u0 = sampler.get1DIfUsed(m_emitters.count() > 1);
   const auto [u1, u2] = sampler.get2D();
   if (m_emitters.empty() || !hit.bsdf || hit.bsdf->isDelta()) return {};
   EmitterSample e;
-  double pdfLight = 0;  // per steradian
-  const int patch = m_emitters.pick(u0);
-  const std::optional<SphericalRectangle> rect = solidAngleSampling(patch, hit.point);
+  // The light sample's density per steradian as a ratio, p_L = num/den, so that the estimator
+  // below needs one division: by area num = p_A r² and den = cos θ_light (Veach 1997, eq.
+  // 8.10); by solid angle num = the emitter's probability and den = Ω.
+  double num = 0, den = 0;
+  const int patch = m_lightSampling == LightSampling::SolidAngle ? m_emitters.pick(u0) : -1;
+  const std::optional<SphericalRectangle> rect =
+      patch >= 0 ? solidAngleSampling(patch, hit.point) : std::nullopt;
   if (rect) {
     e.patch = patch;
     e.point = rect->sample(u1, u2);
     e.normal = m_mesh.patches[e.patch].normal;
     e.emission = m_emission[m_material[m_mesh.patches[e.patch].surface]];
-    pdfLight = m_emitters.probability(e.patch) / rect->solidAngle();
+    num = m_emitters.probability(e.patch);
+    den = rect->solidAngle();
   } else {
     e = m_emitters.sample(u0, u1, u2);
   }
   const Vec3 d = e.point - hit.point;
   const double dist2 = dot(d, d);
   if (!(dist2 > 0)) return {};
-  const Vec3 wi = d / std::sqrt(dist2);
+  const Vec3 wi = d * (1 / std::sqrt(dist2));
   const double cosLight = -dot(wi, e.normal);
   if (cosLight <= 0) return {};
-  // Area to solid angle: p_ω = p_A r² / cos θ_light (Veach 1997, eq. 8.10).
-  if (!rect) pdfLight = e.pdfArea * dist2 / cosLight;
+  if (!rect) num = e.pdfArea * dist2, den = cosLight;
   const Vec3 wiLocal = hit.frame.toLocal(wi);
   const Vec3 f = hit.bsdf->eval(hit.wo, wiLocal);
   if (maxComponent(f) <= 0) return {};
   ++rays;
   if (m_rays.occluded(hit.point, m_mesh.patches[hit.patch].normal, e.point, e.normal)) return {};
-  const double weight = powerHeuristic(pdfLight, hit.bsdf->pdf(hit.wo, wiLocal));
-  return mul(f, e.emission / M_PI) * (std::fabs(wiLocal.z) * weight / pdfLight);
+  // f·L·cos θ·w/p_L with the power heuristic w = p_L²/(p_L² + p_B²) is f·L·cos θ·p_L/(p_L² +
+  // p_B²), which is f·L·cos θ·num·den/(num² + p_B²·den²).
+  const double pdfBsdf = hit.bsdf->pdf(hit.wo, wiLocal);
+  const double scale =
+      std::fabs(wiLocal.z) * num * den / (num * num + pdfBsdf * pdfBsdf * den * den) * (1 / M_PI);
+  return mul(f, e.emission) * scale;
 }
 
 Vec3 ShadingScene::skyLight(const SurfaceHit& hit, Sampler& sampler, long long& rays) const {
