@@ -139,11 +139,12 @@ void Refiner::quarterShares(int r, int s, HLink& link) const {
   double f[4] = {0, 0, 0, 0}, total = 0;
   for (int k = 0; k < 4; ++k) {
     const HPolygon& q = m_h.polygon(S.firstChild + k);
+    const PlaneToPolygon toQ(pr.v[0], pr.normal, q.v, q.count);  // q clipped to r's front once
     for (double a : kGauss2)
       for (double b : kGauss2) {
         Vec3 x = chart.point(a, b);
         if (dot(x - m_h[S.firstChild + k].centre, q.normal) > 0)
-          f[k] += chart.jacobian(a, b) * pointToPolygonFormFactor(x, pr.normal, q.v, q.count);
+          f[k] += chart.jacobian(a, b) * toQ(x);
       }
     if (link.quarterVisible[k] >= 0)
       f[k] *= link.quarterVisible[k];
@@ -262,10 +263,9 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility,
     // those and of points near each corner and at the centre says how much F varies over r
     // (symmetric points alone miss it: directly opposite squares give four equal values).
     // Points behind s's plane see nothing of its front.
+    const PlaneToPolygon toS(pr.v[0], pr.normal, ps.v, ps.count);  // s clipped to r's front once
     auto pointValue = [&](const Vec3& x) {
-      return dot(x - S.centre, ps.normal) > 0
-                 ? pointToPolygonFormFactor(x, pr.normal, ps.v, ps.count)
-                 : 0.0;
+      return dot(x - S.centre, ps.normal) > 0 ? toS(x) : 0.0;
     };
     PatchChart chart(pr.v, pr.count);
     double fMin = INFINITY, fMax = 0, sum = 0, weight = 0;
