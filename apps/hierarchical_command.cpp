@@ -15,6 +15,9 @@ namespace radkit::app {
 
 namespace {
 
+/// Energy imbalance above which a hierarchical run warns (beyond 4 standard errors).
+constexpr double kImbalanceWarning = 0.005;
+
 nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSettings& s) {
   const Hierarchy& h = *r.hierarchy;
   long long clusters = 0, elements = 0;
@@ -63,6 +66,9 @@ nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSett
           {"row_sum_largest_error_before_scaling", r.system->largestRowSumError()},
           {"leaves_closed_row_sum_normalised", r.system->normalisedLeaves()},
           {"leaves_open_row_sum_capped", r.system->clampedLeaves()},
+          {"leaves_row_sum_target_not_met", r.system->unnormalisedClosedLeaves()},
+          {"cluster_link_landings", r.system->landings()},
+          {"cluster_link_landings_estimated", r.system->approximateLandings()},
           {"hierarchy_bytes", r.hierarchyBytes},
           {"link_bytes", r.linkBytes},
           {"rounds", rounds}};
@@ -77,6 +83,40 @@ void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalRe
   RayScene rays(r.leaves);  // the image needs the leaf under each pixel
   if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
   writeRadiosityPng(folder.path("render.png"), scene, r.leaves, rays, r.radiosity, s);
+}
+
+/// Checks a user should see: light that went missing, and surfaces left dark.
+std::vector<std::string> hierarchicalWarnings(const Scene& scene, const HierarchicalResult& r) {
+  std::vector<std::string> out;
+  // Share of each non-emitting surface's area whose leaves received nothing at all.
+  // Dark: below a thousandth of the brightest irradiance any leaf gets.
+  std::vector<double> area(scene.surfaces.size(), 0), dark(scene.surfaces.size(), 0);
+  double brightest = 0;
+  for (const Vec3& e : r.irradiance) brightest = std::max(brightest, maxComponent(e));
+  for (int i = 0; i < r.leaves.size(); ++i) {
+    const Patch& p = r.leaves.patches[i];
+    area[p.surface] += p.area;
+    if (maxComponent(r.irradiance[i]) <= 1e-3 * brightest) dark[p.surface] += p.area;
+  }
+  std::string darkList;
+  for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
+    const Material& m = scene.materials[scene.surfaces[s].material];
+    if (maxComponent(m.emission) > 0 || !(area[s] > 0) || dark[s] < 0.25 * area[s]) continue;
+    darkList += (darkList.empty() ? "" : ", ") + ("\"" + scene.surfaces[s].name + "\" " +
+                                                  fmt("%.0f", 100 * dark[s] / area[s]) + " %");
+  }
+  if (!darkList.empty())
+    out.push_back(scene.file + ": (almost) no light reached a large part of: " + darkList +
+                  ". Fix: check that these faces point toward the light (a closed mesh wound "
+                  "inward needs \"reverse\": true), or lower --epsilon");
+  const double se = maxComponent(r.escapedStandardError) /
+                    std::max(1e-300, maxComponent(r.energy.emitted));
+  if (r.energy.relativeImbalance > std::max(kImbalanceWarning, 4 * se))
+    out.push_back(scene.file + ": the energy balance is off by " +
+                  fmt("%.2g", 100 * r.energy.relativeImbalance) +
+                  " % (the escape estimate's standard error is " + fmt("%.2g", 100 * se) +
+                  " %): the links lose or add light. Fix: lower --epsilon, or raise --hr-rays");
+  return out;
 }
 
 void printSummary(const Scene& scene, const HierarchicalResult& r, const HierarchicalJob& job,
@@ -159,6 +199,8 @@ void runHierarchicalJob(HierarchicalJob job) {
   };
   HierarchicalResult r = solveHierarchical(scene, job.settings, log);
   progress.finish();
+  for (const std::string& w : hierarchicalWarnings(scene, r))
+    std::fprintf(stderr, "radkit: warning: %s\n", w.c_str());
   if (r.solve.reason.rfind("diverged", 0) == 0)
     throw std::runtime_error("hierarchical solve " + r.solve.reason + "; nothing written");
 

@@ -124,7 +124,7 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
   if (j.is_object() && j.contains("name") && j["name"].is_string())
     where += " (\"" + j["name"].get<std::string>() + "\")";
   ObjectReader r(j, where, file);
-  r.allowOnly({"name", "material", "polygon", "polygons", "mesh", "transform"});
+  r.allowOnly({"name", "material", "polygon", "polygons", "mesh", "transform", "reverse"});
   Surface s;
   s.source = file + ": " + where;
   s.name = r.string("name", "surface" + std::to_string(index));
@@ -167,6 +167,13 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
   if (r.has("transform")) {
     if (!r.has("mesh")) r.fail("has a \"transform\": only mesh surfaces take one");
     applyTransform(r, j.at("transform"), file, s);
+  }
+  // "reverse": the other side is the front (a mesh wound inward, such as a scan whose normals
+  // point into the model).
+  if (r.has("reverse")) {
+    if (!j.at("reverse").is_boolean()) r.fail("\"reverse\" must be true or false");
+    if (j.at("reverse").get<bool>())
+      for (Face& f : s.faces) std::reverse(f.vertices.begin(), f.vertices.end());
   }
   return s;
 }

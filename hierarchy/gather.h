@@ -24,12 +24,14 @@ void pull(const Hierarchy& h, SourceState& state);
 class HierarchicalSystem {
  public:
   /// Links are sorted by receiver (then source) so every gather sums in one fixed order.
-  /// `closed[n]` marks leaves whose whole hemisphere is covered by the scene: there the
-  /// enclosure rule Σ_j F_ij = 1 holds exactly (Siegel & Howell), and the leaf's irradiance is
-  /// divided by the row sum its links add up to, which removes the error of gathering at a
-  /// coarser receiver from the leaf's total. Empty: no leaf is taken as closed.
+  /// `rowTarget[n]` > 0 is what leaf n's row sum Σ_j F_ij is known to be independently of the
+  /// links: 1 where the whole hemisphere is covered by the scene (the enclosure rule, Siegel &
+  /// Howell), or a ray estimate below 1 where a little of it is not. The leaf's irradiance is
+  /// scaled so its links add up to that, which removes the error of gathering at coarser
+  /// nodes from the leaf's total. Empty or 0: not known, not scaled (only capped).
   HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links, GatherOrder order,
-                     const std::vector<char>& closed = {}, const std::vector<char>& hidden = {});
+                     const std::vector<float>& rowTarget = {},
+                     const std::vector<char>& hidden = {});
 
   const std::vector<HLink>& links() const { return m_links; }
   /// Links gathered by node n.
@@ -46,6 +48,8 @@ class HierarchicalSystem {
   /// \brief Irradiance H at every leaf (indexed by node) that the links deliver from `state`,
   /// without changing it. With B = 1 everywhere this is the row sum Σ_j F_ij of each leaf.
   std::vector<Vec3> leafIrradiance(const SourceState& state);
+  /// Row sum of leaf n as the solve uses it: its target where it has one, else capped.
+  double rowSum(int n) const { return m_rowSum[n]; }
   /// \brief A state with B = 1 on every node (for row sums).
   SourceState unitState() const;
   /// \brief Sets state.visibleArea (hidden leaves count 0) for pull().
@@ -57,11 +61,19 @@ class HierarchicalSystem {
   int clampedLeaves() const { return m_clamped; }
   int normalisedLeaves() const { return m_normalised; }
   double largestRowSumError() const { return m_largestRowSumError; }
+  /// Closed leaves whose row sum was too far from 1 to be normalised (capped instead).
+  int unnormalisedClosedLeaves() const { return m_unnormalised; }
+  /// Cluster-link ends that were too large to resolve into facing nodes and were estimated.
+  long long approximateLandings() const { return m_approximateLandings; }
+  /// Landings (facing nodes) over all cluster links, both ends.
+  long long landings() const {
+    return static_cast<long long>(m_sourceLandings.size() + m_receiverLandings.size());
+  }
 
  private:
   struct Accumulator {
-    Vec3 sum;                   ///< elements: irradiance H
-    std::array<Vec3, 3> vec{};  ///< clusters: Σ e·ω per channel
+    Vec3 sum;                   ///< irradiance H on a surface (uniform over the faces below)
+    std::array<Vec3, 3> vec{};  ///< clusters: Σ e·ω per channel, from sources they all face
     void add(const Accumulator& o) {
       sum += o.sum;
       for (int c = 0; c < 3; ++c) vec[c] += o.vec[c];
@@ -70,6 +82,7 @@ class HierarchicalSystem {
   /// What node n gathered itself plus what its incoherent ancestors gathered for it.
   Accumulator gathered(int n) const;
   void gather(int r, const SourceState& state);
+  void buildLandings(const std::vector<char>& hidden);
   /// Push-pull below `node` with what its ancestors gathered: records each leaf's H and, with a
   /// state, sets its B = E + ρH and pulls up; returns the largest change of a leaf's B.
   Change pushPull(int node, const Accumulator& inherited, SourceState* state);
@@ -79,9 +92,31 @@ class HierarchicalSystem {
   std::vector<HLink> m_links;
   std::vector<int> m_begin;
   std::vector<Accumulator> m_acc;
-  /// A cluster whose normals disagree gathers each link for its coherent parts apart (so a
-  /// part's faces are not handed light from behind them): slots [m_slotBegin[r], ...) of r,
-  /// each for node m_slotTarget[k]; m_incoming lists, per node, the slots meant for it.
+  /// Links with a cluster at either end carry the transfer between the nodes' centres along
+  /// ω (receiver to source). Each end is resolved, once per system, into the nodes below it
+  /// that face ω as a whole (every normal of their cone within 90° of it), skipping those
+  /// that face away, down to input faces (landings). Light then leaves a source only from
+  /// surfaces that face the receiver and reaches only faces that face the source: a sum of
+  /// non-negative terms, linear in B, so row sums bound every sweep. Gathering a sum of
+  /// irradiance vectors at a node whose faces point every way would let light from opposite
+  /// sides cancel (a closed model in a room lost half its light that way).
+  struct SourceLanding {
+    int node;
+    float cosine;  ///< element: its n·(−ω); kApproximate: a cluster summed by projectedSum
+  };
+  struct ReceiverLanding {
+    int slot;
+    float factor;  ///< kVector: a cluster facing ω (Σ e·ω kept); else irradiance per unit e
+  };
+  static constexpr float kApproximate = -2.0f, kVector = -1.0f;
+  std::vector<Vec3> m_linkDirection;   ///< per link: ω (cluster links)
+  std::vector<double> m_linkGeometry;  ///< per link: V / (π (d² + P_s/π)) (cluster links)
+  std::vector<int> m_sourceBegin, m_receiverBegin;  ///< per link, into the landings
+  std::vector<SourceLanding> m_sourceLandings;
+  std::vector<ReceiverLanding> m_receiverLandings;
+  long long m_approximateLandings = 0;
+  /// Receiver r's landings accumulate into slots [m_slotBegin[r], m_slotBegin[r + 1]), slot k
+  /// for node m_slotTarget[k]; m_incoming lists, per node, the slots meant for it.
   std::vector<int> m_slotBegin, m_slotTarget, m_incomingBegin, m_incoming;
   std::vector<Accumulator> m_slots;
   std::vector<Vec3> m_leafIrradiance;
@@ -89,8 +124,14 @@ class HierarchicalSystem {
   /// parent's mean (HLink::receiverShare); written only by the parent's gather.
   std::vector<Vec3> m_fromParent;
   std::vector<double> m_visibleFraction;  ///< per node: share of its area on leaves not hidden
-  std::vector<double> m_rowScale;         ///< per node: 1 / max(1, row sum) at leaves
-  int m_clamped = 0, m_normalised = 0;
+  std::vector<double> m_rowScale;  ///< per leaf: caps an open leaf's row sum
+  /// Per leaf with a row-sum target: target − row sum, filled each sweep with its surface's
+  /// light per unit of row sum (m_meanIncoming, from the last sweep). m_leafRaw: H before.
+  std::vector<double> m_deficit, m_rowSum;
+  std::vector<Vec3> m_leafRaw, m_meanIncoming;
+  int m_fillSurfaces = 0;
+  void updateMeanIncoming();
+  int m_clamped = 0, m_normalised = 0, m_unnormalised = 0;
   double m_largestRowSumError = 0;
   /// Blocks in sweep order (Jacobi: the root alone), the receivers inside each, and those
   /// above every block.

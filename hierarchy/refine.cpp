@@ -27,6 +27,29 @@ constexpr int kConfirmRays = 16;
 /// at ε = 1e-4, weight 16 instead of 4 took the ceiling from −0.43 % to −0.29 % of the photon
 /// reference and the short block from −0.87 % to −0.82 %, for a quarter more CPU time.
 constexpr double kSourceSpreadWeight = 16.0;
+/// Least reflectance the oracle weighs a receiver's error with. Its error bound is in reflected
+/// watts, so a black receiver (ρ = 0) would never be refined and its irradiance, which
+/// surfaces.csv reports (lux on a photometer plane), would be the coarsest link's.
+constexpr double kIrradianceWeight = 0.5;
+
+/// The point of polygon p nearest to x (its plane's foot point when that lies inside).
+Vec3 nearestPoint(const HPolygon& p, const Vec3& x) {
+  Vec3 foot = x - p.normal * dot(x - p.v[0], p.normal);
+  bool inside = true;
+  for (int k = 0; k < p.count; ++k)
+    inside &= dot(cross(p.v[(k + 1) % p.count] - p.v[k], foot - p.v[k]), p.normal) >= 0;
+  if (inside) return foot;
+  Vec3 best = p.v[0];
+  double bestD2 = INFINITY;
+  for (int k = 0; k < p.count; ++k) {
+    const Vec3 a = p.v[k], e = p.v[(k + 1) % p.count] - a;
+    const double t = std::clamp(dot(foot - a, e) / std::max(dot(e, e), 1e-300), 0.0, 1.0);
+    const Vec3 q = a + e * t;
+    const double d2 = dot(q - foot, q - foot);
+    if (d2 < bestD2) bestD2 = d2, best = q;
+  }
+  return best;
+}
 
 /// Largest and smallest max(0, n·w) over normals within `cone` of `axis` and directions within
 /// `spread` of w: the cosine bounds of a node seen along directions near w.
@@ -242,7 +265,7 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility,
     out.decision = R.element ? Decision::Drop : Decision::SplitBoth;  // a plane never sees itself
     return out;
   }
-  const double rho = R.reflectanceMax;
+  const double rho = std::max(R.reflectanceMax, kIrradianceWeight);
   const double tau = m_settings.threshold;
   const double sourceRadiosity = maxComponent(state.radiosity[s]);
   double transfer = 0, errorGeometry = 0;  // W, with full visibility
@@ -276,9 +299,13 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility,
         fMin = std::min(fMin, f), fMax = std::max(fMax, f);
         sum += j * f, weight += j;
       }
-    for (int k = 0; k <= pr.count; ++k) {
-      // Corners pulled a hundredth toward the centroid: a corner on s's edge is singular.
-      Vec3 x = k < pr.count ? pr.v[k] * 0.99 + R.centre * 0.01 : R.centre;
+    for (int k = 0; k <= pr.count + 1; ++k) {
+      // Corners pulled a hundredth toward the centroid: a corner on s's edge is singular. The
+      // last point is r's nearest to s: on a face far larger than s (a long floor under a
+      // lamp) the peak of F lies there, between the other points.
+      Vec3 x = k < pr.count    ? pr.v[k] * 0.99 + R.centre * 0.01
+               : k == pr.count ? R.centre
+                               : nearestPoint(pr, S.centre) * 0.99 + R.centre * 0.01;
       double f = pointValue(x);
       fMin = std::min(fMin, f), fMax = std::max(fMax, f);
     }
