@@ -106,9 +106,10 @@ std::vector<std::string> hierarchicalWarnings(const Scene& scene, const Hierarch
                                                   fmt("%.0f", 100 * dark[s] / area[s]) + " %");
   }
   if (!darkList.empty())
-    out.push_back(scene.file + ": (almost) no light reached a large part of: " + darkList +
-                  ". Fix: check that these faces point toward the light (a closed mesh wound "
-                  "inward needs \"reverse\": true), or lower --epsilon");
+    out.push_back(scene.file + ": under a thousandth of the brightest irradiance reached " +
+                  darkList +
+                  " of the area. If these surfaces should be lit, check that their faces point "
+                  "toward the light (a mesh wound inward needs \"reverse\": true)");
   const double se = maxComponent(r.escapedStandardError) /
                     std::max(1e-300, maxComponent(r.energy.emitted));
   if (r.energy.relativeImbalance > std::max(kImbalanceWarning, 4 * se))
@@ -188,6 +189,7 @@ void runHierarchicalJob(HierarchicalJob job) {
   validateHierarchicalSettings(job.settings);
   LoadReport loaded;
   Scene scene = loadSceneReporting(job.scene, job.load, &loaded, job.camera);
+  addBackSides(scene);  // two-sided surfaces exchange light on both sides
   if (job.out.empty()) job.out = "out/" + scene.name;
   OutputFolder folder(job.out);  // refuses an --out it cannot replace before the work, not after
   Progress progress;

@@ -186,6 +186,7 @@ void runJob(PipelineCommand& cmd) {
         cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
   LoadReport loaded;
   Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded, cmd.camera);
+  addBackSides(scene);  // two-sided surfaces exchange light on both sides
   if (cmd.out.empty() && cmd.job == Job::Run)
     cmd.out = "out/" + scene.name;  // required for the others
   OutputFolder folder(cmd.out);     // refuses an --out it cannot replace before the work, not after

@@ -30,6 +30,8 @@ struct PatchMesh {
   std::vector<Vec3> vertices;
   std::vector<Patch> patches;
   std::vector<int> surfaceBegin;  ///< size = surfaces + 1
+  /// Per surface (empty: none): rays ignore hits on the back of its patches (Surface::cullBack).
+  std::vector<char> cullBack;
 
   int size() const { return static_cast<int>(patches.size()); }
   Vec3 vertex(const Patch& p, int k) const { return vertices[p.vertex[k]]; }

@@ -34,6 +34,9 @@ struct RayScene::Impl {
   Vec3 centre;
   double epsilon = 0;
   ErrorLog errors;
+  /// Per patch: its normal where its surface culls back-face hits (both sides of a two-sided
+  /// surface, coincident), else zero.
+  std::vector<Vec3> cullNormal;
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -72,6 +75,25 @@ struct RayScene::Impl {
   }
 };
 
+namespace {
+
+/// Embree filter for meshes with back-culled surfaces: a hit on the back of such a patch is
+/// not a hit (its coincident twin, facing the ray, is hit instead).
+void cullBackFaces(const RTCFilterFunctionNArguments* args) {
+  const auto* normals = static_cast<const std::vector<Vec3>*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+    const Vec3& n = (*normals)[prim];
+    const double facing = n.x * RTCRayN_dir_x(args->ray, args->N, i) +
+                          n.y * RTCRayN_dir_y(args->ray, args->N, i) +
+                          n.z * RTCRayN_dir_z(args->ray, args->N, i);
+    if (facing > 0) args->valid[i] = 0;
+  }
+}
+
+}  // namespace
+
 RayScene::RayScene(const PatchMesh& mesh, int threads, RayRobustness robustness)
     : m_impl(std::make_unique<Impl>()) {
   Impl& im = *m_impl;
@@ -108,6 +130,18 @@ RayScene::RayScene(const PatchMesh& mesh, int threads, RayRobustness robustness)
   for (std::size_t i = 0; i < mesh.patches.size(); ++i) {
     const Patch& p = mesh.patches[i];
     for (int k = 0; k < 4; ++k) q[4 * i + k] = unsigned(p.vertex[k < p.vertexCount ? k : 2]);
+  }
+  if (!mesh.cullBack.empty()) {
+    im.cullNormal.assign(mesh.patches.size(), Vec3{});
+    bool any = false;
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
+      if (mesh.cullBack[mesh.patches[i].surface])
+        im.cullNormal[i] = mesh.patches[i].normal, any = true;
+    if (any) {
+      rtcSetGeometryUserData(geom, &im.cullNormal);
+      rtcSetGeometryIntersectFilterFunction(geom, cullBackFaces);
+      rtcSetGeometryOccludedFilterFunction(geom, cullBackFaces);
+    }
   }
   rtcCommitGeometry(geom);
   rtcAttachGeometry(im.scene, geom);

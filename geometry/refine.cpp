@@ -76,6 +76,7 @@ RefinedMesh refinePatches(const PatchMesh& mesh, const std::vector<char>& split)
     throw std::invalid_argument("refinePatches: one split flag per patch is required");
   RefinedMesh r;
   r.mesh.vertices = mesh.vertices;
+  r.mesh.cullBack = mesh.cullBack;
   r.mesh.surfaceBegin.assign(1, 0);
   for (std::size_t s = 0; s + 1 < mesh.surfaceBegin.size(); ++s) {
     int begin = mesh.surfaceBegin[s], end = mesh.surfaceBegin[s + 1];

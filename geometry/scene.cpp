@@ -1,5 +1,7 @@
 #include "geometry/scene.h"
 
+#include <algorithm>
+
 #include "bsdf/bsdf.h"
 #include "geometry/scene_loader.h"
 
@@ -46,6 +48,20 @@ int Scene::findMaterial(const std::string& materialName) const {
   for (std::size_t i = 0; i < materials.size(); ++i)
     if (materials[i].name == materialName) return static_cast<int>(i);
   return -1;
+}
+
+int addBackSides(Scene& scene) {
+  const std::size_t count = scene.surfaces.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!scene.materials[scene.surfaces[k].material].twoSided) continue;
+    Surface back = scene.surfaces[k];
+    back.name += " (back)";
+    back.source += " (back side)";
+    for (Face& f : back.faces) std::reverse(f.vertices.begin(), f.vertices.end());
+    back.cullBack = scene.surfaces[k].cullBack = true;
+    scene.surfaces.push_back(std::move(back));
+  }
+  return static_cast<int>(scene.surfaces.size() - count);
 }
 
 }  // namespace radkit

@@ -54,6 +54,9 @@ struct Surface {
   std::vector<Vec3> vertices;
   std::vector<Face> faces;
   std::string source;  ///< where it came from, for messages: "scene.json: surfaces[3]"
+  /// Set by addBackSides on both sides of a two-sided surface: rays ignore the back of its
+  /// faces, so each of the two coincident copies is hit from its own side only.
+  bool cullBack = false;
 };
 
 /// Pinhole camera; fovDeg is the full vertical field of view.
@@ -102,5 +105,12 @@ struct Scene {
   /// Per surface: whether its material reflects on both sides (what image modes need).
   std::vector<bool> twoSidedSurfaces() const;
 };
+
+/// \brief Radiosity's view of two-sided materials: every surface whose material is two-sided
+/// gets a copy "NAME (back)" with its faces reversed, so both sides exchange light as surfaces
+/// of their own (own patches, own radiosity), and both are marked cullBack. Only for the
+/// radiosity methods; the image modes and photon mapping read two_sided from the material.
+/// Returns the number of surfaces added.
+int addBackSides(Scene& scene);
 
 }  // namespace radkit

@@ -357,6 +357,11 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings,
     }
   }
   out.surfaceBegin.push_back(out.size());
+  for (const Surface& s : scene.surfaces)
+    if (s.cullBack) {
+      for (const Surface& t : scene.surfaces) out.cullBack.push_back(t.cullBack ? 1 : 0);
+      break;
+    }
   return out;
 }
 

@@ -133,6 +133,53 @@ struct OrientationVisitor : PMP::Default_orientation_visitor {
   void non_manifold_vertex(std::size_t, std::size_t) { ++record->nonManifoldVertices; }
 };
 
+/// Signed volume enclosed by a surface whose every edge has exactly two faces (a closed
+/// mesh), positive when its faces point outward; nullopt when the surface is not closed.
+std::optional<double> closedSignedVolume(const Surface& s) {
+  std::map<std::pair<int, int>, int> edges;
+  for (const Face& f : s.faces)
+    for (std::size_t k = 0; k < f.vertices.size(); ++k)
+      ++edges[std::minmax(f.vertices[k], f.vertices[(k + 1) % f.vertices.size()])];
+  if (edges.empty()) return std::nullopt;
+  for (const auto& e : edges)
+    if (e.second != 2) return std::nullopt;
+  // Relative to a vertex, so a model far from the origin keeps its digits.
+  const Vec3 o = s.vertices[s.faces[0].vertices[0]];
+  double volume = 0;
+  for (const Face& f : s.faces)
+    for (std::size_t k = 1; k + 1 < f.vertices.size(); ++k) {
+      const Vec3 a = s.vertices[f.vertices[0]] - o, b = s.vertices[f.vertices[k]] - o,
+                 c = s.vertices[f.vertices[k + 1]] - o;
+      volume += dot(a, cross(b, c)) / 6;
+    }
+  return volume;
+}
+
+/// A closed mesh wound inward receives light only on the inside. That is right for a room
+/// seen from within (an emitter inside its bounds), and almost always a fault otherwise (a
+/// scan or export whose normals point into the model): warn with the fix.
+void checkOrientation(const Scene& scene, const Surface& s, LoadReport& report) {
+  const std::optional<double> volume = closedSignedVolume(s);
+  // An emitting one lights its own inside (a spherical furnace): nothing to warn about.
+  if (!volume || *volume >= 0 || scene.materials[s.material].emits()) return;
+  Vec3 lo = s.vertices[0], hi = s.vertices[0];
+  for (const Vec3& v : s.vertices)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+  for (const Surface& e : scene.surfaces) {
+    if (&e == &s || !scene.materials[e.material].emits() || e.vertices.empty()) continue;
+    Vec3 c;
+    for (const Vec3& v : e.vertices) c += v;
+    c = c / double(e.vertices.size());
+    if (c.x > lo.x && c.y > lo.y && c.z > lo.z && c.x < hi.x && c.y < hi.y && c.z < hi.z)
+      return;  // a light inside it: a room or a lamp shade
+  }
+  report.warnings.push_back(
+      s.source + " is a closed mesh whose faces point inward (signed volume " + fmt(*volume) +
+      "), and no light is inside it: it will receive light only on faces nothing reaches and "
+      "stay dark. Fix: add \"reverse\": true to this surface (or, if it is a room, put its "
+      "light inside it).");
+}
+
 /// Faces that share an edge (either direction), as one label per face.
 std::vector<std::size_t> edgeConnectedParts(const Surface& s) {
   std::vector<std::size_t> parent(s.faces.size());
@@ -575,6 +622,7 @@ void validateScene(Scene& scene, LoadReport& report, bool repair) {
           s.source + " intersects itself (" + std::to_string(n) +
           " pairs of triangles cross): form factors near the crossing are unreliable.");
   }
+  for (const Surface& s : scene.surfaces) checkOrientation(scene, s, report);
   bool emits = std::any_of(scene.surfaces.begin(), scene.surfaces.end(),
                            [&](const Surface& s) { return scene.materials[s.material].emits(); });
   if (!emits && !scene.sky)

@@ -47,6 +47,7 @@ PatchMesh leafMesh(const Hierarchy& h, const std::vector<int>& leaves) {
   PatchMesh mesh;
   const int surfaces = static_cast<int>(h.base().surfaceBegin.size()) - 1;
   mesh.surfaceBegin.assign(surfaces + 1, 0);
+  mesh.cullBack = h.base().cullBack;
   struct Key {
     double x, y, z;
     // Bitwise, as Hash is: equal keys must hash alike (== on doubles would merge −0 and 0).

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <map>
 #include <fstream>
+#include <iterator>
+#include <map>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
 #include "tests/common/test_util.h"
@@ -97,6 +99,88 @@ TEST(HierarchicalCli, StudyMeasuresTheEpsilonLadder) {
   }
   ASSERT_EQ(ran, 2);
   EXPECT_LT(errors[1], errors[0]) << "a smaller epsilon is closer to the reference";
+}
+
+
+/// Both sides of a two-sided sheet between two facing lamps receive ρ E F, F = 0.19982 for
+/// unit squares one apart (Howell's catalogue, C-11), in the dense and the hierarchical method;
+/// a two-sided sheet still blocks light from either side.
+TEST(HierarchicalCli, TwoSidedSurfacesExchangeLightOnBothSides) {
+  TempDir dir;
+  const std::string scene = dir.file("two.json", R"({"name": "two", "units": "m",
+   "materials": {"sheet": {"reflectance": [0.5, 0.5, 0.5], "two_sided": true},
+                 "lamp": {"reflectance": [0, 0, 0], "emission": [1, 1, 1]},
+                 "grey": {"reflectance": [0.5, 0.5, 0.5]}},
+   "surfaces": [
+    {"name": "sheet", "material": "sheet", "polygon": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]},
+    {"name": "upper lamp", "material": "lamp", "polygon": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]]},
+    {"name": "lower lamp", "material": "lamp", "polygon": [[0,0,-1],[1,0,-1],[1,1,-1],[0,1,-1]]},
+    {"name": "shade", "material": "sheet",
+     "polygon": [[99,-1,0.5],[102,-1,0.5],[102,2,0.5],[99,2,0.5]]},
+    {"name": "under shade", "material": "grey",
+     "polygon": [[100,0,0],[101,0,0],[101,1,0],[100,1,0]]},
+    {"name": "shade lamp", "material": "lamp",
+     "polygon": [[100,0,2],[100,1,2],[101,1,2],[101,0,2]]}]})");
+  for (const char* method : {"dense", "hierarchical"}) {
+    const std::string out = dir.path(std::string("run-") + method);
+    RunResult r = runRadkit("run " + scene + " --method " + method + " --no-render --out " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::map<std::string, double> b;
+    for (const auto& row : readCsv(out + "/surfaces.csv"))
+      b[row.at("surface")] = std::stod(row.at("b_g_W_m2"));
+    ASSERT_TRUE(b.count("sheet (back)")) << method;
+    EXPECT_NEAR(b["sheet"], 0.5 * 0.19982, 0.5 * 0.19982 * 0.01) << method;
+    EXPECT_NEAR(b["sheet (back)"], 0.5 * 0.19982, 0.5 * 0.19982 * 0.01) << method;
+    // A two-sided shade blocks from both sides: the floor under it, which would get
+    // 0.5 × 0.0558 straight from the lamp, gets nothing (the shade's back sees only that floor).
+    // (Within 1 %: the hierarchy's visibility estimates leave a blocked link a little light;
+    // 0.46 % here, whichever way the shade faces.)
+    EXPECT_GT(b["shade"], 0.02) << method;
+    EXPECT_LT(b["under shade"], 0.01 * 0.5 * 0.0558) << method;
+    EXPECT_LT(b["shade (back)"], 0.01 * b["shade"]) << method;
+  }
+}
+
+/// A closed cube wound inward on a floor under a lamp: loading names it and the fix, and with
+/// "reverse": true it gives the numbers of the cube wound outward, to the last digit.
+TEST(HierarchicalCli, InwardMeshIsNamedAndReverseRestoresIt) {
+  TempDir dir;
+  const char* outward = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  const char* inward = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                       "f 2 3 4 1\nf 8 7 6 5\nf 5 6 2 1\nf 6 7 3 2\nf 7 8 4 3\nf 8 5 1 4\n";
+  dir.file("out.obj", outward);
+  dir.file("in.obj", inward);
+  auto scene = [&](const std::string& name, const std::string& mesh, bool reverse) {
+    return dir.file(name, R"({"name": ")" + name + R"(", "units": "m",
+     "materials": {"grey": {"reflectance": [0.5, 0.5, 0.5]},
+                   "lamp": {"reflectance": [0, 0, 0], "emission": [1, 1, 1]}},
+     "surfaces": [
+      {"name": "floor", "material": "grey", "polygon": [[-2,-2,0],[3,-2,0],[3,3,0],[-2,3,0]]},
+      {"name": "lamp", "material": "lamp", "polygon": [[0,0,3],[0,1,3],[1,1,3],[1,0,3]]},
+      {"name": "cube", "material": "grey", "mesh": ")" + mesh + R"(",
+       "transform": {"translate": [0, 0, 0.001]})" + (reverse ? R"(, "reverse": true)" : "") +
+                                  "}]}");
+  };
+  RunResult r = runRadkit("run " + scene("inward.json", "in.obj", false) +
+                          " --method hierarchical --no-render --out " + dir.path("inward"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("\"cube\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("faces point inward"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"reverse\": true"), std::string::npos) << r.output;
+  std::string csv[2];
+  int k = 0;
+  for (auto [name, mesh, reverse] : {std::tuple{"a.json", "out.obj", false},
+                                     std::tuple{"b.json", "in.obj", true}}) {
+    const std::string out = dir.path(std::string("run-") + name);
+    RunResult run = runRadkit("run " + scene(name, mesh, reverse) + " --no-render --out " + out);
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_EQ(run.output.find("inward"), std::string::npos) << run.output;
+    std::ifstream in(out + "/surfaces.csv");
+    csv[k++] = std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  EXPECT_FALSE(csv[0].empty());
+  EXPECT_EQ(csv[0], csv[1]);
 }
 
 }  // namespace

@@ -489,7 +489,7 @@ TEST(Hierarchical, FurnaceAroundAClosedCurvedMesh) {
 /// nodes this run diverged. The bound is the method's target (3 % per surface and channel,
 /// docs/hierarchical.md); the photon noise is 20 times smaller.
 TEST(Hierarchical, RealModelInAClosedRoomMatchesPhotons) {
-  Scene scene = loadScene(dataPath("models/spot-room.json"));
+  Scene scene = loadScene(test::dataPath("models/spot-room.json"));
   HierarchicalResult hr = solveHierarchical(scene, HierarchicalSettings{});
   ASSERT_TRUE(hr.solve.converged) << hr.solve.reason;
   const std::map<std::string, Vec3> photons{
