@@ -5,6 +5,7 @@
 
 #include "apps/common.h"
 #include "apps/report.h"
+#include "hierarchy/link_check.h"
 #include "hierarchy/link_matrix.h"
 #include "hierarchy/refine.h"
 #include "output/run_files.h"
@@ -175,6 +176,11 @@ void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& o) {
       ->capture_default_str();
   run.add_option("--gather", o.gather, "Hierarchical: gather ordering, jacobi or gauss-seidel")
       ->capture_default_str();
+  run.add_option("--check-links", o.checkLinks,
+                 "Hierarchical: check N links drawn at random against a Monte Carlo reference "
+                 "(4096 point pairs each): links_check.csv, report.json link_check")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
   run.add_option("--link-colour", o.linkColour, "Hierarchical: colour links.png by F or by power")
       ->check(CLI::IsMember({"F", "power"}))
       ->capture_default_str();
@@ -222,6 +228,40 @@ void runHierarchicalJob(HierarchicalJob job) {
                  " leaves in tree order";
   writeLinkMatrix(folder.path("links.png"), *r.hierarchy, r.system->links(), r.state, matrix);
   if (!job.noRender) renderLeaves(folder, scene, r, job);
+  nlohmann::json linkCheck;
+  if (job.checkLinks > 0) {
+    progress("checking links", 0.0);
+    const std::vector<LinkCheck> checks =
+        checkLinks(*r.hierarchy, *r.system, *r.rays, job.checkLinks, job.settings.seed);
+    progress.finish();
+    std::string csv = "receiver,source,kind,model,reference,reference_se,relative_difference,z\n";
+    for (const LinkCheck& c : checks)
+      csv += std::to_string(c.receiver) + "," + std::to_string(c.source) + "," +
+             linkKindName(c.kind) + "," + fmt("%.9g", c.model) + "," + fmt("%.9g", c.reference) +
+             "," + fmt("%.3g", c.referenceError) + "," +
+             (c.reference > 0 ? fmt("%.5g", c.model / c.reference - 1) : "") + "," +
+             (c.referenceError > 0 ? fmt("%.3g", (c.model - c.reference) / c.referenceError) : "") +
+             "\n";
+    writeFileAtomically(folder.path("links_check.csv"), csv);
+    linkCheck = nlohmann::json::object();
+    linkCheck["links"] = checks.size();
+    linkCheck["samples_per_link"] = 4096;
+    for (const LinkCheckSummary& s : summariseLinkChecks(checks)) {
+      if (s.links == 0) continue;
+      linkCheck[linkKindName(s.kind)] = {
+          {"links", s.links},
+          {"model_power", s.model},
+          {"reference_power", s.reference},
+          {"reference_standard_error", s.referenceError},
+          {"mean_absolute_relative_difference", s.meanAbsoluteRelative}};
+      std::fprintf(stderr,
+                   "check-links: %-16s %5d links, power %.5g against %.5g ± %.2g (%+.2f %%), mean "
+                   "|difference| %.1f %%\n",
+                   linkKindName(s.kind), s.links, s.model, s.reference, s.referenceError,
+                   s.reference > 0 ? 100 * (s.model / s.reference - 1) : 0.0,
+                   100 * s.meanAbsoluteRelative);
+    }
+  }
 
   double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json report{
@@ -240,6 +280,7 @@ void runHierarchicalJob(HierarchicalJob job) {
          {r.escapedStandardError.x, r.escapedStandardError.y, r.escapedStandardError.z}}}},
       {"surfaces", surfacesJson(r.surfaces)}};
   report["load"] = loadJson(loaded);
+  if (!linkCheck.is_null()) report["link_check"] = linkCheck;
   if (r.daylight) report["daylight"] = daylightJson(*r.sky, *r.daylight);
   report["seconds"] = {{"hierarchy", r.seconds.hierarchy},
                        {"ray_scene", r.seconds.rayScene},

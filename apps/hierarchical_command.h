@@ -16,6 +16,7 @@ struct HierarchicalOptions {
   HierarchicalSettings settings;
   std::string gather = "jacobi";
   std::string linkColour = "F";
+  int checkLinks = 0;  ///< links to check against a Monte Carlo reference (0: none)
   /// Options that belong to the dense method only (rejected with --method hierarchical).
   std::vector<CLI::Option*> denseOnly;
 };
@@ -30,6 +31,7 @@ struct HierarchicalJob {
   LinkColour linkColour = LinkColour::FormFactor;
   bool noRender = false, photometric = false, smooth = false;
   int imageSize = 512;
+  int checkLinks = 0;
 };
 
 /// Parses --gather and --link-colour, refuses dense-only options; throws CLI::ValidationError.

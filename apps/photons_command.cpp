@@ -63,6 +63,8 @@ RadiosityReference radiosityReference(const PhotonsCommand& cmd, const Scene& sc
   if (!cmd.compare.empty()) {
     ref.source = cmd.compare;
     ref.surfaces = readSurfacesCsv((std::filesystem::path(cmd.compare) / "surfaces.csv").string());
+    // Back sides of two-sided surfaces, after the scene's own (checked before the trace).
+    if (ref.surfaces.size() > scene.surfaces.size()) ref.surfaces.resize(scene.surfaces.size());
   } else {
     PipelineSettings settings;
     settings.mesh = {cmd.mesh.maxArea, cmd.mesh.patches};
@@ -169,11 +171,19 @@ void checkCompareFolder(const std::string& folder, const Scene& scene, const Pat
                      (sceneJson.is_object() ? sceneJson.value("file", "?") : "?") + "), not of \"" +
                      scene.name + "\"" + fix);
   const std::vector<SurfaceRadiosity> theirs = readSurfacesCsv((dir / "surfaces.csv").string());
-  if (theirs.size() != scene.surfaces.size())
+  // A radiosity run adds "NAME (back)" after the surfaces for each two-sided one; the photon
+  // tally has one estimate per surface (both sides): compare the surfaces themselves.
+  std::size_t backs = 0;
+  for (const Surface& s : scene.surfaces)
+    if (scene.materials[s.material].twoSided &&
+        scene.surfaces.size() + backs < theirs.size() &&
+        theirs[scene.surfaces.size() + backs].name == s.name + " (back)")
+      ++backs;
+  if (theirs.size() != scene.surfaces.size() + backs)
     throw InputError("--compare " + folder + ": its surfaces.csv has " +
                      std::to_string(theirs.size()) + " surfaces, this scene " +
                      std::to_string(scene.surfaces.size()) + fix);
-  for (std::size_t s = 0; s < theirs.size(); ++s) {
+  for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
     double area = 0;
     for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i)
       area += mesh.patches[i].area;

@@ -171,6 +171,7 @@ void runHierarchical(PipelineCommand& cmd) {
   job.noRender = cmd.noRender, job.photometric = cmd.photometric, job.smooth = cmd.smooth;
   job.imageSize = cmd.imageSize;
   job.camera = cmd.camera;
+  job.checkLinks = cmd.hierarchical.checkLinks;
   runHierarchicalJob(job);
 }
 
@@ -180,6 +181,9 @@ void runJob(PipelineCommand& cmd) {
   if (cmd.job != Job::FormFactors) cmd.solver.finish();
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
   if (cmd.job == Job::Run && cmd.hierarchical.method == "hierarchical") return runHierarchical(cmd);
+  if (cmd.hierarchical.checkLinks > 0)
+    throw CLI::ValidationError("--check-links",
+                               "checks the links of --method hierarchical; a dense run has none");
   // Adaptive refinement starts coarse, at a quarter of its budget, so it has room to refine.
   if (cmd.job == Job::Run && cmd.preset.empty() && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0)
     cmd.mesh.patches =

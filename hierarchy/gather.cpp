@@ -314,6 +314,32 @@ void HierarchicalSystem::updateMeanIncoming() {
     m_meanIncoming[s] = rows[s] > 0 ? light[s] / rows[s] : Vec3{};
 }
 
+double HierarchicalSystem::linkPower(int i, const SourceState& unit) const {
+  const HLink& l = m_links[i];
+  const HNode& R = m_h[l.receiver];
+  if (R.element && m_h[l.source].element) return R.area * l.formFactor * double(l.visibility);
+  const Vec3& w = m_linkDirection[i];
+  double intensity = 0;
+  for (int k = m_sourceBegin[i]; k < m_sourceBegin[i + 1]; ++k) {
+    const SourceLanding& s = m_sourceLandings[k];
+    const double seen = unit.visibleArea.empty() ? m_h[s.node].area : unit.visibleArea[s.node];
+    if (s.cosine >= 0)
+      intensity += seen * double(s.cosine);
+    else if (s.cosine == kVector)
+      intensity += -dot(unit.powerVector[s.node][0], w);
+    else
+      intensity += projectedSum(seen, unit.powerVector[s.node][0], -w);
+  }
+  // What the faces below each landing take: A n·ω e in all (push-down keeps it over seen area).
+  double projected = 0;
+  for (int k = m_receiverBegin[i]; k < m_receiverBegin[i + 1]; ++k) {
+    const ReceiverLanding& t = m_receiverLandings[k];
+    const HNode& node = m_h[m_slotTarget[t.slot]];
+    projected += t.factor == kVector ? dot(node.areaNormal, w) : node.area * double(t.factor);
+  }
+  return intensity * m_linkGeometry[i] * projected;
+}
+
 HierarchicalSystem::Accumulator HierarchicalSystem::gathered(int n) const {
   Accumulator a = m_acc[n];
   for (int k = m_incomingBegin[n]; k < m_incomingBegin[n + 1]; ++k) a.add(m_slots[m_incoming[k]]);

@@ -48,6 +48,9 @@ class HierarchicalSystem {
   /// \brief Irradiance H at every leaf (indexed by node) that the links deliver from `state`,
   /// without changing it. With B = 1 everywhere this is the row sum Σ_j F_ij of each leaf.
   std::vector<Vec3> leafIrradiance(const SourceState& state);
+  /// Power link i delivers to its receiver per unit of its source's radiosity (scene units²),
+  /// as the gather computes it from `unit` (unitState()), before row sums are scaled.
+  double linkPower(int i, const SourceState& unit) const;
   /// Row sum of leaf n as the solve uses it: its target where it has one, else capped.
   double rowSum(int n) const { return m_rowSum[n]; }
   /// \brief A state with B = 1 on every node (for row sums).
