@@ -100,44 +100,19 @@ int closureRays(const SurfaceRadiometry& r) {
   return maxComponent(r.emission) > 0 && !r.daylightOnly ? kEmitterClosureRays : kClosureRays;
 }
 
-/// A leaf whose rays find more than this share of its hemisphere open is not scaled to a row
-/// sum: its ray estimate would be too noisy to correct the links with.
-constexpr double kNearlyClosed = 0.125;
-/// Rays a leaf that saw an opening casts again (times its K) to know its row sum better.
-constexpr int kOpeningRays = 4;
-
 /// Row-sum targets for the leaves. Each leaf (tested once) casts K stratified,
 /// cosine-distributed rays; a ray that misses the front of every face escapes. A surface is
 /// closed when almost none of all its leaves' rays escape, so a leaf that sees an opening opens
 /// the whole surface (one leaf's K rays can miss a small opening). Leaves of closed surfaces
-/// obey Σ_j F_ij = 1 exactly (target 1). A leaf elsewhere whose rays escaped casts kOpeningRays
-/// times more, and when at most kNearlyClosed of them escape its target is the share that hit
-/// a front (unbiased; a closed model with a few crossing faces, a room with a small window).
-/// The solve scales each leaf's links to its target (HierarchicalSystem).
+/// obey Σ_j F_ij = 1 exactly (Siegel & Howell): target 1, which the solve enforces
+/// (HierarchicalSystem). Elsewhere no target: a ray estimate of each leaf's row sum was tried
+/// (fresh rays where a few escaped) and put 1-3 % too much light on real models, since what
+/// the links miss is mostly dim light from nearby clusters and the fill brings the mean light.
 /// The same rays estimate each leaf's escape fraction 1 − Σ_j F_ij (the share that misses
 /// every face's front), for an energy balance that does not rely on the links.
-/// Share of K cosine-distributed rays from leaf n (stream `seed`) that miss every face's front.
-double escapeFraction(const Hierarchy& h, const RayScene& rays, int n, std::uint64_t seed, int K,
-                      std::vector<double>& u, std::vector<int>& scratch) {
-  const HPolygon& p = h.polygon(n);
-  Rng rng(seed, h[n].key, 0x636c6f736564ULL);
-  latinHypercube(K, 4, rng, u, scratch);
-  Frame frame(p.normal);
-  int misses = 0;
-  for (int k = 0; k < K; ++k) {
-    const double* q = &u[std::size_t(k) * 4];
-    Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
-    Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
-    std::optional<RayHit> hit = rays.closestHit(x, d, 0.0);
-    misses += !(hit && dot(h.base().patches[hit->patch].normal, d) < 0);
-  }
-  return double(misses) / K;
-}
-
 std::vector<float> closedLeaves(const Hierarchy& h, const RayScene& rays, std::uint64_t seed,
                                std::vector<char>& leafClosed, std::vector<char>& tested,
-                               std::vector<float>& escape, std::vector<char>& hidden,
-                                std::vector<float>& openTarget) {
+                               std::vector<float>& escape, std::vector<char>& hidden) {
   leafClosed.resize(h.size(), 0);
   hidden.resize(h.size(), 0);
   tested.resize(h.size(), 0);
@@ -190,32 +165,10 @@ std::vector<float> closedLeaves(const Hierarchy& h, const RayScene& rays, std::u
     misses[h.surfaceOf(n)] += escape[n] * K;
   }
   std::vector<float> target(h.size(), 0.0f);
-  openTarget.resize(h.size(), -1.0f);
-  todo.clear();
-  for (int n = 0; n < h.size(); ++n) {
-    if (!h[n].element || !h[n].isLeaf() || hidden[n]) continue;
-    if (misses[h.surfaceOf(n)] <= kSeamMisses * cast[h.surfaceOf(n)])
+  for (int n = 0; n < h.size(); ++n)
+    if (h[n].element && h[n].isLeaf() && !hidden[n] &&
+        misses[h.surfaceOf(n)] <= kSeamMisses * cast[h.surfaceOf(n)])
       target[n] = 1;
-    else if (escape[n] <= kNearlyClosed)
-      todo.push_back(n);
-  }
-  // Nearly closed leaves: the rays above chose them, fresh rays give their target (a target
-  // from the choosing rays is biased high: leaves whose few rays happened to miss no opening
-  // are chosen more often, and measured +0.8 % on the Cornell box floor).
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 64),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      std::vector<double> u;
-                      std::vector<int> scratch;
-                      for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                        const int n = todo[i];
-                        if (openTarget[n] >= 0) continue;  // known from an earlier round
-                        const int K = kOpeningRays * closureRays(h.radiometry(n));
-                        const double seen = 1 - escapeFraction(h, rays, n, seed ^ 0x6f70656eULL, K,
-                                                               u, scratch);
-                        openTarget[n] = float(seen);
-                      }
-                    });
-  for (int n : todo) target[n] = openTarget[n];
   return target;
 }
 
@@ -384,7 +337,6 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   std::vector<char> leafClosed, tested;
   std::vector<float> escape;
   std::vector<char> hidden;
-  std::vector<float> openTarget;
   r.solve.solver = "hierarchical";
   r.solve.description = std::string("hierarchical radiosity with clustering, ") +
                         (settings.order == GatherOrder::Jacobi ? "Jacobi" : "Gauss-Seidel") +
@@ -435,7 +387,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
                                  [](const HLink& l) { return !(l.visibility > 0); }),
                   links.end());
     std::vector<float> closed =
-        closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape, hidden, openTarget);
+        closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape, hidden);
     r.system.reset();
     r.system =
         std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed, hidden);

@@ -21,6 +21,14 @@ std::vector<LinkCheck> checkLinks(const Hierarchy& h, const HierarchicalSystem& 
     chosen.push_back(static_cast<int>(pick.uniform() * double(links.size())));
   std::sort(chosen.begin(), chosen.end());
   chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+  return checkLinksAt(h, system, visibility, chosen, seed, samples);
+}
+
+std::vector<LinkCheck> checkLinksAt(const Hierarchy& h, const HierarchicalSystem& system,
+                                    const Visibility& visibility, const std::vector<int>& chosen,
+                                    std::uint64_t seed, int samples) {
+  const std::vector<HLink>& links = system.links();
+  std::vector<LinkCheck> out;
   const SourceState unit = system.unitState();
   out.resize(chosen.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chosen.size(), 4),

@@ -35,6 +35,11 @@ std::vector<LinkCheck> checkLinks(const Hierarchy& h, const HierarchicalSystem& 
                                   const Visibility& visibility, int count, std::uint64_t seed,
                                   int samples = 4096);
 
+/// \brief The same for the given link indices.
+std::vector<LinkCheck> checkLinksAt(const Hierarchy& h, const HierarchicalSystem& system,
+                                    const Visibility& visibility, const std::vector<int>& chosen,
+                                    std::uint64_t seed, int samples = 4096);
+
 std::vector<LinkCheckSummary> summariseLinkChecks(const std::vector<LinkCheck>& checks);
 
 }  // namespace radkit
