@@ -18,8 +18,11 @@ namespace {
 
 /// Energy imbalance above which a hierarchical run warns (beyond 4 standard errors).
 constexpr double kImbalanceWarning = 0.005;
+/// Share of a surface's area without any light above which a hierarchical run warns.
+constexpr double kDarkShareWarning = 0.25;
 
-nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSettings& s) {
+nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSettings& s,
+                             const Scene* sceneOf) {
   const Hierarchy& h = *r.hierarchy;
   long long clusters = 0, elements = 0;
   int deepest = 0;
@@ -68,6 +71,15 @@ nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSett
           {"leaves_closed_row_sum_normalised", r.system->normalisedLeaves()},
           {"leaves_open_row_sum_capped", r.system->clampedLeaves()},
           {"leaves_row_sum_target_not_met", r.system->unnormalisedClosedLeaves()},
+          {"zero_irradiance_area_share",
+           [&] {
+             nlohmann::json shares = nlohmann::json::object();
+             const Scene& scene = *sceneOf;
+             for (std::size_t k = 0; k < scene.surfaces.size(); ++k)
+               if (r.zeroIrradianceShare[k] > 0)
+                 shares[scene.surfaces[k].name] = r.zeroIrradianceShare[k];
+             return shares;
+           }()},
           {"cluster_link_landings", r.system->landings()},
           {"cluster_link_landings_estimated", r.system->approximateLandings()},
           {"hierarchy_bytes", r.hierarchyBytes},
@@ -89,26 +101,19 @@ void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalRe
 /// Checks a user should see: light that went missing, and surfaces left dark.
 std::vector<std::string> hierarchicalWarnings(const Scene& scene, const HierarchicalResult& r) {
   std::vector<std::string> out;
-  // Share of each non-emitting surface's area whose leaves received nothing at all.
-  // Dark: below a thousandth of the brightest irradiance any leaf gets.
-  std::vector<double> area(scene.surfaces.size(), 0), dark(scene.surfaces.size(), 0);
-  double brightest = 0;
-  for (const Vec3& e : r.irradiance) brightest = std::max(brightest, maxComponent(e));
-  for (int i = 0; i < r.leaves.size(); ++i) {
-    const Patch& p = r.leaves.patches[i];
-    area[p.surface] += p.area;
-    if (maxComponent(r.irradiance[i]) <= 1e-3 * brightest) dark[p.surface] += p.area;
-  }
+  // Share of each non-emitting surface's area whose leaves received no light at all (exactly
+  // 0: no link delivers any). A floor under a block has some; a model wound inward, or faces
+  // the links never reached, have most of theirs so.
   std::string darkList;
-  for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
-    const Material& m = scene.materials[scene.surfaces[s].material];
-    if (maxComponent(m.emission) > 0 || !(area[s] > 0) || dark[s] < 0.25 * area[s]) continue;
-    darkList += (darkList.empty() ? "" : ", ") + ("\"" + scene.surfaces[s].name + "\" " +
-                                                  fmt("%.0f", 100 * dark[s] / area[s]) + " %");
+  for (std::size_t k = 0; k < scene.surfaces.size(); ++k) {
+    const Material& m = scene.materials[scene.surfaces[k].material];
+    if (maxComponent(m.emission) > 0 || r.zeroIrradianceShare[k] < kDarkShareWarning) continue;
+    darkList += (darkList.empty() ? "" : ", ") + ("\"" + scene.surfaces[k].name + "\" " +
+                                                  fmt("%.0f", 100 * r.zeroIrradianceShare[k]) +
+                                                  " %");
   }
   if (!darkList.empty())
-    out.push_back(scene.file + ": under a thousandth of the brightest irradiance reached " +
-                  darkList +
+    out.push_back(scene.file + ": no light at all reached " + darkList +
                   " of the area. If these surfaces should be lit, check that their faces point "
                   "toward the light (a mesh wound inward needs \"reverse\": true)");
   const double se = maxComponent(r.escapedStandardError) /
@@ -270,12 +275,18 @@ void runHierarchicalJob(HierarchicalJob job) {
       {"method", "hierarchical"},
       {"scene", sceneJson(scene)},
       {"mesh", meshJson(scene, r.leaves)},
-      {"hierarchy", hierarchyJson(r, job.settings)},
+      {"hierarchy", hierarchyJson(r, job.settings, &scene)},
       {"solvers", nlohmann::json::array({solveJson(r.solve)})},
       {"energy_balance", energyJson(r.energy)},
       {"escape_estimate",
        {{"rays_per_leaf", 32},
         {"rays_per_emitting_leaf", 1024},
+        {"rays_per_emitting_leaf_max", 65536},
+        {"rays_cast", [&] {
+           long long n = 0;
+           for (int k : r.escapeRays) n += k;
+           return n;
+         }()},
         {"escaped_standard_error_W",
          {r.escapedStandardError.x, r.escapedStandardError.y, r.escapedStandardError.z}}}},
       {"surfaces", surfacesJson(r.surfaces)}};

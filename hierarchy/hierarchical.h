@@ -70,7 +70,10 @@ struct HierarchicalResult {
   std::vector<double> rowSums;   ///< Σ_j F_ij of each leaf as the links see it
   std::vector<float> escape;  ///< 1 − Σ_j F_ij of each leaf from 32 rays, 1 024 on emitters (float:
                               ///< a ray count's fraction)
-  Vec3 escapedStandardError;  ///< of energy.escaped, W
+  std::vector<int> escapeRays;  ///< the rays behind each leaf's escape fraction
+  /// Per surface: the share of its area whose leaves received no light at all.
+  std::vector<double> zeroIrradianceShare;
+  Vec3 escapedStandardError;    ///< of energy.escaped, W
   SolveResult solve;          ///< convergence of every round, one history
   std::vector<HierarchicalRound> rounds;
   std::array<long long, 4> linksByKind{};  ///< LinkKind order
