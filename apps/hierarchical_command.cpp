@@ -18,6 +18,9 @@ namespace {
 
 /// Energy imbalance above which a hierarchical run warns (beyond 4 standard errors).
 constexpr double kImbalanceWarning = 0.005;
+/// Input-face aspect ratio (longest edge² over area) beyond which the imbalance warning
+/// names the face.
+constexpr double kSliverAspect = 100;
 /// Share of a surface's area without any light above which a hierarchical run warns.
 constexpr double kDarkShareWarning = 0.25;
 
@@ -118,11 +121,27 @@ std::vector<std::string> hierarchicalWarnings(const Scene& scene, const Hierarch
                   "toward the light (a mesh wound inward needs \"reverse\": true)");
   const double se = maxComponent(r.escapedStandardError) /
                     std::max(1e-300, maxComponent(r.energy.emitted));
-  if (r.energy.relativeImbalance > std::max(kImbalanceWarning, 4 * se))
+  if (r.energy.relativeImbalance > std::max(kImbalanceWarning, 4 * se)) {
+    // Elements split into quarters keep their face's shape: a sliver stays a sliver.
+    const PatchMesh& base = r.hierarchy->base();
+    double aspect = 0;
+    int worst = -1;
+    for (int f = 0; f < base.size(); ++f)
+      if (const double a = base.aspectRatio(base.patches[f]); a > aspect) aspect = a, worst = f;
+    const std::string sliver =
+        aspect > kSliverAspect
+            ? " Input faces as elongated as \"" +
+                  scene.surfaces[base.patches[worst].surface].name + "\"'s (aspect ratio " +
+                  fmt("%.3g", aspect) +
+                  ") stay so when split, and their light is not resolved: split them in the "
+                  "scene into pieces no longer than a few times their width."
+            : "";
     out.push_back(scene.file + ": the energy balance is off by " +
                   fmt("%.2g", 100 * r.energy.relativeImbalance) +
                   " % (the escape estimate's standard error is " + fmt("%.2g", 100 * se) +
-                  " %): the links lose or add light. Fix: lower --epsilon, or raise --hr-rays");
+                  " %): the links lose or add light. Fix: lower --epsilon, or raise --hr-rays." +
+                  sliver);
+  }
   return out;
 }
 

@@ -303,9 +303,14 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility,
       // Corners pulled a hundredth toward the centroid: a corner on s's edge is singular. The
       // last point is r's nearest to s: on a face far larger than s (a long floor under a
       // lamp) the peak of F lies there, between the other points.
-      Vec3 x = k < pr.count    ? pr.v[k] * 0.99 + R.centre * 0.01
-               : k == pr.count ? R.centre
-                               : nearestPoint(pr, S.centre) * 0.99 + R.centre * 0.01;
+      Vec3 x = k < pr.count ? pr.v[k] * 0.99 + R.centre * 0.01 : R.centre;
+      if (k > pr.count) {
+        // Pulled toward the centroid by a hundredth of s's size at most: a hundredth of a
+        // 1 000 km floor would move it kilometres away from the lamp above it.
+        const Vec3 q = nearestPoint(pr, S.centre), in = R.centre - q;
+        const double len = length(in);
+        x = len > 0 ? q + in * (std::min(0.01 * len, 0.01 * S.radius) / len) : q;
+      }
       double f = pointValue(x);
       fMin = std::min(fMin, f), fMax = std::max(fMax, f);
     }
