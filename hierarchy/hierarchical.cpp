@@ -147,18 +147,15 @@ std::vector<float> closedLeaves(const Hierarchy& h, const RayScene& rays, std::u
           latinHypercube(K, 4, rng, u, scratch);
           Frame frame(p.normal);
           int misses = 0, backs = 0;
-          auto cast = [&](int count) {
-            for (int k = 0; k < count; ++k) {
-              const double* q = &u[std::size_t(k) * 4];
-              Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
-              Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
-              std::optional<RayHit> hit = rays.closestHit(x, d, 0.0);
-              const bool front = hit && dot(base.patches[hit->patch].normal, d) < 0;
-              misses += !front;
-              backs += hit && !front;
-            }
-          };
-          cast(K);
+          for (int k = 0; k < K; ++k) {
+            const double* q = &u[std::size_t(k) * 4];
+            Vec3 x = samplePatchUniform(p.v, p.count, q[0], q[1]) + p.normal * rays.epsilon();
+            Vec3 d = frame.toWorld(sampleCosineHemisphere(q[2], q[3]));
+            std::optional<RayHit> hit = rays.closestHit(x, d, 0.0);
+            const bool front = hit && dot(base.patches[hit->patch].normal, d) < 0;
+            misses += !front;
+            backs += hit && !front;
+          }
           leafClosed[n] = misses == 0;
           hidden[n] =
               backs == K;  // sees only the backs of faces (a floor under a block): nothing sees it
