@@ -24,8 +24,11 @@ constexpr double kSliverAspect = 100;
 /// Share of a surface's area without any light above which a hierarchical run warns.
 constexpr double kDarkShareWarning = 0.25;
 
-nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSettings& s,
-                             const Scene* sceneOf) {
+nlohmann::json hierarchyJson(const Scene& scene, const HierarchicalResult& r,
+                             const HierarchicalSettings& s) {
+  nlohmann::json zeroShares = nlohmann::json::object();
+  for (std::size_t k = 0; k < scene.surfaces.size(); ++k)
+    if (r.zeroIrradianceShare[k] > 0) zeroShares[scene.surfaces[k].name] = r.zeroIrradianceShare[k];
   const Hierarchy& h = *r.hierarchy;
   long long clusters = 0, elements = 0;
   int deepest = 0;
@@ -74,15 +77,7 @@ nlohmann::json hierarchyJson(const HierarchicalResult& r, const HierarchicalSett
           {"leaves_closed_row_sum_normalised", r.system->normalisedLeaves()},
           {"leaves_open_row_sum_capped", r.system->clampedLeaves()},
           {"leaves_row_sum_target_not_met", r.system->unnormalisedClosedLeaves()},
-          {"zero_irradiance_area_share",
-           [&] {
-             nlohmann::json shares = nlohmann::json::object();
-             const Scene& scene = *sceneOf;
-             for (std::size_t k = 0; k < scene.surfaces.size(); ++k)
-               if (r.zeroIrradianceShare[k] > 0)
-                 shares[scene.surfaces[k].name] = r.zeroIrradianceShare[k];
-             return shares;
-           }()},
+          {"zero_irradiance_area_share", zeroShares},
           {"cluster_link_landings", r.system->landings()},
           {"cluster_link_landings_estimated", r.system->approximateLandings()},
           {"hierarchy_bytes", r.hierarchyBytes},
@@ -294,7 +289,7 @@ void runHierarchicalJob(HierarchicalJob job) {
       {"method", "hierarchical"},
       {"scene", sceneJson(scene)},
       {"mesh", meshJson(scene, r.leaves)},
-      {"hierarchy", hierarchyJson(r, job.settings, &scene)},
+      {"hierarchy", hierarchyJson(scene, r, job.settings)},
       {"solvers", nlohmann::json::array({solveJson(r.solve)})},
       {"energy_balance", energyJson(r.energy)},
       {"escape_estimate",

@@ -207,6 +207,8 @@ void HierarchicalSystem::buildLandings(const std::vector<char>& hidden) {
                                             projectedArea(h, node, -t.w) / kPi)});
             part.sourceCount.push_back(static_cast<int>(found.size()));
             facingNodes(h, r, t.w, found, part.approximate);
+            const Vec3 between = h[l.source].centre - h[r].centre;
+            const double soft = t.denominator - dot(between, between);  // P_s/π
             int kept = 0;
             for (auto [node, c] : found) {
               // A hidden leaf receives nothing (nothing sees it).
@@ -215,8 +217,6 @@ void HierarchicalSystem::buildLandings(const std::vector<char>& hidden) {
               float factor = c;
               if (c < -1.5f) factor = float(projectedArea(h, node, t.w) / h[node].area);
               else if (c < 0) factor = kVector;
-              const double soft = t.denominator - dot(h[l.source].centre - h[r].centre,
-                                                      h[l.source].centre - h[r].centre);
               part.receivers.push_back(
                   {node, factor, scale(h[node].centre, h[l.source].centre, soft)});
               ++kept;
@@ -286,28 +286,9 @@ void HierarchicalSystem::gather(int r, const SourceState& state) {
       }
       continue;
     }
-    // Irradiance e = I_s(−ω) V / (d² + P_s/π) on a surface facing the source, with I_s summed
-    // over the parts of s that face r.
+    // Irradiance e = I_s(−ω) V / (d² + P_s/π) on a surface facing the source.
     const Vec3& w = m_linkDirection[i];
-    Vec3 intensity;
-    for (int k = m_sourceBegin[i]; k < m_sourceBegin[i + 1]; ++k) {
-      const SourceLanding& s = m_sourceLandings[k];
-      const HNode& S = m_h[s.node];
-      const double seen = seenOnly ? state.visibleArea[s.node] : S.area;
-      Vec3 part;
-      if (s.cosine >= 0) {
-        part = state.radiosity[s.node] * (seen * double(s.cosine));
-      } else if (s.cosine == kVector) {
-        const auto& phi = state.powerVector[s.node];
-        part = Vec3{-dot(phi[0], w), -dot(phi[1], w), -dot(phi[2], w)};
-      } else {
-        const auto& phi = state.powerVector[s.node];
-        const Vec3 power = state.radiosity[s.node] * seen;
-        for (int c = 0; c < 3; ++c) part[c] = projectedSum(power[c], phi[c], -w);
-      }
-      intensity += part * double(s.scale);
-    }
-    const Vec3 e = intensity * m_linkGeometry[i];
+    const Vec3 e = sourceIntensity(i, state) * m_linkGeometry[i];
     for (int k = m_receiverBegin[i]; k < m_receiverBegin[i + 1]; ++k) {
       const ReceiverLanding& t = m_receiverLandings[k];
       Accumulator& a = m_slots[t.slot];
@@ -340,22 +321,35 @@ void HierarchicalSystem::updateMeanIncoming() {
     m_meanIncoming[s] = rows[s] > 0 ? light[s] / rows[s] : Vec3{};
 }
 
+Vec3 HierarchicalSystem::sourceIntensity(int i, const SourceState& state) const {
+  // π I_s(−ω) summed over the parts of s that face r, each at its own distance (scale).
+  const Vec3& w = m_linkDirection[i];
+  Vec3 intensity;
+  for (int k = m_sourceBegin[i]; k < m_sourceBegin[i + 1]; ++k) {
+    const SourceLanding& s = m_sourceLandings[k];
+    const double seen = state.visibleArea.empty() ? m_h[s.node].area : state.visibleArea[s.node];
+    Vec3 part;
+    if (s.cosine >= 0) {
+      part = state.radiosity[s.node] * (seen * double(s.cosine));
+    } else if (s.cosine == kVector) {
+      const auto& phi = state.powerVector[s.node];
+      part = Vec3{-dot(phi[0], w), -dot(phi[1], w), -dot(phi[2], w)};
+    } else {
+      const auto& phi = state.powerVector[s.node];
+      const Vec3 power = state.radiosity[s.node] * seen;
+      for (int c = 0; c < 3; ++c) part[c] = projectedSum(power[c], phi[c], -w);
+    }
+    intensity += part * double(s.scale);
+  }
+  return intensity;
+}
+
 double HierarchicalSystem::linkPower(int i, const SourceState& unit) const {
   const HLink& l = m_links[i];
   const HNode& R = m_h[l.receiver];
   if (R.element && m_h[l.source].element) return R.area * l.formFactor * double(l.visibility);
   const Vec3& w = m_linkDirection[i];
-  double intensity = 0;
-  for (int k = m_sourceBegin[i]; k < m_sourceBegin[i + 1]; ++k) {
-    const SourceLanding& s = m_sourceLandings[k];
-    const double seen = unit.visibleArea.empty() ? m_h[s.node].area : unit.visibleArea[s.node];
-    if (s.cosine >= 0)
-      intensity += seen * double(s.cosine) * double(s.scale);
-    else if (s.cosine == kVector)
-      intensity += -dot(unit.powerVector[s.node][0], w) * double(s.scale);
-    else
-      intensity += projectedSum(seen, unit.powerVector[s.node][0], -w) * double(s.scale);
-  }
+  const double intensity = sourceIntensity(i, unit).x;
   // What the faces below each landing take: A n·ω e in all (push-down keeps it over seen area).
   double projected = 0;
   for (int k = m_receiverBegin[i]; k < m_receiverBegin[i + 1]; ++k) {

@@ -51,6 +51,8 @@ class HierarchicalSystem {
   /// Power link i delivers to its receiver per unit of its source's radiosity (scene units²),
   /// as the gather computes it from `unit` (unitState()), before row sums are scaled.
   double linkPower(int i, const SourceState& unit) const;
+  /// π I_s(−ω) of cluster link i's source toward its receiver, per channel, from `state`.
+  Vec3 sourceIntensity(int i, const SourceState& state) const;
   /// Row sum of leaf n as the solve uses it: its target where it has one, else capped.
   double rowSum(int n) const { return m_rowSum[n]; }
   /// \brief A state with B = 1 on every node (for row sums).

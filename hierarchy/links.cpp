@@ -20,22 +20,6 @@ double sumOverCoherent(const Hierarchy& h, int n, int levels, const Leaf& leaf) 
 
 }  // namespace
 
-void coherentParts(const Hierarchy& h, int n, std::vector<int>& out) {
-  out.clear();
-  std::vector<std::pair<int, int>> stack{{n, kSplitLevels}};
-  while (!stack.empty()) {
-    auto [k, levels] = stack.back();
-    stack.pop_back();
-    const HNode& node = h[k];
-    if (node.element || node.coneAngle <= kCoherentCone || levels == 0) {
-      out.push_back(k);
-      continue;
-    }
-    stack.push_back({h.child(k, 1), levels - 1});
-    stack.push_back({h.child(k, 0), levels - 1});
-  }
-}
-
 LinkKind linkKind(const Hierarchy& h, const HLink& link) {
   bool r = h[link.receiver].element, s = h[link.source].element;
   if (r && s) return LinkKind::ElementElement;

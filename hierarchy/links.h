@@ -87,10 +87,6 @@ inline double projectedSum(double total, const Vec3& vector, const Vec3& w) {
 /// per channel: Σ_k B_k A_k max(0, n_k·w)/π, by projectedSum over s's coherent parts.
 Vec3 intensityToward(const Hierarchy& h, const SourceState& state, int s, const Vec3& w);
 
-/// \brief The parts of node n that are estimated as one: n itself when it is an element or its
-/// normals lie within a narrow cone, else its children's parts, at most three levels down.
-void coherentParts(const Hierarchy& h, int n, std::vector<int>& out);
-
 /// \brief Area of node n projected onto the plane normal to unit w, counting only surfaces
 /// that face w: exact for an element; for a cluster, projectedSum over its coherent parts.
 double projectedArea(const Hierarchy& h, int n, const Vec3& w);
