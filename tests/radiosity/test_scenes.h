@@ -3,6 +3,7 @@
 
 #include "tests/common/statistics.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,10 @@ MeshBuilder cubeInterior(int n);
 MeshBuilder parallelRectangles(double a, double b, double c, int n = 1);
 /// C-14: A1 = l×w (z=0, normal +z) and A2 = l×h (y=0, normal +y) sharing the edge of length l.
 MeshBuilder perpendicularRectangles(double l, double w, double h, int n = 1);
+/// Unit icosphere subdivided `level` times (20·4^level triangles): vertices and triangles,
+/// counter-clockwise seen from outside.
+void unitIcosphere(int level, std::vector<Vec3>& vertices,
+                   std::vector<std::array<int, 3>>& triangles);
 /// Icosphere of radius r around the origin subdivided `level` times, normals inwards.
 MeshBuilder icosphereInterior(int level, double r = 1.0);
 
