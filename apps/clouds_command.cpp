@@ -99,6 +99,24 @@ void runClouds(CloudsCommand& cmd) {
                                       : cmd.phaseParams));
   }
   const media::Medium& layer = *medium;
+  {
+    // Delta and ratio tracking step by the majorant's free path, so a ray across the medium
+    // takes about σ̄ · (its extent) steps: 1e5 is a medium 50 times denser than the densest
+    // cloud across the default layer, and minutes per sample beyond it.
+    const Bounds3 b = layer.bounds();
+    const double extent = length(b.hi - b.lo);
+    const double depth = layer.majorant() * extent;
+    constexpr double kMaxOpticalExtent = 1e5;
+    if (!(depth <= kMaxOpticalExtent))
+      throw InputError(
+          (scene ? cmd.scene + ": the medium's" : std::string("--extinction:")) +
+          " extinction " + fmt("%g", layer.majorant()) + " /m across a medium " +
+          fmt("%g", extent) + " m wide is an optical extent of " + fmt("%g", depth) +
+          ", and a path takes about that many tracking steps (the limit is " +
+          fmt("%g", kMaxOpticalExtent) + "). Fix: give an extinction below " +
+          fmt("%g", kMaxOpticalExtent / extent) +
+          " /m (dense cloud is 0.05-0.12 /m) or a smaller medium");
+  }
   const double groundAlbedo = scene ? scene->groundAlbedo : 0.0;
   const double layerSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -265,7 +283,7 @@ void runClouds(CloudsCommand& cmd) {
                 {"relative_noise", noiseFloor}}},
               {"realtime", table},
               {"seconds", {{"layer", layerSeconds}}}};
-  writeFileAtomically(folder.path("report.json"), report.dump(2) + "\n");
+  writeJson(folder.path("report.json"), report);
   folder.commit();
 
   printField("clouds", std::to_string(cmd.width) + "x" + std::to_string(cmd.height) + ", " + kind +

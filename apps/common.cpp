@@ -13,6 +13,7 @@
 #include "geometry/scene_loader.h"
 #include "render/camera.h"
 #include "util/format.h"
+#include "util/output_folder.h"
 
 namespace radkit::app {
 
@@ -70,6 +71,11 @@ void checkOutputFile(const std::string& option, const std::string& path) {
   if (fs::is_directory(path))
     throw InputError(option + " " + path + " is a folder. Fix: give a file name inside it, e.g. " +
                      (fs::path(path) / "image.png").string());
+  try {
+    checkRegularOutput(option, path);
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent))
     throw InputError(option + " " + path + ": folder " + parent.string() +
@@ -81,6 +87,19 @@ std::string defaultScenePath() {
   std::filesystem::path p = std::filesystem::path(RADKIT_DATA_DIR) / "cornell-box.json";
   if (std::filesystem::exists(p)) return p.string();
   return "data/cornell-box.json";
+}
+
+std::string defaultOutFolder(const std::string& sceneName) {
+  std::string name;
+  for (char c : sceneName)
+    name += (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '_' : c;
+  if (!name.empty() && name[0] == '.') name[0] = '_';  // no "..", no hidden folder
+  if (name.size() > 200) {  // one path component's limit is 255 bytes; keep UTF-8 whole
+    name.resize(200);
+    while (!name.empty() && (static_cast<unsigned char>(name.back()) & 0xC0) == 0x80) name.pop_back();
+    if (!name.empty() && static_cast<unsigned char>(name.back()) >= 0xC0) name.pop_back();
+  }
+  return "out/" + (name.empty() ? std::string("scene") : name);
 }
 
 void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired) {

@@ -45,6 +45,10 @@ void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired 
 /// The measured Cornell box shipped in data/.
 std::string defaultScenePath();
 
+/// out/NAME for a run without --out, NAME being the scene's name made one safe path component:
+/// separators, control characters and a leading dot become '_' ("../../x" gives out/_._.._x).
+std::string defaultOutFolder(const std::string& sceneName);
+
 /// Adds --camera to a command that draws (an image, render.png, the viewer).
 void addCameraOption(CLI::App& command, std::string& camera);
 

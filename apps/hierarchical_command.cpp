@@ -215,7 +215,7 @@ void runHierarchicalJob(HierarchicalJob job) {
   LoadReport loaded;
   Scene scene = loadSceneReporting(job.scene, job.load, &loaded, job.camera);
   addBackSides(scene);  // two-sided surfaces exchange light on both sides
-  if (job.out.empty()) job.out = "out/" + scene.name;
+  if (job.out.empty()) job.out = defaultOutFolder(scene.name);
   OutputFolder folder(job.out);  // refuses an --out it cannot replace before the work, not after
   Progress progress;
   PipelineLog log;

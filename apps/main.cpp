@@ -48,9 +48,22 @@ int main(int argc, char** argv) {
     // kind of usage error, but every error exits 1 (docs/run.md), help and --version 0.
     return app.exit(e) == 0 ? 0 : 1;
   } catch (const std::bad_alloc&) {
-    std::cerr << "radkit: error: out of memory. Fix: use fewer patches (--patches, --max-area) or "
-                 "a smaller "
-                 "--memory-budget.\n";
+    // The fix names only the size options the command that ran has.
+    std::string options;
+    for (const CLI::App* sub : app.get_subcommands())
+      for (const CLI::App* leaf = sub; leaf;) {
+        for (const char* name : {"--patches", "--max-area", "--memory-budget", "--photons",
+                                 "--samples", "--spp", "--size", "--width", "--height"})
+          if (leaf->get_option_no_throw(name) != nullptr &&
+              options.find(std::string(name) + ",") == std::string::npos)
+            options += std::string(name) + ", ";
+        const auto subs = leaf->get_subcommands();
+        leaf = subs.empty() ? nullptr : subs.front();
+      }
+    std::cerr << "radkit: error: out of memory. Fix: "
+              << (options.empty() ? std::string("use a smaller input")
+                                  : "use smaller values of " + options.substr(0, options.size() - 2))
+              << ".\n";
     return 1;
   } catch (const radkit::InputError& e) {
     std::cerr << "radkit: error: " << e.what() << '\n';

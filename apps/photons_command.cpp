@@ -12,6 +12,7 @@
 
 #include "apps/common.h"
 #include "apps/report.h"
+#include "geometry/mesh_structure.h"
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
 #include "output/run_files.h"
@@ -155,6 +156,8 @@ struct PhotonRun {
 void checkCompareFolder(const std::string& folder, const Scene& scene, const PatchMesh& mesh) {
   const std::filesystem::path dir(folder);
   const std::string fix = ". Fix: give the --out folder of a `radkit run` of " + scene.file;
+  for (const char* file : {"report.json", "surfaces.csv"})
+    requireRegularFile((dir / file).string(), "--compare folder's " + std::string(file));
   std::ifstream in(dir / "report.json");
   json report = json::object();
   if (in) try {

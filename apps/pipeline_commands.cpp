@@ -192,7 +192,7 @@ void runJob(PipelineCommand& cmd) {
   Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded, cmd.camera);
   addBackSides(scene);  // two-sided surfaces exchange light on both sides
   if (cmd.out.empty() && cmd.job == Job::Run)
-    cmd.out = "out/" + scene.name;  // required for the others
+    cmd.out = defaultOutFolder(scene.name);  // required for the others
   OutputFolder folder(cmd.out);     // refuses an --out it cannot replace before the work, not after
 
   PipelineSettings settings = pipelineSettings(cmd);

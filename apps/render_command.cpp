@@ -321,7 +321,7 @@ void compareWithReference(const RenderCommand& cmd, const Scene& scene, const Lo
                          {"seconds", seconds},
                          {"references", cmd.references},
                          {"regions", rows}};
-  writeFileAtomically(cmd.report, j.dump(2) + "\n");
+  writeJson(cmd.report, j);
   printField("report", cmd.report);
 }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <cstdio>
 #include <sstream>
 
@@ -56,6 +57,8 @@ json meshJson(const Scene& scene, const PatchMesh& mesh) {
           {"worst_aspect_ratio", aspect}};
 }
 
+json numberOrNull(double v) { return std::isnan(v) ? json(nullptr) : json(v); }
+
 json solveJson(const SolveResult& r) {
   json milestonesJson = json::array();
   for (const Milestone& m : milestones(r)) {
@@ -71,8 +74,8 @@ json solveJson(const SolveResult& r) {
           {"exit_reason", r.exit},
           {"iterations", r.iterations},
           {"seconds", r.seconds},
-          {"spectral_radius_estimate", r.spectralRadius},
-          {"predicted_sweeps", r.predictedSweeps},
+          {"spectral_radius_estimate", numberOrNull(r.spectralRadius)},
+          {"predicted_sweeps", numberOrNull(r.predictedSweeps)},
           {"residual", r.residual},
           {"checked_residual", r.checkedResidual},
           {"milestones", milestonesJson},
@@ -144,7 +147,31 @@ void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceRes
 
 std::size_t peakMemoryBytes() { return lifetimePeakMemory(); }
 
+namespace {
+
+/// The JSON pointer of the first number that is not finite, or "" if all are: nlohmann writes
+/// NaN and infinity as null, which readers take for "no value".
+std::string firstNonFinite(const json& j, const std::string& at) {
+  if (j.is_number_float()) return std::isfinite(j.get<double>()) ? "" : (at.empty() ? "/" : at);
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it)
+      if (std::string found = firstNonFinite(it.value(), at + "/" + it.key()); !found.empty())
+        return found;
+  } else if (j.is_array()) {
+    for (std::size_t k = 0; k < j.size(); ++k)
+      if (std::string found = firstNonFinite(j[k], at + "/" + std::to_string(k)); !found.empty())
+        return found;
+  }
+  return "";
+}
+
+}  // namespace
+
 void writeJson(const std::string& path, const json& j) {
+  if (const std::string at = firstNonFinite(j, ""); !at.empty())
+    throw std::runtime_error(path + ": the result " + at +
+                             " is not a finite number, so the run writes nothing. Fix: bring "
+                             "the scene's values (sizes, emission) nearer 1, or report this");
   writeFileAtomically(path, j.dump(2) + "\n");
 }
 

@@ -12,6 +12,9 @@ namespace radkit::app {
 
 /// [x, y, z] (an RGB triple, a point, a direction).
 nlohmann::json vec3Json(const Vec3& v);
+/// A value that may not apply (NaN by convention, e.g. a prediction never made) as null;
+/// writeJson refuses any other number that is not finite.
+nlohmann::json numberOrNull(double v);
 nlohmann::json sceneJson(const Scene& scene);
 nlohmann::json meshJson(const Scene& scene, const PatchMesh& mesh);
 nlohmann::json solveJson(const SolveResult& result);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -233,6 +234,14 @@ void addSkyCommand(CLI::App& app) {
                   "Reference paths per direction: compare the model with a volumetric path "
                   "tracer at the --compare-elevations (comparison.md, report.json); 0: skip")
       ->check(CLI::Range(0LL, 10000000000LL))
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            // One path has no standard error, and the table's z column divides by it.
+            return std::strtoll(text.c_str(), nullptr, 10) == 1
+                       ? "1 path gives no standard error. Fix: give 0 or at least 2"
+                       : "";
+          },
+          "0 or >= 2"))
       ->capture_default_str();
   sub->add_option("--compare-elevations", cmd->compareElevations,
                   "Sun elevations (degrees) of the --compare table")

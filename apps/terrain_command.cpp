@@ -194,7 +194,7 @@ void runTerrain(TerrainCommand& cmd) {
               {"triangles_by_material", counts},
               {"seconds", {{"generate", generateSeconds}}}};
   if (cmd.image) report["landscape"] = renderLandscapes(cmd, folder, field);
-  writeFileAtomically(folder.path("report.json"), report.dump(2) + "\n");
+  writeJson(folder.path("report.json"), report);
   folder.commit();
   printField("terrain", cmd.type + ", seed " + std::to_string(f.seed) + ", " +
                             std::to_string(s.resolution) + "² vertices, " +

@@ -84,10 +84,27 @@ std::string formatTriple(const char* f, double a, double b, double c) {
   return buffer;
 }
 
+/// "r / g / b" of f(a_c, b_c) printed with `format`, "n/a" for a channel whose quotient has no
+/// value: a dark reference (sun far below the horizon) or a zero standard error (one path).
+template <class F>
+std::string quotientTriple(const char* format, const Vec3& a, const Vec3& b, F f) {
+  std::string out;
+  for (int c = 0; c < 3; ++c) {
+    const double v = f(a[c], b[c]);
+    char buffer[64];
+    if (b[c] > 0 && std::isfinite(v))
+      std::snprintf(buffer, sizeof buffer, format, v);
+    else
+      std::snprintf(buffer, sizeof buffer, "n/a");
+    out += (c ? " / " : "") + std::string(buffer);
+  }
+  return out;
+}
+
 /// "r / g / b" of 100·(model/reference − 1).
 std::string percentTriple(const Vec3& model, const Vec3& reference) {
-  return formatTriple("%+.1f / %+.1f / %+.1f", 100 * (model.x / reference.x - 1),
-                      100 * (model.y / reference.y - 1), 100 * (model.z / reference.z - 1));
+  return quotientTriple("%+.1f", model, reference,
+                        [](double m, double r) { return 100 * (m / r - 1); });
 }
 
 }  // namespace
@@ -99,16 +116,16 @@ std::string comparisonMarkdown(const std::vector<ComparisonRow>& rows) {
   for (const ComparisonRow& r : rows) {
     const Vec3& m = r.reference.mean;
     const Vec3& e = r.reference.standardError;
-    const Vec3 z{std::fabs(r.withMultipleScattering.x - m.x) / e.x,
-                 std::fabs(r.withMultipleScattering.y - m.y) / e.y,
-                 std::fabs(r.withMultipleScattering.z - m.z) / e.z};
+    const Vec3 gap{std::fabs(r.withMultipleScattering.x - m.x),
+                   std::fabs(r.withMultipleScattering.y - m.y),
+                   std::fabs(r.withMultipleScattering.z - m.z)};
     out += formatTriple("| %g° ", r.sunElevationDeg, 0, 0) + "| " + r.quantity + " | " +
            formatTriple("%.4g / %.4g / %.4g", m.x, m.y, m.z) + " | " +
-           formatTriple("%.2f / %.2f / %.2f", 100 * e.x / m.x, 100 * e.y / m.y, 100 * e.z / m.z) +
+           quotientTriple("%.2f", e, m, [](double se, double mean) { return 100 * se / mean; }) +
            " | " + percentTriple(r.singleScattering, m) + " | " +
            percentTriple(r.singleScatteringFine, m) + " | " +
            percentTriple(r.withMultipleScattering, m) + " | " +
-           formatTriple("%.0f / %.0f / %.0f", z.x, z.y, z.z) + " |\n";
+           quotientTriple("%.0f", gap, e, [](double d, double se) { return d / se; }) + " |\n";
   }
   return out;
 }

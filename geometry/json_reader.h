@@ -8,9 +8,11 @@
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
+#include <iterator>
 #include <string>
 #include <utility>
 
+#include "geometry/mesh_structure.h"  // requireRegularFile
 #include "geometry/scene_loader.h"
 #include "geometry/vec3.h"
 
@@ -90,19 +92,28 @@ class ObjectReader {
 /// malformed JSON (nlohmann's message carries the line and column) and numbers that do not fit
 /// a double throw InputError naming the file.
 inline nlohmann::json readJsonFile(const std::string& path, const std::string& what) {
-  std::ifstream in(path);
+  requireRegularFile(path, what);  // a FIFO would block the read forever
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the " + what + ". Fix: check the path.");
-  // The last key read names the value nlohmann refuses (a number too large for a double).
-  std::string key;
-  const auto lastKey = [&key](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-    if (event == nlohmann::json::parse_event_t::key) key = parsed.get<std::string>();
-    return true;
-  };
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   try {
-    return nlohmann::json::parse(in, lastKey);
+    // No parse callback here: nlohmann's callback parser rescans the parent object at every
+    // object's end, quadratic in a scene of 80 000 materials.
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(path + ": malformed JSON: " + e.what());
   } catch (const nlohmann::json::exception& e) {
+    // Parsed again only to name the value nlohmann refuses (a number too large for a double):
+    // the last key read before the failure.
+    std::string key;
+    const auto lastKey = [&key](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+      if (event == nlohmann::json::parse_event_t::key) key = parsed.get<std::string>();
+      return true;
+    };
+    try {
+      const nlohmann::json ignored = nlohmann::json::parse(text, lastKey);
+    } catch (const nlohmann::json::exception&) {
+    }
     throw InputError(path + ": unreadable JSON (" + e.what() + ")" +
                      (key.empty() ? "" : " in \"" + key + "\"") +
                      ". Fix: numbers must fit a double.");

@@ -10,12 +10,16 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 
 #include "geometry/mesh_structure.h"
 #include "geometry/scene_loader.h"
+#include "geometry/structure_text.h"
 #include "geometry/text_numbers.h"
 
 namespace radkit {
@@ -86,6 +90,27 @@ void restoreFileVertices(RawMesh& raw, const std::vector<std::size_t>& refused) 
     for (int& v : face.vertices) v = renumber[v];
 }
 
+/// An ASCII OFF file without its comments and blank lines, or nullopt if it has none (or is
+/// binary). OFF allows '#' comments anywhere; OpenMesh's reader takes a comment after the
+/// header for the counts and then reads for tens of seconds, or asks for gigabytes.
+std::optional<std::string> offWithoutComments(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream firstLine(text.substr(0, text.find('\n')));
+  std::string key, second;
+  firstLine >> key >> second;
+  for (char& c : second) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (second == "binary" || text.find('#') == std::string::npos) return std::nullopt;
+  std::string clean;
+  clean.reserve(text.size());
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    line = structure::uncommented(line);
+    if (line.find_first_not_of(" \t\r") != std::string::npos) clean += line + '\n';
+  }
+  return clean;
+}
+
 /// `declaredFaces`: the count the file's header declares, or -1 when it does not say.
 RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool repair) {
   PolyMesh mesh;
@@ -94,7 +119,11 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool 
   mesh.request_vertex_status();
   CapturedOpenMeshErrors errors;
   OpenMesh::IO::Options options;
-  if (!OpenMesh::IO::read_mesh(mesh, path, options)) {
+  const std::optional<std::string> off =
+      lowerExtension(path) == ".off" ? offWithoutComments(path) : std::nullopt;
+  std::istringstream offStream(off ? *off : std::string());
+  if (!(off ? OpenMesh::IO::read_mesh(mesh, offStream, ".off", options)
+            : OpenMesh::IO::read_mesh(mesh, path, options))) {
     throw InputError(path + ": the mesh reader could not parse this file" +
                      (errors.text().empty() ? "" : " (" + errors.text() + ")") +
                      ". Fix: check that it is a valid PLY, OFF or STL file.");

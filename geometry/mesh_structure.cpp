@@ -1,6 +1,8 @@
 #include "geometry/mesh_structure.h"
 
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -19,8 +21,14 @@ using namespace structure;
 
 std::string readAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
+  // An unreadable file read as "" was then reported as empty.
+  if (!in)
+    throw InputError(path + ": cannot be read (" + std::strerror(errno) +
+                     "). Fix: check the file's permissions.");
   std::ostringstream text;
   text << in.rdbuf();
+  if (in.bad())
+    throw InputError(path + ": reading failed (" + std::strerror(errno) + ").");
   return text.str();
 }
 

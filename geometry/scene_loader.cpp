@@ -11,11 +11,13 @@
 #include <map>
 #include <set>
 #include <string>
+#include <unordered_map>
 
 #include "geometry/json_reader.h"
 #include "geometry/mesh_reader.h"
 #include "geometry/mesh_structure.h"
 #include "geometry/validation.h"
+#include "util/format.h"
 
 namespace radkit {
 
@@ -118,7 +120,11 @@ void applyTransform(ObjectReader& surface, const json& j, const std::string& fil
     for (Face& f : s.faces) std::reverse(f.vertices.begin(), f.vertices.end());
 }
 
-Surface readSurface(const json& j, std::size_t index, const Scene& scene, const std::string& file,
+/// Material names to indices: a linear search per surface made loading quadratic.
+using MaterialIndex = std::unordered_map<std::string, int>;
+
+Surface readSurface(const json& j, std::size_t index, const Scene& scene,
+                    const MaterialIndex& materialIndex, const std::string& file,
                     const LoadOptions& options, LoadReport& report) {
   std::string where = "surfaces[" + std::to_string(index) + "]";
   if (j.is_object() && j.contains("name") && j["name"].is_string())
@@ -130,10 +136,14 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
   s.name = r.string("name", "surface" + std::to_string(index));
   std::string material = r.string("material", "");
   if (material.empty()) r.fail("needs a \"material\"");
-  s.material = scene.findMaterial(material);
+  const auto found = materialIndex.find(material);
+  s.material = found == materialIndex.end() ? -1 : found->second;
   if (s.material < 0) {
     std::string known;
-    for (const Material& m : scene.materials) known += (known.empty() ? "" : ", ") + m.name;
+    for (std::size_t m = 0; m < scene.materials.size() && m < 20; ++m)
+      known += (m ? ", " : "") + scene.materials[m].name;
+    if (scene.materials.size() > 20)
+      known += " (and " + std::to_string(scene.materials.size() - 20) + " more)";
     r.fail("uses the unknown material \"" + material + "\". Fix: use one of: " + known);
   }
   int shapes = int(r.has("polygon")) + int(r.has("polygons")) + int(r.has("mesh"));
@@ -181,7 +191,8 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene, const 
 /// surfaces[i] {"include": "model.obj"}: every surface of an OBJ, with its MTL materials
 /// (read by loadObjScene) unless the scene defines a material of the same name, which then
 /// overrides it. The scene's units, camera and "transform" apply to the included geometry.
-void includeObj(const json& j, std::size_t index, Scene& scene, const std::string& file) {
+void includeObj(const json& j, std::size_t index, Scene& scene, MaterialIndex& materialIndex,
+                const std::string& file) {
   const std::string where = "surfaces[" + std::to_string(index) + "]";
   ObjectReader r(j, where, file);
   r.allowOnly({"include", "transform"});
@@ -206,11 +217,10 @@ void includeObj(const json& j, std::size_t index, Scene& scene, const std::strin
   }
   std::vector<int> material(obj.materials.size());
   for (std::size_t m = 0; m < obj.materials.size(); ++m) {
-    material[m] = scene.findMaterial(obj.materials[m].name);
-    if (material[m] < 0) {
-      material[m] = int(scene.materials.size());
-      scene.materials.push_back(obj.materials[m]);
-    }
+    const auto [at, added] =
+        materialIndex.emplace(obj.materials[m].name, int(scene.materials.size()));
+    material[m] = at->second;
+    if (added) scene.materials.push_back(obj.materials[m]);
   }
   for (Surface& s : obj.surfaces) {
     s.material = material[s.material];
@@ -233,6 +243,12 @@ void requireNonNegative(ObjectReader& r, const Vec3& v, const std::string& key) 
   if (v.x < 0 || v.y < 0 || v.z < 0)
     r.fail("\"" + key +
            "\" must not be negative (light cannot be taken away). Fix: give 0 or more");
+  // The bounds of an emission: a sun of 1e308 wrote inf into surfaces.csv.
+  for (double c : {v.x, v.y, v.z})
+    if (c != 0 && !(c >= kMinEmission && c <= kMaxEmission))
+      r.fail("\"" + key + "\" " + formatNumber(c) + " is outside [" + formatNumber(kMinEmission) +
+             ", " + formatNumber(kMaxEmission) +
+             "], where results stay finite. Fix: give it in a unit that brings it into range");
 }
 
 /// The sun: where it stands and, for the uniform and CIE skies, how strong it is.
@@ -263,6 +279,7 @@ void readSun(const json& j, const std::string& file, SkyDescription& sky) {
     if (lux < 0) r.fail("\"illuminance\" must not be negative");
     const double w = lux / kLumensPerWattWhite;
     sky.sunIrradiance = {w, w, w};
+    requireNonNegative(r, sky.sunIrradiance, "illuminance");
   }
 }
 
@@ -369,13 +386,17 @@ Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadRep
     for (auto it = mats.begin(); it != mats.end(); ++it)
       scene.materials.push_back(readMaterial(it.key(), it.value(), path));
   }
+  MaterialIndex materialIndex;
+  for (std::size_t m = 0; m < scene.materials.size(); ++m)
+    materialIndex.emplace(scene.materials[m].name, int(m));
   const json& surfaces = r.get("surfaces");
   if (!surfaces.is_array()) r.fail("\"surfaces\" must be an array");
   for (std::size_t i = 0; i < surfaces.size(); ++i) {
     if (surfaces[i].is_object() && surfaces[i].contains("include"))
-      includeObj(surfaces[i], i, scene, path);
+      includeObj(surfaces[i], i, scene, materialIndex, path);
     else
-      scene.surfaces.push_back(readSurface(surfaces[i], i, scene, path, options, report));
+      scene.surfaces.push_back(
+          readSurface(surfaces[i], i, scene, materialIndex, path, options, report));
   }
   if (r.has("camera")) scene.camera = readCamera(root.at("camera"), path);
   if (r.has("sky")) scene.sky = readSky(root.at("sky"), path);

@@ -28,7 +28,13 @@ inline std::vector<std::string> tokens(const std::string& line) {
   return out;
 }
 
-inline std::string uncommented(const std::string& line) { return line.substr(0, line.find('#')); }
+inline std::string uncommented(const std::string& line) {
+  // A '#' starts a comment only where a token starts: MSVC's "1.#QNAN" stays one token, which
+  // the number check refuses, instead of reading as "1." and a comment.
+  for (std::size_t at = line.find('#'); at != std::string::npos; at = line.find('#', at + 1))
+    if (at == 0 || line[at - 1] == ' ' || line[at - 1] == '\t') return line.substr(0, at);
+  return line;
+}
 
 /// Whole-token decimal integer; false on anything else, including overflow of long long.
 inline bool parseInteger(const std::string& t, long long& v) {

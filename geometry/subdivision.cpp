@@ -345,14 +345,16 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings,
     for (int attempt = 0;; ++attempt) {
       const std::vector<int> counts = classCounts(tops[s], h);
       if (out.size() + patchCount(tops[s], counts) > kMaxPatches) tooManyPatches();
-      PatchMesh trial = out;
-      emitPatches(tops[s], counts, int(s), trial);
+      // Emitted in place and cut back on a retry: a copy of the whole mesh per surface made
+      // loading quadratic in the surface count.
+      const std::size_t vertexMark = out.vertices.size();
+      const int patchMark = out.size();
+      emitPatches(tops[s], counts, int(s), out);
       double over =
-          settings.maxArea > 0 ? maxFaceAreaLimitViolation(trial, out.size(), settings.maxArea) : 0;
-      if (over <= 1 + 1e-12 || attempt > 60) {
-        out = std::move(trial);
-        break;
-      }
+          settings.maxArea > 0 ? maxFaceAreaLimitViolation(out, patchMark, settings.maxArea) : 0;
+      if (over <= 1 + 1e-12 || attempt > 60) break;
+      out.vertices.resize(vertexMark);
+      out.patches.resize(std::size_t(patchMark));
       h *= std::min(0.98, 1 / std::sqrt(over));
     }
   }

@@ -56,8 +56,7 @@ class Checker {
   std::string m_path;
 };
 
-/// Strips a '#' comment.
-std::string uncommented(const std::string& line) { return line.substr(0, line.find('#')); }
+using structure::uncommented;
 
 void checkObjLike(std::istream& in, const Checker& check, const std::vector<std::string>& keys,
                   std::vector<std::string>* mtllibs) {
@@ -141,6 +140,8 @@ void checkTextMeshNumbers(const std::string& path) {
     checkObjLike(in, check, {"v"}, &mtllibs);
     for (const std::string& name : mtllibs) {
       const fs::path mtl = fs::path(path).parent_path() / name;
+      std::error_code ec;
+      if (!fs::is_regular_file(mtl, ec)) continue;  // the structure check names a pipe or folder
       std::ifstream mtlIn(mtl, std::ios::binary);
       if (mtlIn) checkObjLike(mtlIn, Checker(mtl.string()), {"Kd", "Ke"}, nullptr);
     }

@@ -20,6 +20,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <map>
 #include <optional>
 #include <set>
@@ -53,6 +55,73 @@ std::vector<Vec3> facePoints(const Surface& s, const Face& f) {
   return p;
 }
 
+/// A face's corner positions in a fixed order, so one polygon gives one key however its
+/// corners are numbered or where its list starts.
+std::vector<Vec3> sortedCorners(const Surface& s, const Face& f) {
+  std::vector<Vec3> p = facePoints(s, f);
+  std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) {
+    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+  });
+  return p;
+}
+
+/// Warns about faces that repeat another face's polygon with the same orientation: two
+/// coincident faces each see the other's light half-counted (the dense method hides it, the
+/// hierarchical method reports a large imbalance). Back-to-back copies are a two-sided panel
+/// and are left alone. One warning per pair of surfaces; 16 bytes per face.
+void warnOnCoincidentFaces(const Scene& scene, LoadReport& report) {
+  struct Key {
+    std::uint64_t hash;
+    std::uint32_t surface, face;
+  };
+  std::vector<Key> keys;
+  for (std::size_t si = 0; si < scene.surfaces.size(); ++si) {
+    const Surface& s = scene.surfaces[si];
+    for (std::size_t f = 0; f < s.faces.size(); ++f) {
+      std::uint64_t h = 1469598103934665603ull;
+      for (const Vec3& p : sortedCorners(s, s.faces[f]))
+        for (double c : {p.x, p.y, p.z}) {
+          std::uint64_t bits;
+          c = c == 0 ? 0.0 : c;  // -0 and +0 are one position
+          std::memcpy(&bits, &c, sizeof bits);
+          h = (h ^ bits) * 1099511628211ull;
+        }
+      keys.push_back({h, std::uint32_t(si), std::uint32_t(f)});
+    }
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    return a.hash != b.hash ? a.hash < b.hash
+                            : a.surface != b.surface ? a.surface < b.surface : a.face < b.face;
+  });
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::array<std::size_t, 3>> pairs;
+  for (std::size_t a = 0; a < keys.size(); ++a)
+    for (std::size_t b = a + 1; b < keys.size() && keys[b].hash == keys[a].hash; ++b) {
+      const Surface& sa = scene.surfaces[keys[a].surface];
+      const Surface& sb = scene.surfaces[keys[b].surface];
+      const Face& fa = sa.faces[keys[a].face];
+      const Face& fb = sb.faces[keys[b].face];
+      if (sortedCorners(sa, fa) != sortedCorners(sb, fb)) continue;  // a hash collision
+      if (dot(newellNormal(facePoints(sa, fa)), newellNormal(facePoints(sb, fb))) <= 0) continue;
+      auto [it, added] = pairs.try_emplace({keys[a].surface, keys[b].surface},
+                                           std::array<std::size_t, 3>{0, keys[a].face, keys[b].face});
+      ++it->second[0];
+    }
+  for (const auto& [surfaces, found] : pairs) {
+    const Surface& sa = scene.surfaces[surfaces.first];
+    const Surface& sb = scene.surfaces[surfaces.second];
+    const std::string which = surfaces.first == surfaces.second
+                                  ? sa.source + " has " + std::to_string(found[0]) +
+                                        " face(s) repeating another of its faces"
+                                  : sa.source + " and " + sb.source + " share " +
+                                        std::to_string(found[0]) + " coincident face(s)";
+    report.warnings.push_back(
+        which + " (e.g. face " + std::to_string(found[1]) + " and face " +
+        std::to_string(found[2]) + ": the same polygon facing the same way). Light between " +
+        "coincident faces is wrong in both methods. Fix: remove the copies (--repair removes "
+        "them within one surface).");
+  }
+}
+
 void checkMaterials(const Scene& scene) {
   for (const Material& m : scene.materials) {
     std::string where = scene.file + ": material \"" + m.name + "\"";
@@ -62,6 +131,13 @@ void checkMaterials(const Scene& scene) {
         throw InputError(
             where + ": emission " + fmt(e) + " (channel " + std::to_string(c) +
             ") must be a finite number >= 0. Fix: use 0 for surfaces that do not emit.");
+      // Radiosity multiplies emission by areas and 1/(1-ρ) and sums squares of powers: beyond
+      // these bounds results under- or overflow a double (1e-320 gave B = 0 silently).
+      if (e != 0 && !(e >= kMinEmission && e <= kMaxEmission))
+        throw InputError(where + ": emission " + fmt(e) + " (channel " + std::to_string(c) +
+                         ") is outside [" + fmt(kMinEmission) + ", " + fmt(kMaxEmission) +
+                         "], where results stay finite and exact. Fix: give it in a unit "
+                         "that brings it into that range (results scale linearly), or 0.");
     }
   }
 }
@@ -579,6 +655,12 @@ void validateScene(Scene& scene, LoadReport& report, bool repair) {
   checkMaterials(scene);
   std::set<std::string> names;
   for (Surface& s : scene.surfaces) {
+    // A line break in a name splits every CSV row and report line it is written to.
+    for (char c : s.name)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+        throw InputError(s.source + ": the surface name \"" + s.name +
+                         "\" holds a control character (a line break or tab). Fix: use "
+                         "printable characters only.");
     if (!names.insert(s.name).second)
       throw InputError(s.source + ": the surface name \"" + s.name +
                        "\" is used twice. Fix: give each surface its own name.");
@@ -623,6 +705,7 @@ void validateScene(Scene& scene, LoadReport& report, bool repair) {
           " pairs of triangles cross): form factors near the crossing are unreliable.");
   }
   for (const Surface& s : scene.surfaces) checkOrientation(scene, s, report);
+  warnOnCoincidentFaces(scene, report);
   bool emits = std::any_of(scene.surfaces.begin(), scene.surfaces.end(),
                            [&](const Surface& s) { return scene.materials[s.material].emits(); });
   if (!emits && !scene.sky)

@@ -33,6 +33,10 @@ MeshRepair repairMesh(Surface& surface);
 /// Largest |coordinate| validateScene accepts (scene units).
 constexpr double kMaxCoordinate = 1e15;
 
+/// Range of a non-zero emission (W/m²) validateScene accepts: with areas up to kMaxCoordinate²
+/// and squared powers in the error estimates, every result stays a normal double.
+constexpr double kMinEmission = 1e-60, kMaxEmission = 1e60;
+
 /// Reports exact self-intersections between non-adjacent faces of one surface (CGAL PMP).
 /// Returns the number of intersecting face pairs found (0 when clean).
 std::size_t countSelfIntersections(const Surface& surface);

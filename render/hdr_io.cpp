@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -32,6 +34,12 @@ void writePfm(const std::string& path, const RadianceImage& image) {
 }
 
 RadianceImage readPfm(const std::string& path) {
+  // Opening a FIFO or a device for reading blocks or never ends.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw std::runtime_error(path +
+                             ": not a regular file (a folder, pipe or device). Fix: give the "
+                             "path of a PFM file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot open");
   std::string magic;
@@ -67,6 +75,13 @@ RadianceImage readPfm(const std::string& path) {
         for (int b = 0; b < 4; ++b) bits |= std::uint32_t(q[little ? b : 3 - b]) << (8 * b);
         float f;
         std::memcpy(&f, &bits, 4);
+        // One NaN made every comparison with the image meaningless (max(NaN, x) is x).
+        if (!(f >= 0 && f <= std::numeric_limits<float>::max()))
+          throw std::runtime_error(path + ": pixel (" + std::to_string(x) + ", " +
+                                   std::to_string(y) + ") channel " +
+                                   std::to_string(c) + " is " + std::to_string(f) +
+                                   "; radiance is finite and >= 0. Fix: repair or re-render "
+                                   "the reference");
         img.radiance[std::size_t(y) * img.width + x][c] = f;  // |scale| is conventionally 1
       }
   return img;

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
 
@@ -34,13 +35,43 @@ void removeStaleStaging(const fs::path& parent, const std::string& name) {
   }
 }
 
-/// A folder commit() may replace: empty, or written by radkit (one of the files every command
-/// writes). Anything else may be the user's own and is refused rather than deleted.
-bool replaceable(const fs::path& dir) {
-  if (fs::is_empty(dir)) return true;
-  for (const char* file : {"report.json", "patches.csv", "study.csv"})
-    if (fs::exists(dir / file)) return true;
-  return false;
+constexpr const char* kMarkerHeader =
+    "radkit output folder: radkit replaces this folder only if it holds nothing but the "
+    "entries listed below";
+
+/// The entries a valid marker lists, or nullopt if `dir` has no marker radkit wrote.
+std::optional<std::vector<std::string>> markedEntries(const fs::path& dir) {
+  const fs::path marker = dir / kOutputMarker;
+  std::error_code ec;
+  if (fs::is_symlink(marker, ec) || !fs::is_regular_file(marker, ec)) return std::nullopt;
+  std::ifstream in(marker);
+  std::string line;
+  if (!std::getline(in, line) || line != kMarkerHeader) return std::nullopt;
+  std::vector<std::string> names;
+  while (std::getline(in, line))
+    if (!line.empty()) names.push_back(line);
+  return names;
+}
+
+/// Why commit() may not replace `dir`, or "" if it may: the folder is empty, or radkit marked
+/// it and it holds only the entries the marker lists. Anything else may be the user's own.
+std::string notReplaceable(const fs::path& dir) {
+  if (fs::is_empty(dir)) return "";
+  const auto listed = markedEntries(dir);
+  if (!listed)
+    return dir.string() +
+           " exists and radkit did not mark it as its output (no valid " +
+           std::string(kOutputMarker) +
+           " file), and an output folder is replaced whole. Fix: choose another --out, or "
+           "empty or remove that folder (an output of an older radkit has no marker: remove it).";
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name != kOutputMarker && std::find(listed->begin(), listed->end(), name) == listed->end())
+      return dir.string() + " holds " + name +
+             ", which radkit did not write, and an output folder is replaced whole. Fix: move " +
+             name + " out of it, or choose another --out.";
+  }
+  return "";
 }
 
 }  // namespace
@@ -62,12 +93,12 @@ OutputFolder::OutputFolder(std::string destination) : m_destination(std::move(de
         "folder is replaced whole. Fix: give a new folder name, e.g. --out out/run1");
   m_destination = dest.string();
   fs::path parent = dest.parent_path();
-  if (fs::exists(dest) && (!fs::is_directory(dest) || !replaceable(dest)))
-    throw std::runtime_error(
-        dest.string() +
-        " exists and is not a radkit output folder (no report.json, "
-        "patches.csv or study.csv), and an output folder is replaced whole. Fix: "
-        "choose another --out, or empty or remove that folder.");
+  if (fs::exists(dest) && !fs::is_directory(dest))
+    throw std::runtime_error(dest.string() +
+                             " exists and is not a folder, and an output folder is replaced "
+                             "whole. Fix: choose another --out.");
+  if (fs::exists(dest))
+    if (const std::string why = notReplaceable(dest); !why.empty()) throw std::runtime_error(why);
   fs::create_directories(parent, ec);
   if (ec)
     throw std::runtime_error("cannot create the folder " + parent.string() + ": " + ec.message());
@@ -95,6 +126,22 @@ std::vector<std::string> OutputFolder::commit() {
   for (const std::string& name : m_names)
     if (fs::exists(fs::path(m_staging) / name))
       done.push_back((fs::path(m_destination) / name).string());
+  // The marker lists what radkit wrote, so a later run replaces this folder only while it
+  // holds nothing else.
+  {
+    std::vector<std::string> entries;
+    for (const auto& entry : fs::directory_iterator(m_staging))
+      entries.push_back(entry.path().filename().string());
+    std::sort(entries.begin(), entries.end());
+    std::string text = std::string(kMarkerHeader) + "\n";
+    for (const std::string& e : entries) text += e + "\n";
+    writeFileAtomically((fs::path(m_staging) / kOutputMarker).string(), text);
+  }
+  // A folder changed since the constructor checked it (a user's file saved into it while
+  // the run worked) is still not replaced.
+  if (fs::exists(m_destination))
+    if (const std::string why = notReplaceable(m_destination); !why.empty())
+      throw std::runtime_error(why);
   // One rename publishes the whole folder; an earlier one is moved aside first and removed
   // after, so the destination never holds a mix of two runs or part of one.
   const fs::path dest(m_destination);
@@ -124,10 +171,42 @@ std::string csvField(const std::string& text) {
   return quoted + "\"";
 }
 
-void writeFileStreaming(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  if (fs::is_directory(path))
-    throw std::runtime_error(
-        path + " is a folder, not a file. Fix: give a file name inside it or another path");
+void registerOutputFile(const std::string& path) {
+  const fs::path file = fs::absolute(path);
+  const fs::path dir = file.parent_path();
+  auto listed = markedEntries(dir);
+  const std::string name = file.filename().string();
+  if (!listed || std::find(listed->begin(), listed->end(), name) != listed->end()) return;
+  listed->push_back(name);
+  std::string text = std::string(kMarkerHeader) + "\n";
+  for (const std::string& e : *listed) text += e + "\n";
+  writeFileAtomically((dir / kOutputMarker).string(), text);
+}
+
+void checkRegularOutput(const std::string& option, const std::string& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);  // follows symlinks
+  if (ec || !fs::exists(st) || fs::is_regular_file(st)) return;
+  const char* kind = fs::is_directory(st)           ? "a folder"
+                     : fs::is_fifo(st)              ? "a named pipe (FIFO)"
+                     : fs::is_character_file(st)    ? "a character device"
+                     : fs::is_block_file(st)        ? "a block device"
+                     : fs::is_socket(st)            ? "a socket"
+                                                    : "not a regular file";
+  throw std::runtime_error(
+      (option.empty() ? "" : option + " ") + path + " is " + kind +
+      (fs::is_symlink(fs::symlink_status(path, ec)) ? " (through a symlink)" : "") +
+      "; radkit writes only regular files, through a temporary file and a rename that would "
+      "replace it. Fix: give the path of a regular file or a new one.");
+}
+
+void writeFileStreaming(const std::string& given, const std::function<void(std::ostream&)>& write) {
+  checkRegularOutput("", given);
+  // A symlink is written through: the temporary file goes beside its target, and the rename
+  // replaces the target, not the link.
+  std::error_code ec;
+  const std::string path =
+      fs::is_symlink(fs::symlink_status(given, ec)) ? fs::weakly_canonical(given).string() : given;
   const std::string tmp = path + ".tmp";
   {
     std::vector<char> buffer(1 << 20);  // large writes, not one per line; outlives `out`
@@ -151,7 +230,6 @@ void writeFileStreaming(const std::string& path, const std::function<void(std::o
       throw std::runtime_error("error while writing " + tmp + " (disk full?)");
     }
   }
-  std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) {
     fs::remove(tmp);
