@@ -190,13 +190,14 @@ void checkCompareFolder(const std::string& folder, const Scene& scene, const Pat
     double area = 0;
     for (int i = mesh.surfaceBegin[s]; i < mesh.surfaceBegin[s + 1]; ++i)
       area += mesh.patches[i].area;
+    area *= scene.metresPerUnit() * scene.metresPerUnit();  // surfaces.csv's area is in m²
     // surfaces.csv keeps 17 digits; a hand-written reference may round to 3.
     if (theirs[s].name != scene.surfaces[s].name ||
         !(std::fabs(theirs[s].area - area) <= 1e-3 * area))
       throw InputError("--compare " + folder + ": its surface " + std::to_string(s) + " is \"" +
-                       theirs[s].name + "\" of area " + fmt("%.6g", theirs[s].area) +
+                       theirs[s].name + "\" of area " + fmt("%.6g", theirs[s].area) + " m²" +
                        ", this scene's \"" + scene.surfaces[s].name + "\" of area " +
-                       fmt("%.6g", area) + " (the scene changed since that run)" + fix);
+                       fmt("%.6g", area) + " m² (the scene changed since that run)" + fix);
   }
 }
 

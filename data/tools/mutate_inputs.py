@@ -5,15 +5,20 @@ go through `radkit mesh` (every case), `radkit run` (every fourth, small mesh), 
 and `radkit photons` (every eighth each, small); with --all-commands also `run --method
 hierarchical`, `formfactors` and `solvers` (every eighth each), `bench formfactors|path-trace`
 (every sixteenth), `bench hierarchical` and `study` (every thirty-second). --options N then
-adds N hostile-option cases over every command, `view` and `brdf` included (hostile_options.py).
+adds N hostile-option cases over every command, `view` and `brdf` included (hostile_options.py),
+and --readers N adds N cases of mutated files that other readers take: a run folder's files
+(radiosity.vtp, report.json, surfaces.csv, convergence.csv, formfactors.bin, links.png) for
+`view --screenshot` in three modes and for `photons --compare`, volume scenes for `clouds
+--scene`, and PFM references for `render --reference`.
 Each run has a time limit and its peak memory is measured (GNU time). Counts outcomes: success
 (exit 0), clean error (non-zero exit with a message and no output), crash (a signal, an abort
 or an uncaught exception), hang (time limit), memory (peak RSS over MEMORY_LIMIT_MB), silent
-failure or error with output (none should occur), and staging folders left behind. Exits 1
+failure or error with output (none should occur), "non-finite output" (a successful run that
+wrote nan or inf into a text file: a silent wrong result) and staging folders left behind. Exits 1
 when any case is neither a success nor a clean error. The same --seed gives the same inputs.
 
   tests/viewer/xvfb_run.sh python3 data/tools/mutate_inputs.py --radkit build/apps/radkit \
-      --cases 1000 --all-commands --options 600 --jobs 2 --work /tmp/mut
+      --cases 1000 --all-commands --options 600 --readers 300 --jobs 2 --work /tmp/mut
 """
 import argparse, json, os, random, re, shutil, signal, struct, subprocess, sys
 
@@ -120,6 +125,25 @@ def run_radkit(radkit, argv, cwd, timeout):
     return p.returncode, text[:m.start()] if m else text, rss
 
 
+NON_FINITE = re.compile(rb"(?<![A-Za-z_])[-+]?(nan|inf|infinity)(?![A-Za-z_])", re.IGNORECASE)
+
+
+def non_finite_output(case, written):
+    """The first written text file (.csv .json .md .mtx .txt) holding nan or inf, or None."""
+    paths = []
+    for w in written:
+        p = os.path.join(case, w)
+        if os.path.isdir(p):
+            paths += [os.path.join(p, f) for f in sorted(os.listdir(p))]
+        elif os.path.isfile(p):
+            paths.append(p)
+    for p in paths:
+        if p.endswith((".csv", ".json", ".md", ".mtx", ".txt")) and os.path.isfile(p):
+            if NON_FINITE.search(open(p, "rb").read()):
+                return p
+    return None
+
+
 def classify(rc, output):
     if rc < 0 or rc >= 128 or "terminate called" in output or "Assertion" in output:
         return "crash"  # a signal, an abort or an uncaught exception
@@ -128,6 +152,80 @@ def classify(rc, output):
     # radkit's own errors say "error"; CLI11's parse errors name the option ("--k: Value 1 not in
     # range [2 - 100000]") and end with "Run with --help".
     return "clean error" if "error" in output.lower() or "Run with --help" in output else "silent failure"
+
+
+RUN_FILES = ["radiosity.vtp", "report.json", "surfaces.csv", "convergence.csv", "formfactors.bin"]
+
+
+def run_reader_cases(args, rng, counts, cases, peak):
+    """Mutated inputs of the readers that do not load scenes; see the module's docstring."""
+    work = os.path.join(args.work, "readers")
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    cornell = os.path.abspath(os.path.join(args.data, "cornell-box.json"))
+    made = [["run", cornell, "--patches", "60", "--no-render", "--out", "dense"],
+            ["run", cornell, "--method", "hierarchical", "--epsilon", "1e-2", "--no-render", "--out", "hier"],
+            ["render", cornell, "--patches", "60", "--size", "24x24", "--out", "ref.pfm"]]
+    for cmd in made:
+        rc, text, _ = run_radkit(args.radkit, cmd, work, 300)
+        if rc != 0:
+            raise SystemExit("could not make the reader seeds: radkit %s: %s" % (" ".join(cmd), text))
+    volumes = sorted(f for f in os.listdir(os.path.join(args.data, "clouds")) if f.endswith(".json"))
+    display = bool(os.environ.get("DISPLAY"))
+    for n in range(args.readers):
+        case = os.path.join(work, "case%04d" % n)
+        os.makedirs(case)
+        kind = n % 4
+        if kind in (0, 1):  # a run folder: one file mutated (links.png only in the hierarchical one)
+            source = "hier" if kind == 1 else "dense"
+            shutil.copytree(os.path.join(work, source), os.path.join(case, "run"))
+            files = [f for f in RUN_FILES + ["links.png"] if os.path.exists(os.path.join(case, "run", f))]
+            target = os.path.join(case, "run", rng.choice(files))
+            data = open(target, "rb").read()
+            with open(target, "wb") as f:
+                f.write(mutate(data, rng))
+            mode = ["radiosity", "matrix", "convergence"][(n // 4) % 3]
+            commands = [["view", "run", "--screenshot", "s.png", "--size", "64x48", "--mode", mode]] if display else []
+            if n % 8 == 0:
+                commands.append(["photons", cornell, "--patches", "60", "--photons", "2000", "--no-image",
+                                 "--bench-rays", "0", "--compare", "run", "--out", "o-photons"])
+        elif kind == 2:
+            name = volumes[(n // 4) % len(volumes)]
+            data = open(os.path.join(args.data, "clouds", name), "rb").read()
+            with open(os.path.join(case, name), "wb") as f:
+                f.write(mutate(data, rng))
+            commands = [["clouds", "--scene", name, "--width", "16", "--height", "8", "--samples", "1",
+                         "--primary-steps", "8", "--out", "o-clouds"]]
+        else:
+            data = open(os.path.join(work, "ref.pfm"), "rb").read()
+            with open(os.path.join(case, "ref.pfm"), "wb") as f:
+                f.write(mutate(data, rng))
+            commands = [["render", cornell, "--patches", "60", "--size", "24x24", "--reference", "ref.pfm",
+                         "--report", "r.json", "--out", "o.pfm"]]
+        for cmd in commands:
+            label = "reader-" + cmd[0] + ("-" + cmd[-1] if cmd[0] == "view" else "")
+            rc, text, rss = run_radkit(args.radkit, cmd, case, args.timeout)
+            outcome = "hang" if rc is None else classify(rc, text)
+            out = cmd[cmd.index("--out") + 1] if "--out" in cmd else (cmd[cmd.index("--screenshot") + 1])
+            if rc not in (None, 0) and os.path.exists(os.path.join(case, out)):
+                outcome = "error with output"
+            written = [out] + (["r.json"] if "--report" in cmd else [])
+            if outcome == "success" and non_finite_output(case, written):
+                outcome = "non-finite output"
+            if rss > MEMORY_LIMIT_MB:
+                outcome = "memory"
+            peak[label] = max(peak.get(label, 0.0), rss)
+            if args.log:
+                first = next((l for l in text.splitlines() if "error" in l.lower()), "")
+                with open(args.log, "a") as log:
+                    log.write("%s\treader\t%s\t%s\t%.0f MB\t%s\n" % (case, label, outcome, rss, first[:300]))
+            counts[(label, outcome)] = counts.get((label, outcome), 0) + 1
+            if outcome not in ("success", "clean error"):
+                cases.append("%s %s: %s (exit %s)" % (case, label, outcome, rc))
+        if not cases or not cases[-1].startswith(case + " "):
+            shutil.rmtree(case)
+    if not display:
+        counts[("reader-view", "no display")] = args.readers // 2
 
 
 def main():
@@ -145,6 +243,8 @@ def main():
                     help="then this many hostile-option cases over every command (hostile_options.py; view "
                          "needs DISPLAY: run under tests/viewer/xvfb_run.sh)")
     ap.add_argument("--jobs", type=int, default=1, help="parallel runs of the hostile-option cases")
+    ap.add_argument("--readers", type=int, default=0,
+                    help="then this many cases of mutated run folders, volume scenes and PFM references")
     args = ap.parse_args()
     args.radkit = os.path.abspath(args.radkit)
     rng = random.Random(args.seed)
@@ -202,6 +302,8 @@ def main():
             outcome = "hang" if rc is None else classify(rc, text)
             if rc is not None and rc != 0 and cmd[-2] == "--out" and os.path.exists(os.path.join(case, cmd[-1])):
                 outcome = "error with output"
+            if outcome == "success" and cmd[-2] == "--out" and non_finite_output(case, [cmd[-1]]):
+                outcome = "non-finite output"
             if rss > MEMORY_LIMIT_MB:
                 outcome = "memory"
             peak[label] = max(peak.get(label, 0.0), rss)
@@ -225,6 +327,8 @@ def main():
         log = open(args.log, "a") if args.log else None
         options_ran = hostile_options.run_cases(args.radkit, args.work, args.data, args.options, args.seed,
                                                 args.timeout, args.jobs, counts, cases, log, peak=peak)
+    if args.readers:
+        run_reader_cases(args, rng, counts, cases, peak)
     total = sum(v for (c, o), v in counts.items() if c != "staging" and o != "no display")
     print("mutated inputs: %d (%d command runs); hostile-option cases: %d; command runs in all: %d"
           % (args.cases, mutated_runs, options_ran, total))

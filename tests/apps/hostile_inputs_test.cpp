@@ -240,5 +240,21 @@ TEST(HostileInputs, ALineBreakInASurfaceNameIsRefused) {
   EXPECT_NE(r.output.find("control character"), std::string::npos) << r.output;
 }
 
+TEST(HostileInputs, PhotonsCompareAcceptsTheRunOfAMillimetreScene) {
+  // surfaces.csv gives areas in m²; the check compared them with areas in scene units.
+  test::TempDir dir;
+  const std::string scene = dir.file("mm.json", R"({"units": "mm",
+    "materials": {"grey": {"reflectance": [0.5,0.5,0.5]},
+                  "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}},
+    "surfaces": [
+      {"name": "floor", "material": "grey", "polygon": [[0,0,0],[1000,0,0],[1000,1000,0],[0,1000,0]]},
+      {"name": "lamp", "material": "lamp", "polygon": [[0,0,1000],[0,1000,1000],[1000,1000,1000],[1000,0,1000]]}]})");
+  auto r = runRadkit("run '" + scene + "' --patches 8 --no-render --out '" + dir.path("run") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  r = runRadkit("photons '" + scene + "' --photons 2000 --no-image --bench-rays 0 --compare '" +
+                dir.path("run") + "' --out '" + dir.path("p") + "'");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
 }  // namespace
 }  // namespace radkit
