@@ -9,7 +9,9 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -35,6 +37,7 @@
 #include "render/shading_context.h"
 #include "solvers/registry.h"
 #include "solvers/solver.h"
+#include "solvers/system_input.h"
 #include "util/threads.h"
 
 namespace py = pybind11;
@@ -198,33 +201,92 @@ py::object sparseMatrix(const FormFactorMatrix& f) {
                                    py::arg("shape") = py::make_tuple(n, n));
 }
 
-/// A matrix from Python: a dense (n, n) array or anything scipy.sparse can turn into CSR.
+// ---- arrays from Python, checked by solvers/system_input.h ----
+
+/// A real array (bool, integer or floating dtype) as doubles in C order; `what` names it.
+/// Complex, object and text dtypes are refused rather than cast (a cast drops imaginary parts).
+Array realArray(const py::handle& object, const std::string& what) {
+  const py::array a = py::array::ensure(object);
+  if (!a) throw py::value_error(what + ": expected an array of numbers");
+  const char kind = a.dtype().kind();
+  if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f')
+    throw py::value_error(what + ": dtype " + py::str(a.dtype()).cast<std::string>() +
+                          " is not real. Fix: a float array");
+  return Array::ensure(a);
+}
+
+using IndexArray = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+/// A 1-D integer array as int64; uint64 values above 2^63 - 1 are refused, not wrapped.
+IndexArray indexArray(const py::handle& object, const std::string& what) {
+  const py::array a = py::array::ensure(object);
+  if (!a || a.ndim() != 1) throw py::value_error(what + ": expected a 1-D integer array");
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    throw py::value_error(what + ": dtype " + py::str(a.dtype()).cast<std::string>() +
+                          " is not an integer type. Fix: int32 or int64 indices");
+  if (kind == 'u' && a.itemsize() == 8) {
+    const auto u = py::array_t<std::uint64_t, py::array::c_style>::ensure(a);
+    for (py::ssize_t k = 0; k < u.size(); ++k)
+      if (u.data()[k] > std::uint64_t(INT64_MAX))
+        throw py::value_error(what + "[" + std::to_string(k) + "] = " +
+                              std::to_string(u.data()[k]) +
+                              " is beyond int64. Fix: indices of an n x n matrix are 0 .. n - 1");
+  }
+  IndexArray out = IndexArray::ensure(a);
+  if (!out) throw py::value_error(what + ": cannot be read as int64 indices");
+  return out;
+}
+
+template <typename T, int Flags>
+ArrayRef<T> refOf(const py::array_t<T, Flags>& a) {
+  return {a.data(), static_cast<std::size_t>(a.size())};
+}
+
+ArrayInput inputOf(const Array& a) {
+  return {refOf(a), std::vector<std::int64_t>(a.shape(), a.shape() + a.ndim())};
+}
+
+/// scipy's shape tuple as two integers (anything else refused).
+std::pair<std::int64_t, std::int64_t> sparseShape(const py::object& f) {
+  const py::tuple shape = py::tuple(f.attr("shape"));
+  if (shape.size() != 2)
+    throw py::value_error("F: expected a square (n, n) matrix, got " +
+                          std::to_string(shape.size()) + " dimensions");
+  return {shape[0].cast<std::int64_t>(), shape[1].cast<std::int64_t>()};
+}
+
+/// A matrix from Python: a dense (n, n) array or any scipy.sparse matrix or array. CSR, CSC
+/// and COO arrays are read as they are and checked before scipy computes anything from them
+/// (its sum_duplicates and tocsr index memory by them unchecked); other formats through tocoo(),
+/// which for them is Python and numpy code (bounds-checked), and the COO checks.
 std::shared_ptr<FormFactorMatrix> matrixFromPython(const py::object& f) {
   py::module_ sparse = py::module_::import("scipy.sparse");
-  if (sparse.attr("issparse")(f).cast<bool>()) {
-    py::object csr = f.attr("tocsr")().attr("copy")();
-    csr.attr("sum_duplicates")();
-    csr.attr("sort_indices")();
-    const auto shape = csr.attr("shape").cast<std::pair<int, int>>();
-    if (shape.first != shape.second) throw py::value_error("F: expected a square matrix");
-    const auto indptr = csr.attr("indptr").cast<py::array_t<std::int64_t, py::array::forcecast>>();
-    const auto indices = csr.attr("indices").cast<py::array_t<int, py::array::forcecast>>();
-    const auto data = csr.attr("data").cast<Array>();
-    std::vector<std::int64_t> start(indptr.data(), indptr.data() + indptr.size());
-    std::vector<int> column(indices.data(), indices.data() + indices.size());
-    std::vector<double> value(data.data(), data.data() + data.size());
-    return std::make_shared<FormFactorMatrix>(
-        CsrMatrix<double>(shape.first, std::move(start), std::move(column), std::move(value)));
+  if (!sparse.attr("issparse")(f).cast<bool>())
+    return std::make_shared<FormFactorMatrix>(checkedDenseFormFactors(inputOf(realArray(f, "F"))));
+  const std::string format = py::str(f.attr("format")).cast<std::string>();
+  if (format == "csr" || format == "csc") {
+    const auto [rows, cols] = sparseShape(f);
+    const auto indptr = indexArray(f.attr("indptr"), "F.indptr");
+    const auto indices = indexArray(f.attr("indices"), "F.indices");
+    const Array data = realArray(f.attr("data"), "F.data");
+    if (data.ndim() != 1) throw py::value_error("F.data: expected a 1-D array");
+    CompressedInput in;
+    in.columns = format == "csc";
+    in.rows = rows, in.cols = cols;
+    in.indptr = refOf(indptr), in.indices = refOf(indices), in.data = refOf(data);
+    return std::make_shared<FormFactorMatrix>(checkedCompressedFormFactors(in));
   }
-  const Array a = f.cast<Array>();
-  if (a.ndim() != 2 || a.shape(0) != a.shape(1))
-    throw py::value_error("F: expected a square (n, n) array or a scipy.sparse matrix");
-  const int n = static_cast<int>(a.shape(0));
-  DenseMatrix<double> m(n);
-  auto v = a.unchecked<2>();
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) m(i, j) = v(i, j);
-  return std::make_shared<FormFactorMatrix>(std::move(m));
+  const py::object coo = format == "coo" ? f : f.attr("tocoo")();
+  const auto [rows, cols] = sparseShape(coo);
+  const auto row = indexArray(coo.attr("row"), "F.row");
+  const auto col = indexArray(coo.attr("col"), "F.col");
+  const Array data = realArray(coo.attr("data"), "F.data");
+  if (data.ndim() != 1) throw py::value_error("F.data: expected a 1-D array");
+  CooInput in;
+  in.rows = rows, in.cols = cols;
+  in.row = refOf(row), in.col = refOf(col), in.data = refOf(data);
+  return std::make_shared<FormFactorMatrix>(checkedCooFormFactors(in));
 }
 
 // ---- systems and solvers ----
@@ -237,17 +299,13 @@ PySystem systemFromFormFactors(const PyFormFactors& ff) {
   return s;
 }
 
-PySystem systemFromArrays(const py::object& f, const Array& area, const Array& reflectance,
-                          const Array& emission) {
+PySystem systemFromArrays(const py::object& f, const py::object& area,
+                          const py::object& reflectance, const py::object& emission) {
   PySystem s;
   s.matrix = matrixFromPython(f);
-  const int n = matrixSize(*s.matrix);
-  if (area.ndim() != 1 || area.shape(0) != n)
-    throw py::value_error("area: expected shape (" + std::to_string(n) + ",), one per patch");
-  s.system.area.assign(area.data(), area.data() + n);
-  s.system.reflectance = toChannels(reflectance, n, "reflectance");
-  s.system.emission = toChannels(emission, n, "emission");
-  s.system.formFactors = s.matrix.get();
+  s.system = checkedSystem(*s.matrix, inputOf(realArray(area, "area")),
+                           inputOf(realArray(reflectance, "reflectance")),
+                           inputOf(realArray(emission, "emission")));
   s.system.validate();
   return s;
 }
@@ -728,7 +786,9 @@ PYBIND11_MODULE(radkit, mod) {
       .def(py::init(&systemFromArrays), py::arg("F"), py::arg("area"), py::arg("reflectance"),
            py::arg("emission"),
            "A system from arrays: F (n, n) or scipy.sparse, area (n,), reflectance and "
-           "emission (n, 3) or (n,); checked like a scene's (rho in [0, 1), E >= 0, A > 0)")
+           "emission (n, 3) or (n,). Checked before use (ValueError naming the element): F's "
+           "entries finite and >= 0, each row summing to at most 1.05, sparse indices in range; "
+           "A > 0, rho in [0, 1), E >= 0, all finite. Sparse duplicates are summed")
       .def(py::init(&systemFromFormFactors), py::arg("form_factors"),
            "The system of a mesh: areas in m^2, reflectance and emission from its materials")
       .def("__len__", [](const PySystem& s) { return s.system.size(); })

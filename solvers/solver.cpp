@@ -56,10 +56,49 @@ std::string rateText(double rate) {
   return std::isnan(rate) ? std::string() : ", estimated spectral radius " + number(rate);
 }
 
+/// Notices steps that change nothing the driver sees: B, the residual and the unshot power
+/// exactly as before. Such a solver repeats itself to the iteration limit (a Python step() that
+/// never updates B; cg with every channel stopped on a non-reciprocal F) while its residual
+/// neither falls to the rounding floor the stagnation rule waits at nor grows. The unshot power
+/// counts because B alone can stand still while a solver progresses: Southwell shooting light
+/// too faint to change B in the last bit, its ΔB still falling. B is copied only when the
+/// residual and the power repeat exactly, so a run that makes progress pays nothing.
+class FrozenWatch {
+ public:
+  /// Whether nothing changed over at least one step and one sweep (or n steps, for a solver
+  /// whose sweeps() does not advance); call once per iteration.
+  bool update(long iteration, const Solver& solver) {
+    const double r = solver.residual(), power = solver.unshotPower();
+    if (iteration == 0 || !(r == m_residual && power == m_power)) {
+      m_residual = r, m_power = power;
+      m_watching = false;
+      return false;
+    }
+    if (!m_watching || solver.radiosity() != m_b) {
+      m_b = solver.radiosity();
+      m_since = iteration;
+      m_sinceSweeps = solver.sweeps();
+      m_watching = true;
+      return false;
+    }
+    const long steps = iteration - m_since;
+    return steps >= 1 &&
+           (solver.sweeps() - m_sinceSweeps >= 1.0 || steps >= static_cast<long>(m_b[0].size()));
+  }
+  long since() const { return m_since; }
+
+ private:
+  double m_residual = 0.0, m_power = 0.0;
+  bool m_watching = false;
+  Channels m_b;
+  long m_since = 0;
+  double m_sinceSweeps = 0.0;
+};
+
 /// Empty when the run goes on; otherwise why it stops (and result.exit, result.converged).
 std::string stopReason(const Solver& solver, const SolverSettings& settings, long iteration,
                        double seconds, double emissionNorm, ConvergenceMonitor& p,
-                       SolveResult& result) {
+                       const FrozenWatch& frozen, bool isFrozen, SolveResult& result) {
   const double r = solver.residual();
   const std::string tail = " after " + std::to_string(iteration) + " iterations";
   result.converged = false;
@@ -94,12 +133,27 @@ std::string stopReason(const Solver& solver, const SolverSettings& settings, lon
   // A residual stuck at the rounding floor above the tolerance would run to the iteration
   // limit. Only at the floor: far above it, a residual may rise for a long while and still
   // converge (Gauss-Seidel and Southwell at reflectances near 1).
-  if (solver.sweeps() - p.bestSweeps >= kStagnationSweeps &&
-      p.stagnated(solver.sweeps(), maxAbs(solver.radiosity()) / std::max(emissionNorm, 1e-300))) {
-    result.exit = "stagnated";
-    return "stagnated: no residual below " + number(p.best) + " for " + number(kStagnationSweeps) +
-           " sweeps" + tail + rateText(p.rate) + " (rounding error: tolerance " +
-           number(settings.tolerance) + " is below what this system reaches; raise --tol)";
+  const bool longNoLow = solver.sweeps() - p.bestSweeps >= kStagnationSweeps;
+  if (isFrozen || longNoLow) {
+    const double scale = maxAbs(solver.radiosity()) / std::max(emissionNorm, 1e-300);
+    // Above the floor, a step that changed nothing will change nothing again. (At the floor
+    // the rule below stops the run, with its own reason.)
+    if (isFrozen && r > 1e4 * std::numeric_limits<double>::epsilon() * std::max(1.0, scale)) {
+      result.exit = "stagnated";
+      return "stagnated: B, the residual " + number(r) +
+             " and the unshot power have not changed since iteration " +
+             std::to_string(frozen.since()) + ", above tolerance " + number(settings.tolerance) +
+             tail +
+             ": every further step would repeat the last. Fix: a solver's step() must "
+             "update the B its radiosity() returns; cg needs a reciprocal F (A_i F_ij = A_j F_ji)";
+    }
+    if (longNoLow && p.stagnated(solver.sweeps(), scale)) {
+      result.exit = "stagnated";
+      return "stagnated: no residual below " + number(p.best) + " for " +
+             number(kStagnationSweeps) + " sweeps" + tail + rateText(p.rate) +
+             " (rounding error: tolerance " + number(settings.tolerance) +
+             " is below what this system reaches; raise --tol)";
+    }
   }
   // Southwell's steps are shots: the iterations left count at the sweeps per step so far.
   const double sweepsPerStep = iteration > 0 ? solver.sweeps() / double(iteration) : 1.0;
@@ -212,6 +266,7 @@ SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSet
   const double emissionNorm = system.emissionNorm();
   long iteration = 0;
   ConvergenceMonitor progress;
+  FrozenWatch frozen;
   progress.startResidual = std::max(solver.residual(), std::numeric_limits<double>::min());
   progress.windowResidual = solver.residual();
   for (;;) {
@@ -219,8 +274,9 @@ SolveResult solve(Solver& solver, const RadiositySystem& system, const SolverSet
     const HistoryRow row{iteration, seconds, solver.residual(), solver.unshotPower(),
                          solver.sweeps()};
     progress.update(row.residual, row.sweeps, row.seconds);
-    result.reason =
-        stopReason(solver, settings, iteration, seconds, emissionNorm, progress, result);
+    const bool isFrozen = frozen.update(iteration, solver);
+    result.reason = stopReason(solver, settings, iteration, seconds, emissionNorm, progress, frozen,
+                               isFrozen, result);
     if (progress.keep(iteration, row.residual) || !result.reason.empty())
       result.history.push_back(row);
     if (!result.reason.empty()) break;

@@ -323,3 +323,176 @@ def test_photons_furnace_within_standard_errors(furnace):
         # Per-surface B = E + rho H is unbiased; each is 2 within a few standard errors.
         assert s["radiosity_error"][0] > 0
         assert abs(s["radiosity"][0] - 2.0) < 4 * s["radiosity_error"][0], s
+
+
+# ---- System(F, area, reflectance, emission): every array checked before use ----
+# Out-of-range CSR indices used to reach the matrix kernels unchecked (SIGSEGV, heap
+# corruption, a column of -5 "converging"); negative or NaN F, rows summing far above 1 and
+# bad per-patch values were solved as given. Each refusal names the argument and the element.
+
+GOOD_F = np.array([[0.0, 0.5, 0.5], [0.5, 0.0, 0.5], [0.5, 0.5, 0.0]])
+ONES, GREY, LIT = np.ones(3), np.full(3, 0.5), np.array([1.0, 0.0, 0.0])
+
+
+def raw_csr(indptr, indices, data, n=3, index_dtype=np.int32, fmt="csr"):
+    """A scipy matrix whose arrays are set after construction, as scipy does not check them
+    then (its constructor would refuse some of these inputs)."""
+    m = scipy.sparse.csr_matrix((n, n)) if fmt == "csr" else scipy.sparse.csc_matrix((n, n))
+    m.indptr = np.asarray(indptr, dtype=index_dtype)
+    m.indices = np.asarray(indices, dtype=index_dtype)
+    m.data = np.asarray(data, dtype=float)
+    return m
+
+
+def refused(F, fragment, area=ONES, reflectance=GREY, emission=LIT):
+    with pytest.raises(ValueError) as e:
+        radkit.System(F, area, reflectance, emission)
+    assert fragment in str(e.value) and "Fix:" in str(e.value), str(e.value)
+
+
+def test_csr_column_index_out_of_range_is_refused():
+    for column in (3, 100000000, 2**31 - 1):
+        refused(raw_csr([0, 1, 2, 3], [1, column, 0], [0.5, 0.5, 0.5]),
+                f"F.indices[1] = {column} (an entry of row 1) is outside [0, 3)")
+    refused(raw_csr([0, 1, 2, 3], [1, 2**40, 0], [0.5, 0.5, 0.5], index_dtype=np.int64),
+            f"F.indices[1] = {2**40}")
+    refused(raw_csr([0, 1, 2, 3], [1, 2**64 - 1, 0], [0.5] * 3, index_dtype=np.uint64),
+            f"F.indices[1] = {2**64 - 1} is beyond int64")
+
+
+def test_csr_column_minus_five_is_refused_not_converged():
+    for dtype in (np.int32, np.int64):
+        refused(raw_csr([0, 1, 2, 3], [1, -5, 0], [0.5, 0.5, 0.5], index_dtype=dtype),
+                "F.indices[1] = -5 (an entry of row 1) is outside [0, 3)")
+
+
+def test_csr_indptr_out_of_range_is_refused():
+    refused(raw_csr([0, 1, 2, 100000000], [1, 2, 0], [0.5] * 3),
+            "F.indptr[3] = 100000000 entries, but F.indices has 3 and F.data 3")
+    refused(raw_csr([0, 1, 2, -7], [1, 2, 0], [0.5] * 3), "F.indptr[3] = -7 is below F.indptr[2]")
+    refused(raw_csr([0, 2, 1, 3], [1, 2, 0], [0.5] * 3),
+            "F.indptr[2] = 1 is below F.indptr[1] = 2: row 1 would end before it starts")
+    refused(raw_csr([1, 1, 2, 3], [1, 2, 0], [0.5] * 3), "F.indptr[0] = 1. Fix: pointers start at 0")
+    refused(raw_csr([0, 1, 3], [1, 2, 0], [0.5] * 3), "F.indptr has 3 entries for 3 rows")
+    refused(raw_csr([0, 1, 2, 3, 3], [1, 2, 0], [0.5] * 3), "F.indptr has 5 entries for 3 rows")
+    refused(raw_csr([0, 1, 2, 3], [1, 2, 0], [0.5] * 2), "F.indices has 3 and F.data 2")
+    refused(raw_csr([0, 1, 2, 2], [1, 2, 0], [0.5] * 3), "F.indptr[3] = 2 entries")
+    m = raw_csr([0, 1, 2, 3], [1, 2, 0], [0.5] * 3)
+    m.indices = m.indices.astype(float)
+    refused(m, "F.indices: dtype float64 is not an integer type")
+
+
+def test_csc_and_coo_indices_are_checked_too():
+    refused(raw_csr([0, 1, 2, 3], [1, 7, 0], [0.5] * 3, fmt="csc"),
+            "F.indices[1] = 7 (an entry of column 1) is outside [0, 3). Fix: row indices")
+    coo = scipy.sparse.coo_matrix(GOOD_F)
+    coo.row = coo.row.copy()
+    coo.row[2] = 9
+    refused(coo, "F.row[2] = 9 is outside [0, 3)")
+    coo = scipy.sparse.coo_matrix(GOOD_F)
+    coo.col = coo.col.copy()
+    coo.col[0] = -1
+    refused(coo, "F.col[0] = -1 is outside [0, 3)")
+
+
+def test_sparse_duplicates_are_summed_and_columns_sorted():
+    # Row 0 lists column 2 before 1 and column 1 twice: F[0, 1] = 0.25 + 0.25.
+    F = raw_csr([0, 3, 5, 7], [2, 1, 1, 0, 2, 1, 0], [0.5, 0.25, 0.25, 0.5, 0.5, 0.5, 0.5])
+    system = radkit.System(F, ONES, GREY, LIT)
+    np.testing.assert_array_equal(system.F, GOOD_F)
+    for fmt in (scipy.sparse.csc_matrix, scipy.sparse.coo_matrix, scipy.sparse.lil_matrix,
+                scipy.sparse.dok_matrix, scipy.sparse.bsr_matrix, scipy.sparse.dia_matrix):
+        np.testing.assert_array_equal(radkit.System(fmt(GOOD_F), ONES, GREY, LIT).F, GOOD_F)
+    coo = scipy.sparse.coo_matrix(([0.25, 0.25], ([0, 0], [1, 1])), shape=(3, 3))
+    assert radkit.System(coo, ONES, GREY, LIT).F[0, 1] == 0.5
+
+
+def test_negative_and_non_finite_form_factors_are_refused():
+    for bad, text in ((-0.9, "= -0.9 is negative"), (np.nan, "= nan is not finite"),
+                      (np.inf, "= inf is not finite")):
+        F = GOOD_F.copy()
+        F[2, 1] = bad
+        refused(F, "F[2, 1] " + text)
+        refused(scipy.sparse.csr_matrix(F), "F.data[5] (F[2, 1]) " + text)
+    refused(np.array([[0, 0.5j], [0.5, 0]]), "F: dtype complex128 is not real")
+    refused(np.zeros((2, 3)), "F: expected a square (n, n) matrix, got shape (2, 3)")
+    refused(np.zeros((0, 0)), "F: shape (0, 0) has no patches")
+    refused(np.zeros(3), "F: expected a square (n, n) array, got shape (3,)")
+
+
+def test_rows_summing_above_one_are_refused():
+    F = GOOD_F.copy()
+    F[1] = [0.75, 0.0, 0.75]  # row 1 sums to 1.5
+    refused(F, "F row 1 sums to 1.5, above 1 + 0.05")
+    refused(scipy.sparse.csr_matrix(F), "F row 1 sums to 1.5")
+    # Within the tolerance (radkit's own point-polygon F exceeds 1 by up to about 2 %).
+    F[1] = [0.52, 0.0, 0.52]
+    assert len(radkit.System(F, ONES, GREY, LIT)) == 3
+    # A patch may see itself (an enclosure given as one patch): F_ii counts like any entry.
+    radkit.System(np.array([[0.0, 1.0], [0.25, 0.75]]), np.array([1.0, 4.0]), np.full(2, 0.5),
+                  np.array([1.0, 0.0]))
+
+
+def test_bad_area_reflectance_and_emission_are_refused():
+    for value, text in ((0.0, "= 0 must be finite and > 0"), (-1.0, "= -1 must be"),
+                        (np.nan, "= nan must be"), (np.inf, "= inf must be")):
+        refused(GOOD_F, "area[1] " + text, area=np.array([1.0, value, 1.0]))
+    for value, text in ((1.0, "= 1 is outside [0, 1)"), (-0.1, "= -0.1 is outside"),
+                        (np.nan, "= nan is outside"), (np.inf, "= inf is outside")):
+        refused(GOOD_F, "reflectance[2] " + text, reflectance=np.array([0.5, 0.5, value]))
+        rgb = np.full((3, 3), 0.5)
+        rgb[2, 1] = value
+        refused(GOOD_F, "reflectance[2, 1] " + text, reflectance=rgb)
+    for value, text in ((-1.0, "= -1 must be finite and >= 0"), (np.inf, "= inf must be"),
+                        (np.nan, "= nan must be")):
+        refused(GOOD_F, "emission[0] " + text, emission=np.array([value, 0.0, 0.0]))
+    # Magnitudes whose products overflow in the solvers (E at the largest double made B inf in
+    # the first sweep; a subnormal reflectance made cg's A / rho inf).
+    refused(GOOD_F, "emission[0] = 1.797693135e+308 is above 1e+50",
+            emission=np.array([np.finfo(float).max, 0.0, 0.0]))
+    refused(GOOD_F, "area[2] = 1e+60 is not in [1e-50, 1e+50]", area=np.array([1, 1, 1e60]))
+    refused(GOOD_F, "reflectance[0] = 4.940656458e-324 is below 1e-50 but not 0",
+            reflectance=np.array([5e-324, 0.5, 0.5]))
+    refused(GOOD_F, "area: expected shape (3,), got (2,)", area=np.ones(2))
+    refused(GOOD_F, "area: expected shape (3,), got (3, 1)", area=np.ones((3, 1)))
+    refused(GOOD_F, "reflectance: expected shape (3, 3) or (3,), got (3, 2)",
+            reflectance=np.zeros((3, 2)))
+    refused(GOOD_F, "emission: expected shape (3, 3) or (3,), got (4,)", emission=np.zeros(4))
+    refused(GOOD_F, "emission: dtype complex128 is not real", emission=np.zeros(3, complex))
+
+
+def test_systems_of_radkits_own_form_factors_pass_the_checks():
+    # The Cornell box's blocks make point-polygon rows sum above 1 by visibility noise (0.9 %
+    # at 100 patches): its F passes as arrays, dense and sparse, and System(ff) is unchanged.
+    mesh = radkit.mesh(radkit.load_scene(os.path.join(DATA, "cornell-box.json")), patches=100)
+    ff = radkit.form_factors(mesh)
+    assert ff.diagnostics["row_sum"]["max"] > 1
+    reference = radkit.solve(radkit.System(ff), "jacobi", tolerance=1e-10)["radiosity"]
+    for F in (ff.dense(), ff.sparse()):
+        system = radkit.System(F, mesh.area, mesh.reflectance, mesh.emission)
+        r = radkit.solve(system, "jacobi", tolerance=1e-10)
+        assert r["converged"]
+        np.testing.assert_allclose(r["radiosity"], reference, rtol=1e-12)
+
+
+class Idle:
+    """A Python solver whose step() never changes B."""
+
+    def start(self, system):
+        self.B = system.emission.copy()
+
+    def step(self):
+        pass
+
+    def radiosity(self):
+        return self.B
+
+
+def test_python_solver_that_never_changes_b_stops_as_stagnated(furnace):
+    # It used to step to max_iterations (1e8 by default) and report only that.
+    _, system = furnace
+    r = radkit.solve(system, Idle(), tolerance=1e-8, max_iterations=100000)
+    assert r["exit"] == "stagnated" and not r["converged"], r["reason"]
+    assert r["iterations"] == 2
+    assert "B, the residual 0.5 and the unshot power have not changed since iteration 1" in r["reason"]
+    assert "step() must update the B its radiosity() returns" in r["reason"]

@@ -105,6 +105,82 @@ TEST(Solve, ExactStagnationStopsAndSaysWhy) {
   EXPECT_GT(stagnated, 0) << "no solver stagnated: the test shows nothing";
 }
 
+namespace {
+
+/// Jacobi that updates B only every `period`-th step, reporting `sweepsPerStep` per step (0: a
+/// solver whose sweeps() never advances); period 0 never updates B at all.
+class LazyJacobi final : public Solver {
+ public:
+  LazyJacobi(int period, double sweepsPerStep) : m_period(period), m_sweepsPerStep(sweepsPerStep) {}
+  std::string name() const override { return "lazy"; }
+  std::string describe() const override { return "Jacobi updating B every few steps"; }
+  void start(const RadiositySystem& system, const SolverSettings& settings) override {
+    m_system = &system, m_norm = settings.norm, m_steps = 0;
+    m_b = system.emission;
+    measure();
+  }
+  void step() override {
+    ++m_steps;
+    if (m_period == 0 || m_steps % m_period != 0) return;
+    Channels fb;
+    multiply(m_system->matrix(), m_b, fb);
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < m_system->size(); ++i)
+        m_b[c][i] = m_system->emission[c][i] + m_system->reflectance[c][i] * fb[c][i];
+    measure();
+  }
+  const Channels& radiosity() const override { return m_b; }
+  double residual() const override { return m_residual; }
+  double unshotPower() const override { return 0.0; }
+  double sweeps() const override { return m_sweepsPerStep * double(m_steps); }
+
+ private:
+  void measure() {
+    m_residual = residualMeasure(*m_system, residualVector(*m_system, m_b), m_b, m_norm);
+  }
+  int m_period;
+  double m_sweepsPerStep;
+  const RadiositySystem* m_system = nullptr;
+  ResidualNorm m_norm = ResidualNorm::Relative;
+  Channels m_b;
+  double m_residual = 0.0;
+  long m_steps = 0;
+};
+
+}  // namespace
+
+// A step that leaves B and the residual as they were (a Python step() that never updates B)
+// used to repeat to the iteration limit: above the rounding floor nothing stopped it. It now
+// stops as stagnated once a whole sweep (or n steps) changed nothing.
+TEST(Solve, StepsThatChangeNothingStopAsStagnated) {
+  const Problem p = cubeOneEmitter(0.5);
+  SolverSettings settings;
+  settings.tolerance = 1e-9;
+  settings.maxIterations = 1000000;
+  LazyJacobi idle(0, 1.0);
+  SolveResult r = solve(idle, p.system, settings);
+  EXPECT_EQ(r.exit, "stagnated") << r.reason;
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.iterations, 2);
+  EXPECT_EQ(
+      r.reason.rfind(
+          "stagnated: B, the residual 0.1 and the unshot power have not changed since iteration 1",
+          0),
+      0u)
+      << r.reason;
+  // sweeps() that never advances: n = 6 unchanged steps are enough.
+  LazyJacobi stuck(0, 0.0);
+  r = solve(stuck, p.system, settings);
+  EXPECT_EQ(r.exit, "stagnated") << r.reason;
+  EXPECT_EQ(r.iterations, 1 + 6);
+  // A solver that idles for part of a sweep between updates is left to converge.
+  for (const auto& [period, sweepsPerStep] : {std::pair<int, double>{2, 0.5}, {4, 0.25}}) {
+    LazyJacobi slow(period, sweepsPerStep);
+    r = solve(slow, p.system, settings);
+    EXPECT_TRUE(r.converged) << period << ": " << r.reason;
+  }
+}
+
 // The residual's reduction per sweep tends to ρ for Jacobi in a closed box of uniform ρ.
 TEST(Solve, ExactSpectralRadiusEstimate) {
   const SolveResult r = runSolver("jacobi", cubeOneEmitter(0.9).system, 1e-12);
