@@ -6,12 +6,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
 
+#include "geometry/scene_loader.h"  // InputError
 #include "radiosity/form_factor_storage.h"
 #include "radiosity/surface_form_factors.h"
 #include "util/output_folder.h"  // writeFileAtomically, writeFileStreaming, csvField
@@ -26,21 +28,54 @@ void writeTriple(std::ostream& o, const Vec3& v) { o << ',' << v.x << ',' << v.y
 
 }  // namespace
 
-std::vector<std::string> splitCsvLine(const std::string& line) {
-  std::vector<std::string> out(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"')
-      out.back() += '"', ++i;
-    else if (c == '"')
-      quoted = !quoted;
-    else if (c == ',' && !quoted)
-      out.emplace_back();
-    else if (c != '\r')
-      out.back() += c;
+bool CsvReader::next(std::vector<std::string>& fields) {
+  std::streambuf* buf = m_in.rdbuf();
+  while (true) {
+    fields.assign(1, std::string());
+    m_recordLine = m_line;
+    bool quoted = false, any = false, blank = true;
+    int c;
+    while ((c = buf->sbumpc()) != std::char_traits<char>::eof()) {
+      any = true;
+      if (c == '\n') ++m_line;
+      if (c != '\r' && c != '\n') blank = false;
+      if (quoted) {
+        if (c != '"')
+          fields.back() += char(c);  // commas, CR and LF included
+        else if (buf->sgetc() == '"')
+          fields.back() += '"', buf->sbumpc();
+        else
+          quoted = false;
+      } else if (c == '"') {
+        quoted = true;
+      } else if (c == ',') {
+        fields.emplace_back();
+      } else if (c == '\n') {
+        break;
+      } else if (c != '\r') {  // CR of CRLF (a stray one outside quotes too)
+        fields.back() += char(c);
+      }
+    }
+    if (quoted)
+      throw InputError(m_path + ":" + std::to_string(m_recordLine) +
+                       ": a quoted field opened in this record is not closed before the end of "
+                       "the file. Fix: close the quote (\"\" is a quote inside one), or write the "
+                       "file again with radkit");
+    if (!any) return false;
+    if (!blank) return true;
+    // A blank line (LF or CRLF alone): skipped, as the readers always did.
   }
-  return out;
+}
+
+std::vector<std::string> splitCsvLine(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> fields;
+  try {
+    if (CsvReader(in, "CSV line").next(fields)) return fields;
+  } catch (const InputError&) {
+    // An unclosed quote runs to the end of the line, as this function always read it.
+  }
+  return fields.empty() ? std::vector<std::string>(1) : fields;
 }
 
 void writePatchesCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
@@ -143,13 +178,19 @@ void writeSurfacesCsv(const std::string& path, const Scene& scene,
 
 std::vector<SurfaceRadiosity> readSurfacesCsv(const std::string& path) {
   namespace c = surfaces_csv;
-  std::ifstream in(path);
+  // Opening a FIFO blocks until a writer comes; a folder or device is no CSV either.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path +
+                     ": is not a regular file (a folder, pipe or device). Fix: give the folder "
+                     "of a `radkit run` (it holds surfaces.csv)");
+  std::ifstream in(path, std::ios::binary);
   if (!in)
     throw std::runtime_error(
         path + ": cannot open. Fix: give the folder of a `radkit run` (it holds surfaces.csv)");
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = splitCsvLine(line);
+  CsvReader csv(in, path);
+  std::vector<std::string> header, f;
+  csv.next(header);
   auto column = [&](const char* name) {
     const auto it = std::find(header.begin(), header.end(), name);
     if (it == header.end())
@@ -162,9 +203,8 @@ std::vector<SurfaceRadiosity> readSurfacesCsv(const std::string& path) {
                               column(c::kRadiosity[2])};
   const std::size_t need = std::max({name, area, rgb[0], rgb[1], rgb[2]}) + 1;
   std::vector<SurfaceRadiosity> rows;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty() || line == "\r") continue;
-    const std::vector<std::string> f = splitCsvLine(line);
+  while (csv.next(f)) {
+    const long long number = csv.line();
     SurfaceRadiosity r;
     try {
       if (f.size() < need) throw std::invalid_argument("short");

@@ -10,7 +10,9 @@
 #pragma once
 
 #include <cstddef>
+#include <istream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/patch_mesh.h"
@@ -22,9 +24,29 @@
 
 namespace radkit {
 
-/// \brief Splits one CSV line, honouring double-quoted fields ("" is a quote); a trailing
-/// carriage return is dropped.
-std::vector<std::string> splitCsvLine(const std::string& line);
+/// \brief Reads CSV records (RFC 4180) one at a time: fields are separated by commas and
+/// records by LF or CRLF; a double-quoted field may hold commas, "" (one quote), CR and LF.
+/// Every reader of radkit's CSV files uses it, so a name that csvField quoted (a surface name
+/// with a comma or a line break) reads back whole. Blank lines are skipped.
+class CsvReader {
+ public:
+  /// \param path names the file in errors.
+  CsvReader(std::istream& in, std::string path) : m_in(in), m_path(std::move(path)) {}
+  /// \brief The next record into `fields`; false at the end of the input.
+  /// \throws InputError naming the file and line when the input ends inside a quoted field.
+  bool next(std::vector<std::string>& fields);
+  /// The line (from 1) on which the record last read starts.
+  long long line() const { return m_recordLine; }
+
+ private:
+  std::istream& m_in;
+  std::string m_path;
+  long long m_line = 1, m_recordLine = 0;
+};
+
+/// \brief The fields of the first record of `text` (CsvReader's rules); a lone line of a
+/// file read line by line splits as before, but only a CsvReader reads quoted line breaks.
+std::vector<std::string> splitCsvLine(const std::string& text);
 
 // --- patches.csv, solution-<solver>.csv ---------------------------------------------------
 /// The header of patches.csv (one row per patch, B zero when no solution is given).
@@ -73,8 +95,8 @@ struct SurfaceRadiosity {
   double area = 0;  ///< m²
   Vec3 radiosity;   ///< W/m²
 };
-/// \brief Reads surfaces.csv by its column names. Throws std::runtime_error naming the file,
-/// the line and what to fix.
+/// \brief Reads surfaces.csv by its column names (CsvReader). Throws std::runtime_error (or
+/// InputError) naming the file, the line and what to fix.
 std::vector<SurfaceRadiosity> readSurfacesCsv(const std::string& path);
 
 // --- convergence.csv --------------------------------------------------------------------------

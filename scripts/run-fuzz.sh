@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs each libFuzzer target of fuzz/ (scene JSON, OBJ + MTL, PLY, OFF, STL) for SECONDS
+# Runs each libFuzzer target of fuzz/ (scene JSON, OBJ + MTL, PLY, OFF, STL, the Python
+# module's arrays, run folders as the viewer reads them) for SECONDS
 # (default 20) from seeds made out of data/ (fuzz/make_seeds.py). Needs the sanitizer tree
 # that scripts/run-sanitizers.sh builds (build-sanitize/, or BUILD_DIR). Corpora grow in
 # out/fuzz/corpus/<format>/; a finding leaves its input in out/fuzz/ and fails the script.
@@ -9,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-20}
 shift || true
 formats=("$@")
-[ ${#formats[@]} -gt 0 ] || formats=(json obj ply off stl)
+[ ${#formats[@]} -gt 0 ] || formats=(json obj ply off stl python_arrays run_folder)
 build=${BUILD_DIR:-build-sanitize}
 cmake --build "$build" -j"${RADKIT_JOBS:-2}" --target fuzz
 out=out/fuzz

@@ -12,6 +12,7 @@
 #include <vtkTextProperty.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "viewer/colour_maps.h"
 
@@ -29,7 +30,10 @@ vtkSmartPointer<vtkTable> historyTable(const SolverHistory& h, bool seconds) {
   y->SetName(h.solver.c_str());
   for (std::size_t k = 0; k < h.residual.size(); ++k) {
     const double xv = seconds ? h.seconds[k] : h.iteration[k];
-    if (h.residual[k] <= 0 || (seconds && xv <= 0)) continue;  // not placeable on a log axis
+    // Not placeable on a log axis, nor are NaN and infinity (a diverging solve).
+    if (!(h.residual[k] > 0) || (seconds && !(xv > 0)) || !std::isfinite(h.residual[k]) ||
+        !std::isfinite(xv))
+      continue;
     x->InsertNextValue(xv);
     y->InsertNextValue(h.residual[k]);
   }

@@ -4,7 +4,6 @@
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkImageMapper3D.h>
-#include <vtkPNGReader.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyDataMapper.h>
@@ -43,7 +42,7 @@ MatrixView::MatrixView(const RunFolder& run, int maxCells) : m_run(run) {
   m_title->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   m_title->SetPosition(0.015, 0.975);
   m_renderer->AddActor2D(m_title);
-  if (!run.formFactors && !run.linksImage.empty()) {
+  if (!run.formFactors && run.links.width > 0) {
     showLinksImage();
     return;
   }
@@ -86,18 +85,19 @@ MatrixView::MatrixView(const RunFolder& run, int maxCells) : m_run(run) {
 }
 
 void MatrixView::showLinksImage() {
-  vtkNew<vtkPNGReader> reader;
-  // The reader itself gives a 1×1 image for a file that is not a PNG, without an error.
-  if (!reader->CanReadFile(m_run.linksImage.c_str()))
-    throw InputError(m_run.linksImage +
-                     ": not a PNG image. Fix: rerun `radkit run --method hierarchical` into this "
-                     "folder to write it again, or delete it");
-  reader->SetFileName(m_run.linksImage.c_str());
-  reader->Update();
-  int dims[3];
-  reader->GetOutput()->GetDimensions(dims);
-  m_linksWidth = dims[0], m_linksHeight = dims[1];
-  m_imageActor->GetMapper()->SetInputConnection(reader->GetOutputPort());
+  // Decoded and checked by readRunFolder (readLinksPng); VTK's PNG reader is not used, as it
+  // crashed after libpng's error on a truncated file.
+  const LinksImage& links = m_run.links;
+  m_linksWidth = links.width, m_linksHeight = links.height;
+  m_image->SetDimensions(links.width, links.height, 1);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(vtkIdType(links.width) * links.height);
+  for (int y = 0; y < links.height; ++y)  // PNG rows run down, VTK's image rows up
+    std::copy_n(&links.rgb[std::size_t(y) * links.width * 3], std::size_t(links.width) * 3,
+                rgb->GetPointer(vtkIdType(links.height - 1 - y) * links.width * 3));
+  m_image->GetPointData()->SetScalars(rgb);
+  m_imageActor->GetMapper()->SetInputData(m_image);
   m_imageActor->InterpolateOff();
   m_renderer->AddActor(m_imageActor);
   // links.png carries its own title, labels and colour bar.

@@ -1,6 +1,8 @@
-// Text parsers of a run folder: report.json, formfactors.mtx, convergence.csv, surfaces.csv.
+// Parsers of a run folder: report.json, formfactors.bin and .mtx, convergence.csv,
+// surfaces.csv (output/run_files.h's CsvReader) and links.png (stb_image).
 #include "viewer/run_folder.h"
 
+#include <stb/stb_image.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -13,7 +15,9 @@
 #include <sstream>
 
 #include "geometry/scene_loader.h"
+#include "geometry/validation.h"  // kMaxCoordinate
 #include "output/run_files.h"
+#include "util/format.h"
 
 namespace radkit::viewer {
 
@@ -27,7 +31,36 @@ namespace {
   fail(path + ":" + std::to_string(line), what);
 }
 
+/// Refuses a path that is not a regular file after symlinks are followed, before anything
+/// opens it: opening a FIFO blocks until a writer comes, and a device may never end.
+void requireRegular(const std::string& path, const std::string& fix) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    fail(path, "is not a regular file (a folder, pipe or device). Fix: " + fix);
+}
+
+/// Whether an optional file of the folder is there: missing is false, anything there that is
+/// not a regular file is refused.
+bool present(const std::string& path, const std::string& fix) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return false;
+  requireRegular(path, fix);
+  return true;
+}
+
+/// Form factors lie in [0, 1]; far beyond that a value is corruption, and the views' colour
+/// scales (log10 of sums over patch pairs) would overflow to infinity.
+constexpr double kMaxFormFactor = 1e6;
+
+std::string notAFormFactor(double v) {
+  return "a value " + formatNumber(v) + " that is no form factor (they lie in [0, 1])";
+}
+
+const char* const kRewrite = "write the folder again with `radkit run --out DIR`";
+
 std::ifstream openOrFail(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) requireRegular(path, kRewrite);
   std::ifstream in(path, std::ios::binary);
   if (!in)
     fail(path, "cannot be opened (missing or unreadable); write it with `radkit run --out DIR`");
@@ -48,6 +81,7 @@ double toNumber(const std::string& text, const std::string& path, long long line
 struct CsvTable {
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
+  std::vector<long long> lines;  ///< the line each row starts on (a quoted field may span lines)
 
   int column(const std::string& name, const std::string& path) const {
     auto it = std::find(header.begin(), header.end(), name);
@@ -58,17 +92,17 @@ struct CsvTable {
 
 CsvTable readCsv(const std::string& path) {
   std::ifstream in = openOrFail(path);
+  CsvReader csv(in, path);
   CsvTable t;
-  std::string line;
-  if (!std::getline(in, line)) fail(path, "is empty (expected a header line)");
-  t.header = splitCsvLine(line);
-  for (long long n = 2; std::getline(in, line); ++n) {
-    if (line.empty() || line == "\r") continue;
-    t.rows.push_back(splitCsvLine(line));
-    if (t.rows.back().size() != t.header.size())
-      failLine(path, n,
-               std::to_string(t.rows.back().size()) + " fields, header has " +
-                   std::to_string(t.header.size()));
+  if (!csv.next(t.header)) fail(path, "is empty (expected a header line)");
+  std::vector<std::string> fields;
+  while (csv.next(fields)) {
+    if (fields.size() != t.header.size())
+      failLine(
+          path, csv.line(),
+          std::to_string(fields.size()) + " fields, header has " + std::to_string(t.header.size()));
+    t.rows.push_back(fields);
+    t.lines.push_back(csv.line());
   }
   return t;
 }
@@ -76,7 +110,12 @@ CsvTable readCsv(const std::string& path) {
 Vec3 jsonVec3(const nlohmann::json& j, const std::string& path, const std::string& key) {
   if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
     fail(path, "scene.camera." + key + " must be an array of 3 numbers");
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+  const Vec3 v{j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+  // The scenes' coordinate bound: far beyond it VTK's camera arithmetic (squared distances)
+  // overflows.
+  if (!isFinite(v) || std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}) > kMaxCoordinate)
+    fail(path, "scene.camera." + key + " must be 3 finite numbers within ±1e15. Fix: " + kRewrite);
+  return v;
 }
 
 }  // namespace
@@ -123,6 +162,8 @@ RunReport readRunReport(const std::string& path) {
   }
   if (s.contains("camera") && !s["camera"].is_null()) {
     const nlohmann::json& c = s["camera"];
+    if (!c.is_object())
+      fail(path, "scene.camera must be an object or null. Fix: " + std::string(kRewrite));
     Camera cam;
     cam.position = jsonVec3(c.value("position", nlohmann::json()), path, "position");
     cam.lookAt = jsonVec3(c.value("look_at", nlohmann::json()), path, "look_at");
@@ -173,6 +214,10 @@ FormFactorRows readFormFactorsMtx(const std::string& path) {
     if (i < 1 || i > rows || jj < 1 || jj > rows || !std::isfinite(val[k]))
       failLine(path, lineNo,
                "expected 'row column value' with 1 <= row, column <= " + std::to_string(rows));
+    if (std::fabs(val[k]) > kMaxFormFactor)
+      failLine(
+          path, lineNo,
+          notAFormFactor(val[k]) + ". Fix: write the file again with `radkit run --write-matrix`");
     row[k] = int(i - 1);
     col[k] = int(jj - 1);
   }
@@ -247,8 +292,10 @@ FormFactorRows readFormFactorsBin(const std::string& path) {
     }
     f.rowStart[std::size_t(i) + 1] = static_cast<long long>(f.value.size());
   }
-  for (double v : f.value)
+  for (double v : f.value) {
     if (!std::isfinite(v)) fail(path, "holds a value that is not a finite number" + fix);
+    if (std::fabs(v) > kMaxFormFactor) fail(path, "holds " + notAFormFactor(v) + fix);
+  }
   return f;
 }
 
@@ -261,7 +308,7 @@ std::vector<SolverHistory> readConvergenceCsv(const std::string& path) {
   std::vector<SolverHistory> runs;
   for (std::size_t k = 0; k < t.rows.size(); ++k) {
     const auto& r = t.rows[k];
-    const long long line = static_cast<long long>(k) + 2;
+    const long long line = t.lines[k];
     const double it = toNumber(r[cIter], path, line, c::kIteration);
     if (!(it >= 0 && it <= 2147483647))  // converting NaN or 1e20 to int is undefined
       failLine(path, line, "column 'iteration': '" + r[cIter] + "' is not an iteration count >= 0");
@@ -293,7 +340,7 @@ std::vector<SurfaceSummary> readSurfacesCsv(const std::string& path) {
   std::vector<SurfaceSummary> out;
   for (std::size_t k = 0; k < t.rows.size(); ++k) {
     const auto& r = t.rows[k];
-    const long long line = static_cast<long long>(k) + 2;
+    const long long line = t.lines[k];
     SurfaceSummary s;
     s.name = r[cName];
     s.area = toNumber(r[cArea], path, line, c::kArea);
@@ -307,6 +354,59 @@ std::vector<SurfaceSummary> readSurfacesCsv(const std::string& path) {
   return out;
 }
 
+LinksImage readLinksPng(const std::string& path) {
+  const std::string fix =
+      "rerun `radkit run --method hierarchical` into this folder to write it again, or delete it";
+  requireRegular(path, fix);
+  // VTK 9.1's PNG reader crashed after libpng's error on a truncated file; stb_image returns
+  // an error instead. The declared size is checked before decoding allocates for it.
+  const std::uintmax_t bytes = std::filesystem::file_size(path);
+  if (bytes > (std::uintmax_t(1) << 28))
+    fail(path,
+         "is " + std::to_string(bytes) + " bytes, more than a links image needs. Fix: " + fix);
+  std::ifstream in = openOrFail(path);
+  std::string data(static_cast<std::size_t>(bytes), '\0');
+  in.read(data.data(), std::streamsize(bytes));
+  if (!in) fail(path, "could not be read whole. Fix: " + fix);
+  static const char kSignature[] = "\x89PNG\r\n\x1a\n";
+  // Only the PNG decoder of stb_image runs, not its guesses at other formats.
+  if (data.compare(0, 8, kSignature, 8) != 0) fail(path, "not a PNG image. Fix: " + fix);
+  // The size as IHDR declares it (big-endian, right after the signature), checked here: stb
+  // refuses more than 1 GB itself, but only as "unknown image type".
+  if (data.size() < 24 || data.compare(12, 4, "IHDR") != 0)
+    fail(path, "has no PNG header (IHDR chunk). Fix: " + fix);
+  auto be32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 4; ++k) v = v << 8 | std::uint8_t(data[at + k]);
+    return v;
+  };
+  const std::uint32_t declaredW = be32(16), declaredH = be32(20);
+  if (declaredW < 1 || declaredH < 1 || declaredW > std::uint32_t(kMaxLinksSide) ||
+      declaredH > std::uint32_t(kMaxLinksSide) ||
+      std::uint64_t(declaredW) * declaredH > std::uint64_t(kMaxLinksPixels))
+    fail(path, "declares " + std::to_string(declaredW) + "x" + std::to_string(declaredH) +
+                   " pixels, more than a links image has (at most " +
+                   std::to_string(kMaxLinksSide) + " a side, " + std::to_string(kMaxLinksPixels) +
+                   " in all). Fix: " + fix);
+  const auto* png = reinterpret_cast<const stbi_uc*>(data.data());
+  const int size = int(data.size());
+  int w = 0, h = 0, channels = 0;
+  auto reason = [] {
+    const char* r = stbi_failure_reason();
+    return std::string(r ? r : "no reason given");
+  };
+  if (!stbi_info_from_memory(png, size, &w, &h, &channels))
+    fail(path, "has no readable PNG header (" + reason() + "). Fix: " + fix);
+  stbi_uc* pixels = stbi_load_from_memory(png, size, &w, &h, &channels, 3);
+  if (!pixels) fail(path, "is damaged or truncated (" + reason() + "). Fix: " + fix);
+  LinksImage image;
+  image.width = w;
+  image.height = h;
+  image.rgb.assign(pixels, pixels + std::size_t(w) * h * 3);
+  stbi_image_free(pixels);
+  return image;
+}
+
 RunFolder readRunFolder(const std::string& folder) {
   namespace fs = std::filesystem;
   if (!fs::is_directory(folder))
@@ -317,6 +417,8 @@ RunFolder readRunFolder(const std::string& folder) {
   run.path = folder;
   run.report = readRunReport(file("report.json"));
   run.patches = readPatchesVtp(file("radiosity.vtp"));
+  // The views index report.json's surface names, the form factors' rows and columns and the
+  // patch arrays with these; readPatchesVtp checked the arrays against each other.
   for (int i = 0; i < run.patches.size(); ++i)
     if (run.patches.surface[i] < 0 || run.patches.surface[i] >= int(run.report.surfaces.size()))
       fail(file("radiosity.vtp"), "patch " + std::to_string(i) + " has surface index " +
@@ -324,29 +426,33 @@ RunFolder readRunFolder(const std::string& folder) {
                                       ", but report.json lists " +
                                       std::to_string(run.report.surfaces.size()) + " surfaces");
   // The binary first: written by every run, smaller and faster to read than the text.
-  const std::string matrixFile =
-      fs::exists(file("formfactors.bin")) ? file("formfactors.bin") : file("formfactors.mtx");
-  if (fs::exists(matrixFile)) {
-    run.formFactors = matrixFile == file("formfactors.bin") ? readFormFactorsBin(matrixFile)
-                                                            : readFormFactorsMtx(matrixFile);
+  const bool bin = present(file("formfactors.bin"), kRewrite);
+  const std::string matrixFile = bin ? file("formfactors.bin") : file("formfactors.mtx");
+  if (bin || present(matrixFile, "write it again with `radkit run --write-matrix`, or delete it")) {
+    run.formFactors = bin ? readFormFactorsBin(matrixFile) : readFormFactorsMtx(matrixFile);
     if (run.formFactors->n != run.patches.size())
       fail(matrixFile, "is " + std::to_string(run.formFactors->n) + "×" +
                            std::to_string(run.formFactors->n) + " but radiosity.vtp has " +
                            std::to_string(run.patches.size()) +
                            " patches (files of different runs?)");
   } else {
+    const bool links = present(file("links.png"),
+                               "rerun `radkit run --method hierarchical` into "
+                               "this folder to write it again, or delete it");
     run.formFactorsMissing =
-        fs::exists(file("links.png"))
-            ? "a hierarchical run has no F matrix: links.png draws its links as blocks of F"
-            : "no formfactors.bin or formfactors.mtx (written by `radkit run` and "
-              "`radkit formfactors`; `radkit solvers` writes neither: rerun with `radkit run`)";
-    if (fs::exists(file("links.png"))) run.linksImage = file("links.png");
+        links ? "a hierarchical run has no F matrix: links.png draws its links as blocks of F"
+              : "no formfactors.bin or formfactors.mtx (written by `radkit run` and "
+                "`radkit formfactors`; `radkit solvers` writes neither: rerun with `radkit run`)";
+    if (links) {
+      run.linksImage = file("links.png");
+      run.links = readLinksPng(run.linksImage);
+    }
   }
-  if (fs::exists(file("convergence.csv")))
+  if (present(file("convergence.csv"), kRewrite))
     run.convergence = readConvergenceCsv(file("convergence.csv"));
   else
     run.convergenceMissing = "no convergence.csv in " + folder;
-  if (fs::exists(file("surfaces.csv"))) run.surfaces = readSurfacesCsv(file("surfaces.csv"));
+  if (present(file("surfaces.csv"), kRewrite)) run.surfaces = readSurfacesCsv(file("surfaces.csv"));
   return run;
 }
 

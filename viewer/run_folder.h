@@ -1,6 +1,7 @@
 // RunFolder: the files `radkit run` writes, read into plain structs for the viewer.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,10 @@ struct PatchData {
   bool emits(int patch) const { return maxComponent(emission[patch]) > 0; }
   Bounds3 bounds() const;
 };
+
+/// Largest |radiosity| or emission radiosity.vtp may hold (W/m²; sunlight is 1e3, the sun's
+/// surface 6e7): the views' colour scales multiply and sum these, which must stay finite.
+constexpr double kMaxRadiosity = 1e30;
 
 /// formfactors.bin or formfactors.mtx as compressed rows: row i holds F_ij for j = column[k],
 /// k in [rowStart[i], rowStart[i+1]).
@@ -62,6 +67,12 @@ struct RunReport {
   std::optional<Camera> camera;
 };
 
+/// links.png decoded: 8-bit RGB, rows from the top.
+struct LinksImage {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;  ///< width × height × 3
+};
+
 /// A whole run folder. Optional files that are absent leave their member empty
 /// (with the reason in the matching `...Missing` message, for the views to show).
 struct RunFolder {
@@ -75,18 +86,23 @@ struct RunFolder {
   /// A hierarchical run's links.png (its links as blocks of F, written by the run); empty if
   /// the folder has none. The matrix mode shows it when there is no formfactors.mtx.
   std::string linksImage;
+  /// Its pixels, decoded when the folder is read (so a damaged file is refused before a
+  /// window opens).
+  LinksImage links;
 
   /// Name of a patch's surface ("#3" when report.json lists fewer surfaces).
   std::string surfaceName(int patch) const;
 };
 
-/// \brief Reads radiosity.vtp and report.json (required), formfactors.mtx, convergence.csv
-/// and surfaces.csv (optional), and checks they agree (patch count, surface indices).
+/// \brief Reads radiosity.vtp and report.json (required), formfactors.bin or .mtx, links.png,
+/// convergence.csv and surfaces.csv (optional), and checks they agree (patch count, surface
+/// indices). Each must be a regular file (a FIFO would block the read).
 /// \throws radkit::InputError naming the file, the line or element and the fix.
 RunFolder readRunFolder(const std::string& folder);
 
 /// \brief The parsers behind readRunFolder, one file each (`path` names the file in errors).
-/// readPatchesVtp (patches_vtp.cpp, through VTK's XML reader) needs every cell array above.
+/// readPatchesVtp (patches_vtp.cpp) reads the ASCII VTK XML radkit writes, needs every cell
+/// array above and checks every index, count and value the views rely on.
 PatchData readPatchesVtp(const std::string& path);
 RunReport readRunReport(const std::string& path);
 FormFactorRows readFormFactorsMtx(const std::string& path);
@@ -94,5 +110,10 @@ FormFactorRows readFormFactorsMtx(const std::string& path);
 FormFactorRows readFormFactorsBin(const std::string& path);
 std::vector<SolverHistory> readConvergenceCsv(const std::string& path);
 std::vector<SurfaceSummary> readSurfacesCsv(const std::string& path);
+/// \brief links.png through stb_image: a PNG whose declared size is at most kMaxLinksSide per
+/// side and kMaxLinksPixels in all, checked before decoding.
+LinksImage readLinksPng(const std::string& path);
+constexpr int kMaxLinksSide = 16384;
+constexpr long long kMaxLinksPixels = 1LL << 25;  ///< 32 Mpixels (radkit writes about 1)
 
 }  // namespace radkit::viewer

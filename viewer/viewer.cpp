@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "geometry/scene_loader.h"
+#include "util/output_folder.h"
 #include "viewer/viewer_window.h"
 
 namespace radkit::viewer {
@@ -115,6 +116,8 @@ int runViewer(const ViewerOptions& o) {
   }
   window.layoutSingle(mode.mode);
   window.writePng(o.screenshot);
+  // A screenshot saved into a run folder is radkit's own: the next run may replace it.
+  registerOutputFile(o.screenshot);
   return 0;
 }
 
