@@ -216,8 +216,12 @@ void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& s
   std::vector<double> n, ff, pe;
   for (const StudyRow* w : rowsOf(r, {StudyKnob::Mesh}))
     n.push_back(w->patches), ff.push_back(w->seconds.formFactors), pe.push_back(w->patchError);
-  o << "\nMesh ladder fits: form-factor seconds ∝ N^" << fmt("%.2f", fitExponent(n, ff))
-    << ", patch error ∝ N^" << fmt("%.2f", fitExponent(n, pe)) << ".\n";
+  // A fit needs two rungs with positive values; NaN says it had fewer.
+  const auto exponent = [](double e) {
+    return std::isnan(e) ? std::string("n/a (fewer than two rungs to fit)") : "N^" + fmt("%.2f", e);
+  };
+  o << "\nMesh ladder fits: form-factor seconds ∝ " << exponent(fitExponent(n, ff))
+    << ", patch error ∝ " << exponent(fitExponent(n, pe)) << ".\n";
   writeFileAtomically(path, o.str());
 }
 

@@ -240,6 +240,18 @@ TEST(HostileInputs, ALineBreakInASurfaceNameIsRefused) {
   EXPECT_NE(r.output.find("control character"), std::string::npos) << r.output;
 }
 
+TEST(HostileInputs, AStudyTooShortToFitALadderWritesNoNan) {
+  // One mesh rung in a 1 s budget: the fit had no value and study.md said "N^nan".
+  test::TempDir dir;
+  const auto r = runRadkit("study '" + dataPath("cornell-box.json") +
+                           "' --max-seconds 1 --knob-patches 250 --epsilons 1e-2 --out '" +
+                           dir.path("s") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::string md = fileText(dir.path("s/study.md"));
+  EXPECT_EQ(md.find("nan"), std::string::npos) << md;
+  EXPECT_NE(md.find("Mesh ladder fits"), std::string::npos) << md;
+}
+
 TEST(HostileInputs, PhotonsCompareAcceptsTheRunOfAMillimetreScene) {
   // surfaces.csv gives areas in m²; the check compared them with areas in scene units.
   test::TempDir dir;
