@@ -13,6 +13,7 @@
 #include "geometry/scene_loader.h"
 #include "render/camera.h"
 #include "util/format.h"
+#include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
 #include "util/output_folder.h"
 
 namespace radkit::app {
@@ -131,6 +132,27 @@ void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired)
       "Repair meshes instead of refusing them: weld duplicate vertices, drop duplicate and "
       "degenerate faces, cut non-manifold edges and vertices, stitch borders, orient; each "
       "change is reported (docs/bring-your-own-model.md)");
+}
+
+void addImageSizeOptions(CLI::App& command, int& width, int& height, const std::string& what) {
+  auto* size = command.add_option_function<std::string>(
+      "--size",
+      [&width, &height](const std::string& text) {
+        viewer::parseSize(text, width, height, 16, 8192);
+      },
+      "Size of " + what + " WIDTHxHEIGHT (default " + std::to_string(width) + "x" +
+          std::to_string(height) + ")");
+  command
+      .add_option_function<int>(
+          "--image-size",
+          [&width, &height](const int& n) {
+            width = height = n;
+            std::cerr << "radkit: warning: --image-size is deprecated: use --size " << n << "x"
+                      << n << " (the spelling of render and view)\n";
+          },
+          "Deprecated: --size NxN")
+      ->check(CLI::Range(16, 8192))
+      ->excludes(size);
 }
 
 void addCameraOption(CLI::App& command, std::string& camera) {

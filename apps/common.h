@@ -52,6 +52,10 @@ std::string defaultOutFolder(const std::string& sceneName);
 /// Adds --camera to a command that draws (an image, render.png, the viewer).
 void addCameraOption(CLI::App& command, std::string& camera);
 
+/// `--size WxH` of the images a command writes (one spelling with render and view), and the
+/// older `--image-size N` (N×N) kept as a deprecated alias that says so.
+void addImageSizeOptions(CLI::App& command, int& width, int& height, const std::string& what);
+
 /// Loads the scene (printing its warnings to stderr, and keeping them in `report` when given)
 /// and subdivides it; a mesh beyond kMaxPatches is an InputError naming the option that asked
 /// for it. A non-empty `camera` (a --camera value) replaces the scene's camera, so images and

@@ -88,7 +88,7 @@ nlohmann::json hierarchyJson(const Scene& scene, const HierarchicalResult& r,
 void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalResult& r,
                   const HierarchicalJob& job) {
   ImageSettings s;
-  s.width = s.height = job.imageSize;
+  s.width = job.imageWidth, s.height = job.imageHeight;
   s.smooth = true;          // leaves differ in size by orders of magnitude: flat shading shows the
                             // hierarchy, not the light
   RayScene rays(r.leaves);  // the image needs the leaf under each pixel

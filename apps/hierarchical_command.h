@@ -30,7 +30,7 @@ struct HierarchicalJob {
   HierarchicalSettings settings;
   LinkColour linkColour = LinkColour::FormFactor;
   bool noRender = false, photometric = false, smooth = false;
-  int imageSize = 512;
+  int imageWidth = 512, imageHeight = 512;
   int checkLinks = 0;
 };
 

@@ -40,7 +40,7 @@ struct PhotonsCommand {
   MeshOptions mesh;
   PhotonSettings settings;
   std::string filter = "epanechnikov", view = "gather", compare, out, camera;
-  int imageSize = 256;
+  int imageWidth = 256, imageHeight = 256;
   bool noRadiosity = false, noImage = false;
   long long benchRays = 1000000;
 };
@@ -95,7 +95,7 @@ void writeDifference(OutputFolder& folder, const Scene& scene, const PatchMesh& 
     }
   }
   ImageSettings s;
-  s.width = s.height = cmd.imageSize;
+  s.width = cmd.imageWidth, s.height = cmd.imageHeight;
   s.samplesPerAxis = 1;
   const std::vector<bool> twoSided = scene.twoSidedSurfaces();
   const Camera camera = sceneCamera(scene, mesh);
@@ -253,13 +253,13 @@ void writeImages(OutputFolder& folder, const PhotonsCommand& cmd, PhotonRun& r) 
   const auto t = Clock::now();
   const PhotonScene in{r.scene, r.mesh, *r.rays, *r.emitters, *r.global, *r.caustic};
   const Camera camera = sceneCamera(r.scene, r.mesh);
-  const int n = cmd.imageSize;
-  RadianceImage image = renderPhotonImage(in, camera, n, n, r.view, cmd.settings);
+  const int w = cmd.imageWidth, h = cmd.imageHeight;
+  RadianceImage image = renderPhotonImage(in, camera, w, h, r.view, cmd.settings);
   const double exposure = photonImageExposure(in, image);
   writePng(folder.path("photonmap.png"), toneMap(image, exposure));
   if (!r.caustic->empty())
     writePng(folder.path("caustics.png"),
-             toneMap(renderPhotonImage(in, camera, n, n, PhotonView::CausticMap, cmd.settings),
+             toneMap(renderPhotonImage(in, camera, w, h, PhotonView::CausticMap, cmd.settings),
                      exposure));
   r.seconds["image"] = since(t);
 }
@@ -299,7 +299,8 @@ json reportJson(const PhotonsCommand& cmd, const PhotonRun& r, const json& rates
                 {"view", viewName(r.view)},
                 {"gather_rays", ps.gatherRays},
                 {"direct_rays", ps.directRays},
-                {"image_size", cmd.noImage ? 0 : cmd.imageSize}}},
+                {"image_size", cmd.noImage ? json(nullptr)
+                                           : json::array({cmd.imageWidth, cmd.imageHeight})}}},
               {"photons", statsJson(r.trace)},
               {"rates", rates},
               {"seconds", r.seconds},
@@ -401,9 +402,7 @@ void addPhotonsCommand(CLI::App& app) {
   sub->add_option("--view", cmd->view, "photonmap.png: final gathering or the global map itself")
       ->check(CLI::IsMember({"gather", "map"}))
       ->capture_default_str();
-  sub->add_option("--image-size", cmd->imageSize, "Side of the images in pixels")
-      ->check(CLI::Range(16, 8192))
-      ->capture_default_str();
+  addImageSizeOptions(*sub, cmd->imageWidth, cmd->imageHeight, "the images");
   auto* compare = sub->add_option(
       "--compare", cmd->compare,
       "A `radkit run` output folder to compare with (its surfaces.csv); default: solve "

@@ -29,7 +29,7 @@ struct PipelineCommand {
   SolverOptions solver;
   std::string out;
   bool noRender = false, photometric = false, smooth = false, writeMatrix = false;
-  int imageSize = 512;
+  int imageWidth = 512, imageHeight = 512;
   std::string preset, camera;
   bool adaptive = false;
   AdaptiveSettings adaptiveSettings;
@@ -95,7 +95,7 @@ double writeFormFactorFiles(OutputFolder& folder, const Scene& scene, const Pipe
 void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult& r,
                  const PipelineCommand& cmd) {
   ImageSettings s;
-  s.width = s.height = cmd.imageSize;
+  s.width = cmd.imageWidth, s.height = cmd.imageHeight;
   s.smooth = cmd.smooth;
   if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
   writeRadiosityPng(folder.path("render.png"), scene, r.mesh, *r.rays, r.radiosity, s);
@@ -169,10 +169,50 @@ void runHierarchical(PipelineCommand& cmd) {
   job.linkColour =
       cmd.hierarchical.linkColour == "power" ? LinkColour::Power : LinkColour::FormFactor;
   job.noRender = cmd.noRender, job.photometric = cmd.photometric, job.smooth = cmd.smooth;
-  job.imageSize = cmd.imageSize;
+  job.imageWidth = cmd.imageWidth, job.imageHeight = cmd.imageHeight;
   job.camera = cmd.camera;
   job.checkLinks = cmd.hierarchical.checkLinks;
   runHierarchicalJob(job);
+}
+
+/// What MemoryBudgetError's fixes leave out: a mesh of one patch per input face cannot have
+/// fewer patches, and the hierarchical method keeps no n×n matrix.
+std::string memoryBudgetAdvice(const Scene& scene, const PipelineCommand& cmd, int patches) {
+  std::size_t faces = 0;
+  for (const Surface& s : scene.surfaces) faces += s.faces.size();
+  // Peak memory of `run --method hierarchical --no-render` on the shipped scenes, less radkit's
+  // own 40 MiB: terrain-room.json 4.9 kB per input face (51 201 faces, 291 MiB),
+  // models/spot-room.json 17 kB (5 870 faces, 141 MiB).
+  const double base = 40.0 * 1024 * 1024;
+  const double low = base + 4.9e3 * double(faces), high = base + 17e3 * double(faces);
+  std::string advice =
+      std::size_t(patches) <= faces + faces / 20
+          ? ". The mesh is at its floor: " + std::to_string(faces) +
+                " input faces, and a patch never spans two, so fewer patches cannot help."
+          : ". Fewer patches help down to about " + std::to_string(faces) +
+                ", the scene's input faces (a patch never spans two).";
+  if (cmd.job == Job::Run)
+    advice += " --method hierarchical keeps no n×n matrix: on the shipped scenes it took 40 MiB "
+              "and 4.9-17 kB per input face, about " +
+              formatBytes(low) + " to " + formatBytes(high) + " here (docs/hierarchical.md)";
+  return advice;
+}
+
+std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene,
+                                const PipelineCommand& cmd) {
+  std::size_t faces = 0;
+  for (const Surface& s : scene.surfaces) faces += s.faces.size();
+  std::string message = e.what();
+  if (std::size_t(e.patches) <= faces + faces / 20) {  // at the floor, drop "fewer patches"
+    const std::string fewer = kFewerPatchesFix;
+    if (const std::size_t at = message.find(fewer); at != std::string::npos) {
+      message.erase(at, fewer.size());
+    } else if (const std::size_t last = message.find(", " + fewer.substr(0, fewer.size() - 2));
+               last != std::string::npos) {
+      message.erase(last, fewer.size());  // the last fix: ", use fewer ... smaller)"
+    }
+  }
+  return message + memoryBudgetAdvice(scene, cmd, e.patches);
 }
 
 void runJob(PipelineCommand& cmd) {
@@ -221,6 +261,9 @@ void runJob(PipelineCommand& cmd) {
     }
   } catch (const TooManyPatches&) {
     tooManyPatches(scene, cmd.mesh);
+  } catch (const MemoryBudgetError& e) {
+    progress.finish();
+    throw InputError(memoryBudgetMessage(e, scene, cmd));
   }
   progress.finish();
   // A run's answer must be a number: a diverged first solver leaves nothing to write.
@@ -334,9 +377,7 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     addCameraOption(*sub, cmd->camera);
-    sub->add_option("--image-size", cmd->imageSize, "Side of render.png in pixels")
-        ->check(CLI::Range(16, 8192))
-        ->capture_default_str();
+    addImageSizeOptions(*sub, cmd->imageWidth, cmd->imageHeight, "render.png");
     addHierarchicalOptions(*sub, cmd->hierarchical);
     cmd->hierarchical.denseOnly = {
         sub->get_option("--patches"),    sub->get_option("--max-area"),

@@ -157,12 +157,50 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool 
   return raw;
 }
 
+/// The "mtllib" lines of an OBJ whose name only reads whole (a file name with a space, which
+/// tinyobjloader splits), with the MTL files they name; empty when tinyobjloader reads them all.
+std::vector<std::string> mtlFilesTinyobjWouldSplit(const std::string& path, bool& needed) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::string> files;
+  needed = false;
+  const std::string dir = fs::path(path).parent_path().string();
+  for (std::string line; std::getline(in, line);) {
+    const auto t = structure::tokens(structure::uncommented(line));
+    if (t.empty() || t[0] != "mtllib") continue;
+    std::string rest;
+    for (std::size_t k = 1; k < t.size(); ++k) rest += (k > 1 ? " " : "") + t[k];
+    const auto named = mtllibFiles(dir, rest);
+    if (t.size() > 2 && named.size() == 1) needed = true;
+    files.insert(files.end(), named.begin(), named.end());
+  }
+  return files;
+}
+
 tinyobj::ObjReader parseObj(const std::string& path) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;
   config.mtl_search_path = fs::path(path).parent_path().string();
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config))
+  bool whole = false;
+  const std::vector<std::string> mtls = mtlFilesTinyobjWouldSplit(path, whole);
+  bool ok;
+  if (whole) {
+    // tinyobjloader would split "mtllib 247_House 15_obj.mtl" at the space: the MTLs are read
+    // here and given to it as text, in the order the OBJ names them.
+    std::string mtlText;
+    for (const std::string& mtl : mtls) {
+      std::error_code ec;
+      if (!fs::is_regular_file(mtl, ec)) continue;
+      std::ifstream m(mtl, std::ios::binary);
+      mtlText += std::string(std::istreambuf_iterator<char>(m), {}) + "\n";
+    }
+    std::ifstream in(path, std::ios::binary);
+    const std::string objText((std::istreambuf_iterator<char>(in)), {});
+    ok = reader.ParseFromString(objText, mtlText, config);
+  } else {
+    ok = reader.ParseFromFile(path, config);
+  }
+  if (!ok)
     throw InputError(path + ": could not read OBJ: " + reader.Error() +
                      " Fix: check the file and the MTL it names.");
   return reader;
@@ -283,7 +321,8 @@ Material mtlMaterial(const tinyobj::material_t& m, const std::string& path,
 
 }  // namespace
 
-Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) {
+Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings,
+                   const std::unordered_set<std::string>* replaced) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path + ": scene file not found.");
   checkMeshStructure(path);
@@ -294,11 +333,25 @@ Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) 
   scene.name = fs::path(path).stem().string();
   const std::string& mtlWarning = reader.Warning();
   if (reader.GetMaterials().empty() && mtlWarning.find("not found") != std::string::npos)
-    throw InputError(path + ": its MTL file was not found (" +
-                     mtlWarning.substr(0, mtlWarning.find('\n')) +
-                     "). Fix: put the .mtl named by \"mtllib\" next to the OBJ.");
-  for (const auto& m : reader.GetMaterials())
+  {
+    bool whole = false;
+    std::string looked;
+    for (const std::string& f : mtlFilesTinyobjWouldSplit(path, whole))
+      looked += (looked.empty() ? "" : ", ") + f;
+    throw InputError(path + ": its MTL file was not found (looked for " +
+                     (looked.empty() ? std::string("nothing: no file name after mtllib") : looked) +
+                     "). Fix: correct the \"mtllib\" line to the MTL's file name (relative to "
+                     "the OBJ's folder, case included), or copy the MTL there.");
+  }
+  for (const auto& m : reader.GetMaterials()) {
+    if (replaced && replaced->count(m.name)) {
+      Material placeholder;  // the including scene's material of this name takes its place
+      placeholder.name = m.name;
+      scene.materials.push_back(placeholder);
+      continue;
+    }
     scene.materials.push_back(mtlMaterial(m, path, warnings));
+  }
   std::vector<Vec3> all = objVertices(reader.GetAttrib());
   // Surface index by name: looked up once per face, so it must not be a scan (a scan per face
   // over the group's faces made a 80 000-face OBJ take minutes; found by fuzzing).
@@ -329,9 +382,14 @@ Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings) 
   std::vector<int> vertexMap(all.size(), -1);
   for (Surface& s : scene.surfaces) {
     if (s.material < 0)
-      throw InputError(s.source +
-                       " has no material (usemtl). Fix: assign a material with "
-                       "Kd (and Ke for emitters) in the MTL file.");
+      throw InputError(
+          s.source +
+          " has no material (usemtl). Fix: either give the OBJ an MTL file (\"mtllib\") and a "
+          "\"usemtl NAME\" before its faces, with Kd (and Ke for emitters) under \"newmtl "
+          "NAME\"; or leave the OBJ as it is and name it from a JSON scene, as a surface "
+          "{\"name\": ..., \"material\": ..., \"mesh\": \"" +
+          fs::path(path).filename().string() +
+          "\"} with the materials in the JSON (docs/bring-your-own-model.md)");
     compactVertices(all, s, vertexMap);
   }
   return scene;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "geometry/scene.h"
@@ -25,6 +26,10 @@ RawMesh readMeshFile(const std::string& path, bool repair = false);
 
 /// \brief Loads an OBJ with its MTL as a whole scene: each OBJ object or group is a named
 /// surface; MTL Kd becomes reflectance and Ke emission.
-Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings = nullptr);
+/// `replaced`: names of materials the including JSON scene defines itself; their MTL entries
+/// are neither checked nor warned about, so a JSON material can fix an MTL value radkit
+/// refuses (a window's Kd 1).
+Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings = nullptr,
+                   const std::unordered_set<std::string>* replaced = nullptr);
 
 }  // namespace radkit

@@ -1,5 +1,6 @@
 #include "geometry/mesh_structure.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -201,12 +202,13 @@ long long checkObj(const std::string& path, const Fail& fail, const std::string&
       }
       ++faces;
     } else if (t[0] == "mtllib") {
-      for (std::size_t k = 1; k < t.size(); ++k) {
-        const fs::path mtl = fs::path(path).parent_path() / t[k];
+      std::string rest;  // the tokens joined by one space: a name's single spaces survive
+      for (std::size_t k = 1; k < t.size(); ++k) rest += (k > 1 ? " " : "") + t[k];
+      for (const std::string& mtl : mtllibFiles(fs::path(path).parent_path().string(), rest)) {
         // A name the file system refuses (too long, say) is a missing MTL, reported by the
         // reader: the non-throwing overload keeps it from ending as a filesystem_error.
         std::error_code ec;
-        if (fs::exists(mtl, ec)) checkMtl(mtl.string());
+        if (fs::exists(mtl, ec)) checkMtl(mtl);
       }
     }
   }
@@ -217,6 +219,33 @@ long long checkObj(const std::string& path, const Fail& fail, const std::string&
 }
 
 }  // namespace
+
+std::vector<std::string> mtllibFiles(const std::string& objDir, const std::string& rest) {
+  std::string whole = rest;
+  while (!whole.empty() && std::isspace(static_cast<unsigned char>(whole.back()))) whole.pop_back();
+  std::size_t start = 0;
+  while (start < whole.size() && std::isspace(static_cast<unsigned char>(whole[start]))) ++start;
+  whole = whole.substr(start);
+  std::error_code ec;
+  if (!whole.empty() && fs::is_regular_file(fs::path(objDir) / whole, ec))
+    return {(fs::path(objDir) / whole).string()};
+  std::vector<std::string> names;
+  std::string name;
+  bool escaped = false;
+  for (char c : whole) {
+    if (escaped) {
+      name += c, escaped = false;
+    } else if (c == '\\') {
+      escaped = true;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      if (!name.empty()) names.push_back((fs::path(objDir) / name).string()), name.clear();
+    } else {
+      name += c;
+    }
+  }
+  if (!name.empty()) names.push_back((fs::path(objDir) / name).string());
+  return names;
+}
 
 void requireRegularFile(const std::string& path, const std::string& what) {
   std::error_code ec;

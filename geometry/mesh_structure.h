@@ -5,11 +5,18 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace radkit {
 
 /// Throws InputError naming path unless it is a regular file (FIFOs and devices hang readers).
 void requireRegularFile(const std::string& path, const std::string& what);
+
+/// The MTL files an OBJ line "mtllib REST" names, relative to `objDir`. REST is one file name
+/// when a file of that whole name exists (exporters write "mtllib 247_House 15_obj.mtl" for a
+/// name with a space); otherwise its whitespace-separated names, a backslash escaping the next
+/// character as tinyobjloader reads them.
+std::vector<std::string> mtllibFiles(const std::string& objDir, const std::string& rest);
 
 /// \brief Throws InputError naming path, the line or element, and the fix when an OBJ (and the
 ///        MTL files it names), OFF, PLY or STL file is malformed. Returns the number of faces

@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "geometry/json_reader.h"
 #include "geometry/mesh_reader.h"
@@ -211,7 +212,9 @@ void includeObj(const json& j, std::size_t index, Scene& scene, MaterialIndex& m
   Scene obj;
   try {
     requireRegularFile(objPath.string(), "included OBJ");
-    obj = loadObjScene(objPath.string());
+    std::unordered_set<std::string> defined;
+    for (const auto& entry : materialIndex) defined.insert(entry.first);
+    obj = loadObjScene(objPath.string(), nullptr, &defined);
   } catch (const InputError& e) {
     r.fail("includes an OBJ: " + std::string(e.what()));
   }
@@ -403,6 +406,62 @@ Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadRep
   return scene;
 }
 
+/// Whether a surface's geometry comes from a file format without units (STL, OBJ), where CAD
+/// exports in millimetres are common.
+bool fromUnitlessMesh(const Scene& scene, const Surface& s) {
+  const auto endsWith = [](const std::string& text, const char* tail) {
+    const std::string t = tail;
+    return text.size() >= t.size() && text.compare(text.size() - t.size(), t.size(), t) == 0;
+  };
+  std::string source = s.source;
+  std::transform(source.begin(), source.end(), source.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  std::string ext = fs::path(scene.file).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".obj" || (source.find("(mesh ") != std::string::npos &&
+                           (endsWith(source, ".stl)") || endsWith(source, ".obj)")));
+}
+
+/// A unitless mesh (STL, OBJ) over 10 m, alone or among room-sized surfaces, was probably
+/// written in millimetres: a 31 mm bolt read as metres is a 31 m bolt.
+void warnOnUnitlessGiants(const Scene& scene, LoadReport& report) {
+  if (scene.sky) return;  // a street or a landscape may hold large meshes
+  constexpr double kLargestObjectMetres = 10, kRoomMetres = 20;
+  const double unit = scene.metresPerUnit();
+  std::vector<double> extent(scene.surfaces.size());
+  for (std::size_t k = 0; k < scene.surfaces.size(); ++k) {
+    Bounds3 b;
+    for (const Vec3& v : scene.surfaces[k].vertices) b.extend(v);
+    const Vec3 size = (b.hi - b.lo) * unit;
+    extent[k] = std::max({size.x, size.y, size.z});
+  }
+  for (std::size_t k = 0; k < scene.surfaces.size(); ++k) {
+    const Surface& s = scene.surfaces[k];
+    if (extent[k] <= kLargestObjectMetres || !fromUnitlessMesh(scene, s)) continue;
+    Bounds3 rest;
+    bool others = false;
+    for (std::size_t j = 0; j < scene.surfaces.size(); ++j)
+      if (j != k && !fromUnitlessMesh(scene, scene.surfaces[j]))
+        for (const Vec3& v : scene.surfaces[j].vertices) rest.extend(v), others = true;
+    const Vec3 restSize = (rest.hi - rest.lo) * unit;
+    const double room = others ? std::max({restSize.x, restSize.y, restSize.z}) : 0;
+    if (others && !(room <= kRoomMetres && extent[k] > room)) continue;
+    char text[200];
+    std::snprintf(text, sizeof text, " spans %.4g m", extent[k]);
+    std::string where = others ? std::string(text) + " in a room " + formatNumber(room, 3) +
+                                     " m across"
+                               : std::string(text) + ", alone in the scene";
+    report.warnings.push_back(
+        s.source + where + ", read in " + scene.units +
+        ". STL and OBJ files carry no unit, and CAD exports are often in millimetres. Fix: if it "
+        "is in mm, give " +
+        (others ? std::string("its surface \"transform\": {\"scale\": 0.001} (or --units "
+                              "mm when the whole scene is in mm)")
+                : std::string("--units mm")) +
+        ".");
+  }
+}
+
 /// A scene whose extent is far from a room's or an object's was probably written in another
 /// unit than the one it is read in: areas and powers would be off by powers of 1000.
 void warnOnImplausibleSize(const Scene& scene, LoadReport& report) {
@@ -459,6 +518,7 @@ Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& 
   if (ext == ".obj" && !options.units.empty()) scene.units = options.units;
   validateScene(scene, out, options.repair);
   warnOnImplausibleSize(scene, out);
+  warnOnUnitlessGiants(scene, out);
   return scene;
 }
 

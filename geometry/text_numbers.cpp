@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "geometry/mesh_structure.h"
 #include "geometry/scene_loader.h"
 #include "geometry/structure_text.h"
 
@@ -65,7 +66,11 @@ void checkObjLike(std::istream& in, const Checker& check, const std::vector<std:
     ++n;
     const auto t = tokens(uncommented(line));
     if (t.empty()) continue;
-    if (mtllibs && t[0] == "mtllib") mtllibs->insert(mtllibs->end(), t.begin() + 1, t.end());
+    if (mtllibs && t[0] == "mtllib") {
+      std::string rest;
+      for (std::size_t k = 1; k < t.size(); ++k) rest += (k > 1 ? " " : "") + t[k];
+      mtllibs->push_back(rest);
+    }
     if (std::find(keys.begin(), keys.end(), t[0]) != keys.end()) check.numbers(t, 1, n);
   }
 }
@@ -138,8 +143,11 @@ void checkTextMeshNumbers(const std::string& path) {
   if (ext == ".obj") {
     std::vector<std::string> mtllibs;
     checkObjLike(in, check, {"v"}, &mtllibs);
-    for (const std::string& name : mtllibs) {
-      const fs::path mtl = fs::path(path).parent_path() / name;
+    std::vector<std::string> files;
+    for (const std::string& rest : mtllibs)
+      for (const std::string& f : mtllibFiles(fs::path(path).parent_path().string(), rest))
+        files.push_back(f);
+    for (const fs::path mtl : files) {
       std::error_code ec;
       if (!fs::is_regular_file(mtl, ec)) continue;  // the structure check names a pipe or folder
       std::ifstream mtlIn(mtl, std::ios::binary);

@@ -106,14 +106,14 @@ StoragePlan planStorage(const PatchMesh& mesh, const FormFactorSettings& setting
                     (estimated ? "at least " : "up to ") + formatBytes(double(plan.sparseBytes)) +
                     " (" + (estimated ? "at least " : "") + std::to_string(plan.facingPairs) +
                     " facing pairs" + (estimated ? ", estimated from 200000 sampled pairs" : "") +
-                    "). Fix: raise --memory-budget, " +
-                    "use fewer patches (--max-area larger or --patches smaller)";
+                    "). Fix: raise --memory-budget, " + kFewerPatchesFix;
   if (settings.precision == FormFactorPrecision::Double)
-    msg += ", or store F in single precision (--ff-storage float: dense " +
+    msg += "or store F in single precision (--ff-storage float: dense " +
            formatBytes(double(plan.denseBytes) / 2) + ", sparse " +
            (estimated ? "at least " : "up to ") +
            formatBytes(double(sparseBytes(n, plan.facingPairs, 4))) + ")";
-  throw MemoryBudgetError(msg);
+  if (msg.size() >= 2 && msg.compare(msg.size() - 2, 2, ", ") == 0) msg.resize(msg.size() - 2);
+  throw MemoryBudgetError(msg, n);
 }
 
 double formFactorAt(const FormFactorMatrix& f, int i, int j) {

@@ -14,10 +14,17 @@
 
 namespace radkit {
 
+/// The fix MemoryBudgetError's message offers for the patch count; a caller that knows the mesh
+/// is at its floor (one patch per input face) removes it.
+inline constexpr const char* kFewerPatchesFix =
+    "use fewer patches (--max-area larger or --patches smaller), ";
+
 /// Thrown when no storage fits the budget; the message names the options that would help.
 class MemoryBudgetError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  MemoryBudgetError(const std::string& message, int patches)
+      : std::runtime_error(message), patches(patches) {}
+  int patches;  ///< the mesh's patch count
 };
 
 /// The storage chosen for a run and the memory it needs.

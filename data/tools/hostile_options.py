@@ -39,10 +39,10 @@ def fixtures(radkit, work, data):
         shutil.copy(os.path.join(data, scene), fix)
     def run(*args):
         subprocess.run([radkit] + list(args), cwd=fix, check=True, capture_output=True, timeout=300)
-    run("run", "furnace.json", "--patches", "24", "--image-size", "16", "--out", "run-furnace")
-    run("run", "cube-one-emitter.json", "--patches", "24", "--image-size", "16", "--out", "run-cube")
+    run("run", "furnace.json", "--patches", "24", "--size", "16x16", "--out", "run-furnace")
+    run("run", "cube-one-emitter.json", "--patches", "24", "--size", "16x16", "--out", "run-cube")
     run("run", "furnace.json", "--method", "hierarchical", "--epsilon", "1e-2", "--hr-rays", "4",
-        "--image-size", "16", "--out", "run-hier")
+        "--size", "16x16", "--out", "run-hier")
     run("render", "furnace.json", "--shading", "radiosity", "--patches", "24", "--size", "16x16", "--out", "ref16.pfm")
     run("render", "furnace.json", "--shading", "radiosity", "--patches", "24", "--size", "32x32", "--out", "ref32.pfm")
     with open(os.path.join(fix, "notes.txt"), "w") as f:
@@ -109,7 +109,7 @@ COMMANDS = {
                  "--max-seconds": ["1e-300", "1e300"], "--residual-norm": NAMES + ["per-patch"], "--out": "folder"},
                 "folder"),
     "run": (["SCENE", "--patches", "24", "--no-render", "--out", "OUT"],
-            {"--image-size": ["15", "8193", "16"], "--adaptive-max-patches": ["0", "10000001", "30"],
+            {"--size": SIZES, "--image-size": ["15", "8193", "16"], "--adaptive-max-patches": ["0", "10000001", "30"],
              "--adaptive-tol": ["1e-300", "1e300"], "--adaptive-rounds": ["1000000", "2"], "--preset": NAMES + ["draft"],
              "--solvers": SOLVERS, "--tol": ["1e-300"], "--max-iterations": ["1"], "--method": NAMES,
              "--out": "folder", "--adaptive": None, "--photometric": None, "--smooth": None}, "folder"),
@@ -120,7 +120,8 @@ COMMANDS = {
                           "--gather": NAMES + ["gauss-seidel"], "--link-colour": NAMES + ["power"],
                           "--tol": ["1e-300", "1"], "--max-iterations": ["1", "2"], "--max-seconds": ["1e-300"],
                           "--patches": ["24"], "--solvers": ["jacobi"], "--preset": ["draft"],
-                          "--image-size": ["16", "0"], "--out": "folder", "--adaptive": None}, "folder"),
+                          "--size": SIZES, "--image-size": ["16", "0"], "--out": "folder", "--adaptive": None},
+                         "folder"),
     "render": (["SCENE", "--patches", "24", "--size", "16x16", "--spp", "1", "--photons", "2000", "--out", "OUT"],
                {"--shading": NAMES + ["radiosity", "phong", "cook-torrance", "path-trace", "photon-map", "final-gather"],
                 "--size": SIZES, "--spp": ["1048577", "1"], "--photons": ["1", "18446744073709551616"],
@@ -132,7 +133,7 @@ COMMANDS = {
     "photons": (["SCENE", "--patches", "24", "--photons", "2000", "--no-image", "--bench-rays", "0", "--out", "OUT"],
                 {"--photons": ["4000000001", "1"], "--k": ["1", "100001", "2"], "--filter": NAMES + ["cone"],
                  "--seed": ["-1"], "--gather": ["4097", "0"], "--view": NAMES + ["map"],
-                 "--image-size": ["15", "8193"], "--compare": ["COMPARE"], "--bench-rays": ["1000000001", "1"],
+                 "--size": SIZES, "--image-size": ["15", "8193"], "--compare": ["COMPARE"], "--bench-rays": ["1000000001", "1"],
                  "--out": "folder", "--no-radiosity": None}, "folder"),
     "view": (["RUN", "--screenshot", "OUT", "--size", "64x48"],
              {"RUN": ["RUN"], "--mode": ["formfactors-row:99999", "formfactors-row:-1", "formfactors-row:x",

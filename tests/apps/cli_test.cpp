@@ -159,7 +159,7 @@ TEST(RunCli, CornellBoxEveryOutput) {
   test::TempDir dir;
   auto r =
       runRadkit("run '" + dataPath("cornell-box.json") +
-                "' --patches 400 --photometric --image-size 128 --out '" + dir.path("run") + "'");
+                "' --patches 400 --photometric --size 128x128 --out '" + dir.path("run") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("energy balance"), std::string::npos);
   for (const char* f : {"patches.csv", "surfaces.csv", "surface_formfactors.csv", "radiosity.vtp",
@@ -183,7 +183,7 @@ TEST(RunCli, CornellBoxEveryOutput) {
 TEST(RunCli, CornellBoxRenderLayout) {
   test::TempDir dir;
   auto r = runRadkit("run '" + dataPath("cornell-box.json") +
-                     "' --patches 800 --image-size 128 --out '" + dir.path("run") + "'");
+                     "' --patches 800 --size 128x128 --out '" + dir.path("run") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   Canvas img = readPng(dir.path("run/render.png"));
   ASSERT_EQ(img.width(), 128);

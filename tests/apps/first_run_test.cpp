@@ -82,7 +82,7 @@ TEST(FirstRun, TwoPassModesSayWhenNoMaterialIsGlossy) {
 TEST(FirstRun, PhotonsReportHasTheLoadWarnings) {
   test::TempDir dir;
   auto r = runRadkit("photons '" + dataPath("cornell-box.json") +
-                     "' --photons 20000 --gather 4 --image-size 16 --bench-rays 1000 --patches 60 "
+                     "' --photons 20000 --gather 4 --size 16x16 --bench-rays 1000 --patches 60 "
                      "--out '" +
                      dir.path("ph") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;

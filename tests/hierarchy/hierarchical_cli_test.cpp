@@ -18,7 +18,7 @@ TEST(HierarchicalCli, CornellBoxWritesEveryOutput) {
   TempDir dir;
   std::string out = dir.path("run");
   RunResult r = runRadkit("run " + dataPath("cornell-box.json") +
-                          " --method hierarchical --image-size 64 --out " + out);
+                          " --method hierarchical --size 64x64 --out " + out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const char* f : {"patches.csv", "surfaces.csv", "radiosity.vtp", "convergence.csv",
                         "convergence.png", "report.json", "render.png", "links.png"})

@@ -38,7 +38,7 @@ std::map<std::string, std::map<std::string, std::string>> readCsvByKey(const std
 }
 
 const std::string kQuick =
-    " --photons 100000 --gather 8 --image-size 64 --bench-rays 10000 --max-area 0.05";
+    " --photons 100000 --gather 8 --size 64x64 --bench-rays 10000 --max-area 0.05";
 
 TEST(PhotonsCommand, ConstructWritesEveryFile) {
   test::TempDir dir;
@@ -77,7 +77,7 @@ TEST(PhotonsCommand, ExactSameOutputForSameSeed) {
   test::TempDir dir;
   const std::string args =
       "photons '" + dataPath("cornell-box-specular.json") +
-      "' --photons 20000 --gather 4 --image-size 32 --bench-rays 0 --no-radiosity --patches 200";
+      "' --photons 20000 --gather 4 --size 32x32 --bench-rays 0 --no-radiosity --patches 200";
   ASSERT_EQ(runRadkit(args + " --out '" + dir.path("a") + "'").exitCode, 0);
   ASSERT_EQ(runRadkit(args + " --out '" + dir.path("b") + "'").exitCode, 0);
   EXPECT_EQ(readText(dir.path("a/patches.csv")), readText(dir.path("b/patches.csv")));

@@ -1,0 +1,187 @@
+// A user's own model, as real files come: an MTL whose name has a space, an MTL value only a
+// JSON material can fix, a mesh too large for the dense method, a bare OBJ, a CAD STL in
+// millimetres. Each input has the shape of a public file that failed
+// (docs/bring-your-own-model.md).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <utility>
+#include <sstream>
+#include <string>
+
+#include "tests/common/test_util.h"
+
+namespace radkit {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runRadkit;
+
+/// A box's six faces as OBJ text, side `s`, vertex numbers starting at `base` + 1.
+std::string objBox(double s, int base) {
+  std::ostringstream o;
+  for (int k = 0; k < 8; ++k)
+    o << "v " << (k & 1 ? s : 0.0) << " " << (k & 2 ? s : 0.0) << " " << (k & 4 ? s : 0.0) << "\n";
+  const int f[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5},
+                       {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+  for (const auto& q : f)
+    o << "f " << q[0] + base << " " << q[1] + base << " " << q[2] + base << " " << q[3] + base
+      << "\n";
+  return o.str();
+}
+
+TEST(OwnModel, AnMtlNameWithASpaceIsRead) {
+  // An exporter wrote "mtllib 247_House 15_obj.mtl": tinyobjloader splits at the space.
+  test::TempDir dir;
+  dir.file("247_House 15_obj.mtl",
+           "newmtl wall\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
+  const std::string obj = dir.file(
+      "247_House 15_obj.obj", "mtllib 247_House 15_obj.mtl\no house\nusemtl wall\n" +
+                                  objBox(1, 0) + "o lamp\nusemtl lamp\nv 0.4 0.4 0.9\n" +
+                                  "v 0.6 0.4 0.9\nv 0.6 0.6 0.9\nv 0.4 0.6 0.9\nf 9 10 11 12\n");
+  auto r = runRadkit("mesh '" + obj + "' --out '" + dir.path("o") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("materials: 2"), std::string::npos) << r.output;
+  // A missing MTL names the path it looked for.
+  fs::remove(dir.path("247_House 15_obj.mtl"));
+  r = runRadkit("mesh '" + obj + "' --out '" + dir.path("o2") + "'");
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("looked for"), std::string::npos) << r.output;
+}
+
+TEST(OwnModel, AJsonMaterialFixesAnMtlValueRadkitRefuses) {
+  // Sponza's MTL gives a window Kd 1: refused as an MTL value, fixable from JSON.
+  test::TempDir dir;
+  dir.file("sponza.mtl", "newmtl stone\nKd 0.5 0.5 0.5\nnewmtl window\nKd 1 1 1\n");
+  dir.file("sponza.obj", "mtllib sponza.mtl\no hall\nusemtl stone\n" + objBox(2, 0) +
+                             "o glass\nusemtl window\nv 0.5 0.5 1\nv 1.5 0.5 1\nv 1.5 1.5 1\n"
+                             "f 9 10 11\n");
+  const std::string bare = dir.file(
+      "bare.json", R"({"materials": {"lamp": {"reflectance": [0,0,0], "emission": [5,5,5]}},
+        "surfaces": [{"include": "sponza.obj"},
+          {"name": "lamp", "material": "lamp", "polygon": [[0.8,0.8,1.9],[1.2,0.8,1.9],[1.2,1.2,1.9],[0.8,1.2,1.9]]}]})");
+  auto r = runRadkit("mesh '" + bare + "' --out '" + dir.path("a") + "'");
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("window"), std::string::npos) << r.output;
+  const std::string fixed = dir.file(
+      "fixed.json", R"({"materials": {"lamp": {"reflectance": [0,0,0], "emission": [5,5,5]},
+                     "window": {"reflectance": [0.8,0.8,0.8]}},
+        "surfaces": [{"include": "sponza.obj"},
+          {"name": "lamp", "material": "lamp", "polygon": [[0.8,0.8,1.9],[1.2,0.8,1.9],[1.2,1.2,1.9],[0.8,1.2,1.9]]}]})");
+  r = runRadkit("mesh '" + fixed + "' --out '" + dir.path("b") + "'");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+TEST(OwnModel, ABareObjIsToldBothRoutes) {
+  test::TempDir dir;
+  const std::string obj = dir.file("scan.obj", objBox(1, 0));
+  const auto r = runRadkit("mesh '" + obj + "' --out '" + dir.path("o") + "'");
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("usemtl"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"mesh\": \"scan.obj\""), std::string::npos) << r.output;
+}
+
+TEST(OwnModel, ADenseRunAtItsPatchFloorNamesTheHierarchicalMethod) {
+  // Two 2 048-triangle grids facing each other: with 1 MiB for F, fewer patches cannot help.
+  test::TempDir dir;
+  std::ostringstream off;
+  const int n = 32;
+  off << "OFF\n" << (n + 1) * (n + 1) << " " << 2 * n * n << " 0\n";
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) off << double(x) / n << " " << double(y) / n << " 0\n";
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int a = y * (n + 1) + x, b = a + 1, c = a + n + 2, d = a + n + 1;
+      off << "3 " << a << " " << b << " " << c << "\n3 " << a << " " << c << " " << d << "\n";
+    }
+  dir.file("grid.off", off.str());
+  const std::string scene = dir.file(
+      "s.json", R"({"materials": {"grey": {"reflectance": [0.5,0.5,0.5]},
+                                  "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}},
+        "surfaces": [{"name": "floor", "material": "grey", "mesh": "grid.off"},
+          {"name": "ceiling", "material": "grey", "mesh": "grid.off", "reverse": true,
+           "transform": {"translate": [0, 0, 1]}},
+          {"name": "lamp", "material": "lamp", "polygon": [[0.4,0.4,0.5],[0.6,0.4,0.5],[0.6,0.6,0.5],[0.4,0.6,0.5]]}]})");
+  const auto r = runRadkit("run '" + scene + "' --patches 10 --memory-budget 1MiB --no-render --out '" +
+                           dir.path("o") + "'");
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("at its floor"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--method hierarchical"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir.path("o")));
+}
+
+/// An ASCII STL of an axis-aligned box `w` long in x (a bolt's bounding shape).
+std::string stlBox(double w) {
+  std::ostringstream o;
+  o << "solid bolt\n";
+  const double v[8][3] = {{0, 0, 0}, {w, 0, 0}, {0, 8, 0}, {w, 8, 0},
+                          {0, 0, 8}, {w, 0, 8}, {0, 8, 8}, {w, 8, 8}};
+  const int t[12][3] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                        {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  for (const auto& f : t) {
+    o << "facet normal 0 0 0\nouter loop\n";
+    for (int k : f) o << "vertex " << v[k][0] << " " << v[k][1] << " " << v[k][2] << "\n";
+    o << "endloop\nendfacet\n";
+  }
+  return o.str() + "endsolid bolt\n";
+}
+
+TEST(OwnModel, ACadStlInMillimetresIsNamedWhenReadAsMetres) {
+  test::TempDir dir;
+  dir.file("bolt.stl", stlBox(31));  // 31 × 8 × 8 mm
+  const std::string room = dir.file(
+      "room.json", R"({"materials": {"steel": {"reflectance": [0.5,0.5,0.5]},
+                                     "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}},
+        "surfaces": [{"name": "bolt", "material": "steel", "mesh": "bolt.stl"},
+          {"name": "lamp", "material": "lamp", "polygon": [[0,0,3],[0,4,3],[4,4,3],[4,0,3]]},
+          {"name": "floor", "material": "steel", "polygon": [[0,0,0],[4,0,0],[4,4,0],[0,4,0]]}]})");
+  auto r = runRadkit("mesh '" + room + "' --out '" + dir.path("a") + "'");
+  EXPECT_NE(r.output.find("bolt.stl"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"scale\": 0.001"), std::string::npos) << r.output;
+  // Scaled to millimetres it is a bolt, and nothing is said.
+  const std::string fixedRoom = dir.file(
+      "fixed.json", R"({"materials": {"steel": {"reflectance": [0.5,0.5,0.5]},
+                                     "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}},
+        "surfaces": [{"name": "bolt", "material": "steel", "mesh": "bolt.stl", "transform": {"scale": 0.001}},
+          {"name": "lamp", "material": "lamp", "polygon": [[0,0,3],[0,4,3],[4,4,3],[4,0,3]]},
+          {"name": "floor", "material": "steel", "polygon": [[0,0,0],[4,0,0],[4,4,0],[0,4,0]]}]})");
+  r = runRadkit("mesh '" + fixedRoom + "' --out '" + dir.path("b") + "'");
+  EXPECT_EQ(r.output.find("carry no unit"), std::string::npos) << r.output;
+  // Alone in its scene, the fix is --units mm.
+  const std::string lone = dir.file(
+      "lone.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
+        "surfaces": [{"name": "bolt", "material": "lamp", "mesh": "bolt.stl"}]})");
+  r = runRadkit("mesh '" + lone + "' --out '" + dir.path("c") + "'");
+  EXPECT_NE(r.output.find("--units mm"), std::string::npos) << r.output;
+  r = runRadkit("mesh '" + lone + "' --units mm --out '" + dir.path("d") + "'");
+  EXPECT_EQ(r.output.find("carry no unit"), std::string::npos) << r.output;
+}
+
+/// Width and height from a PNG's IHDR chunk.
+std::pair<int, int> pngSize(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char h[24] = {};
+  in.read(reinterpret_cast<char*>(h), 24);
+  auto be = [&](int at) { return (h[at] << 24) | (h[at + 1] << 16) | (h[at + 2] << 8) | h[at + 3]; };
+  return {be(16), be(20)};
+}
+
+TEST(OwnModel, RunTakesRendersSizeSpellingAndKeepsTheOldOne) {
+  test::TempDir dir;
+  const std::string box = test::dataPath("cornell-box.json");
+  auto r = runRadkit("run '" + box + "' --patches 60 --size 40x24 --out '" + dir.path("a") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(pngSize(dir.path("a/render.png")), std::make_pair(40, 24));
+  r = runRadkit("run '" + box + "' --patches 60 --image-size 32 --out '" + dir.path("b") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("--image-size is deprecated: use --size 32x32"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(pngSize(dir.path("b/render.png")), std::make_pair(32, 32));
+  r = runRadkit("run '" + box + "' --patches 60 --size 40x24 --image-size 32 --out '" +
+                dir.path("c") + "'");
+  EXPECT_NE(r.exitCode, 0) << r.output;
+}
+
+}  // namespace
+}  // namespace radkit
