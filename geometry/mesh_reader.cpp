@@ -18,6 +18,7 @@
 #include <unordered_map>
 
 #include "geometry/mesh_structure.h"
+#include "geometry/openmesh_errors.h"
 #include "geometry/scene_loader.h"
 #include "geometry/structure_text.h"
 #include "geometry/text_numbers.h"
@@ -40,22 +41,6 @@ std::string lowerExtension(const std::string& path) {
                  [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
-
-/// Routes OpenMesh's error stream into a string for the duration of a read, so its
-/// complaints become part of our message instead of stray console lines. Swaps the stream's
-/// buffer: OpenMesh's disconnect() never frees the target that connect() allocated.
-class CapturedOpenMeshErrors {
- public:
-  CapturedOpenMeshErrors() : m_saved(omerr().rdbuf(&m_text)) {}
-  ~CapturedOpenMeshErrors() { omerr().rdbuf(m_saved); }
-  CapturedOpenMeshErrors(const CapturedOpenMeshErrors&) = delete;
-  CapturedOpenMeshErrors& operator=(const CapturedOpenMeshErrors&) = delete;
-  std::string text() const { return m_text.str(); }
-
- private:
-  std::stringbuf m_text;
-  std::streambuf* m_saved;
-};
 
 /// OpenMesh gives a face that cannot join the surface manifoldly (wound against a neighbour,
 /// or a third face on an edge) its own copies of the vertices and marks it. Such faces get the

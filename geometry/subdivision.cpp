@@ -15,6 +15,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "geometry/openmesh_errors.h"
 #include "geometry/scene_loader.h"
 
 namespace radkit {
@@ -34,6 +35,8 @@ struct SurfaceTopology {
   PolyMesh mesh;
   std::vector<int> edgeClass;       ///< class of each edge
   std::vector<double> classLength;  ///< longest edge of each class
+  std::size_t detachedFaces = 0;    ///< faces that joined their neighbours at no vertex
+  std::size_t firstDetached = 0;    ///< the first of them (input face index)
 };
 
 int findRoot(std::vector<int>& parent, int i) {
@@ -43,6 +46,9 @@ int findRoot(std::vector<int>& parent, int i) {
 
 SurfaceTopology buildTopology(const Surface& s) {
   SurfaceTopology t;
+  // OpenMesh writes "PolyMeshT::add_face: complex edge" for each face it refuses; the count is
+  // reported by subdivide() in radkit's words instead.
+  const CapturedOpenMeshErrors quiet;
   std::vector<PolyMesh::VertexHandle> vh;
   for (const Vec3& v : s.vertices) vh.push_back(t.mesh.add_vertex({v.x, v.y, v.z}));
   for (const Face& f : s.faces) {
@@ -51,6 +57,7 @@ SurfaceTopology buildTopology(const Surface& s) {
     // Faces meeting only at a vertex (a "complex vertex") cannot join the halfedge mesh;
     // such a face gets its own copies of the vertices and joins its neighbours at none.
     if (!t.mesh.add_face(fv).is_valid()) {
+      if (t.detachedFaces++ == 0) t.firstDetached = std::size_t(&f - s.faces.data());
       for (auto& h : fv) h = t.mesh.add_vertex(t.mesh.point(h));
       if (!t.mesh.add_face(fv).is_valid())
         throw std::runtime_error(s.source + ": cannot build the surface mesh");
@@ -318,6 +325,15 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings,
   std::vector<SurfaceTopology> tops;
   for (const Surface& s : scene.surfaces) {
     tops.push_back(buildTopology(s));
+    if (warnings && tops.back().detachedFaces > 0)
+      warnings->push_back(
+          s.source + ": " + std::to_string(tops.back().detachedFaces) + " of its " +
+          std::to_string(s.faces.size()) + " faces (the first is face " +
+          std::to_string(tops.back().firstDetached) +
+          ") touch their neighbours where a surface cannot pass (a vertex where two fans meet, "
+          "or an edge of more than two faces: OpenMesh's \"complex vertex\" or \"complex "
+          "edge\"); each is split into patches on its own, so no face is lost, but patch edges "
+          "there need not line up. Fix: --repair cuts such vertices and edges apart.");
     for (double len : tops.back().classLength)
       if (!std::isfinite(len))
         throw InputError(s.source +

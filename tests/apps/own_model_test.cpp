@@ -158,6 +158,26 @@ TEST(OwnModel, ACadStlInMillimetresIsNamedWhenReadAsMetres) {
   EXPECT_EQ(r.output.find("carry no unit"), std::string::npos) << r.output;
 }
 
+TEST(OwnModel, FacesOpenMeshCannotJoinAreReportedInRadkitsWords) {
+  // A closed fan around a vertex and one more face touching only that vertex: OpenMesh printed
+  // "PolyMeshT::add_face: complex vertex" with no file or face.
+  test::TempDir dir;
+  dir.file("fan.obj",
+           "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nv 0 0.3 1\nv 0.3 0 1\n"
+           "f 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 2\nf 1 7 6\n");
+  const std::string scene = dir.file(
+      "s.json", R"({"materials": {"grey": {"reflectance": [0.5,0.5,0.5]},
+                                  "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}},
+        "surfaces": [{"name": "fan", "material": "grey", "mesh": "fan.obj"},
+          {"name": "lamp", "material": "lamp", "polygon": [[-1,-1,4],[-1,1,4],[1,1,4],[1,-1,4]]}]})");
+  const auto r = runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("PolyMeshT"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("fan.obj): 1 of its 5 faces (the first is face 4)"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("input faces: 6"), std::string::npos) << "a face was lost\n" << r.output;
+}
+
 /// Width and height from a PNG's IHDR chunk.
 std::pair<int, int> pngSize(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
