@@ -6,9 +6,11 @@
 #include <tiny_obj_loader.h>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <stb/stb_image.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -263,13 +265,91 @@ namespace {
 /// the diffuse albedo, Ke the emission in W/m², Ks and Ns a glossy Phong lobe; Ka (ambient
 /// colour) has no physical meaning and is ignored. Each assumption is a warning naming the
 /// material.
+/// sRGB-encoded value in [0, 1] to linear light (IEC 61966-2-1).
+double srgbToLinear(double c) {
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+/// The mean linear colour of an image file, or nullopt with `why` when it cannot be read.
+/// 8-bit images are sRGB-decoded per pixel before averaging; HDR (.hdr) is already linear.
+std::optional<Vec3> meanTextureColour(const fs::path& file, std::string& why) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) {
+    why = "no such file";
+    return std::nullopt;
+  }
+  const std::string name = file.string();
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info(name.c_str(), &w, &h, &channels)) {
+    why = std::string("not an image stb_image reads (") + stbi_failure_reason() + ")";
+    return std::nullopt;
+  }
+  // Checked before decoding: a header may declare any size.
+  if (w <= 0 || h <= 0 || w > 32768 || h > 32768 || double(w) * h > double(1 << 26)) {
+    why = std::to_string(w) + "x" + std::to_string(h) + " pixels, over the 2^26 read";
+    return std::nullopt;
+  }
+  Vec3 sum{0, 0, 0};
+  const std::size_t n = std::size_t(w) * std::size_t(h);
+  if (stbi_is_hdr(name.c_str())) {
+    float* px = stbi_loadf(name.c_str(), &w, &h, &channels, 3);
+    if (!px) {
+      why = stbi_failure_reason();
+      return std::nullopt;
+    }
+    for (std::size_t k = 0; k < n; ++k) sum += Vec3{px[3 * k], px[3 * k + 1], px[3 * k + 2]};
+    stbi_image_free(px);
+  } else {
+    unsigned char* px = stbi_load(name.c_str(), &w, &h, &channels, 3);
+    if (!px) {
+      why = stbi_failure_reason();
+      return std::nullopt;
+    }
+    double table[256];
+    for (int v = 0; v < 256; ++v) table[v] = srgbToLinear(v / 255.0);
+    for (std::size_t k = 0; k < n; ++k)
+      sum += Vec3{table[px[3 * k]], table[px[3 * k + 1]], table[px[3 * k + 2]]};
+    stbi_image_free(px);
+  }
+  const Vec3 mean = sum * (1.0 / double(n));
+  if (!isFinite(mean)) {
+    why = "its pixels are not finite";
+    return std::nullopt;
+  }
+  return mean;
+}
+
 Material mtlMaterial(const tinyobj::material_t& m, const std::string& path,
                      std::vector<std::string>* warnings) {
   auto warn = [&](const std::string& what) {
     if (warnings) warnings->push_back(path + ": MTL material \"" + m.name + "\": " + what);
   };
-  const Vec3 kd{m.diffuse[0], m.diffuse[1], m.diffuse[2]},
-      ks{m.specular[0], m.specular[1], m.specular[2]};
+  Vec3 kd{m.diffuse[0], m.diffuse[1], m.diffuse[2]};
+  const Vec3 ks{m.specular[0], m.specular[1], m.specular[2]};
+  if (!m.diffuse_texname.empty()) {
+    // Radiosity gives a patch one colour: a diffuse texture becomes its mean colour.
+    std::string texture = m.diffuse_texname;
+    std::replace(texture.begin(), texture.end(), '\\', '/');  // Windows exporters
+    const fs::path file = fs::path(path).parent_path() / texture;
+    std::string why;
+    if (const std::optional<Vec3> mean = meanTextureColour(file, why)) {
+      Vec3 capped = *mean;
+      for (int c = 0; c < 3; ++c) capped[c] = std::min(capped[c], kMaxTextureReflectance);
+      warn("map_Kd " + m.diffuse_texname + " read as its mean linear colour (" +
+           formatNumber(capped.x, 3) + ", " + formatNumber(capped.y, 3) + ", " +
+           formatNumber(capped.z, 3) + ") for the diffuse reflectance in place of Kd (" +
+           formatNumber(kd.x, 3) + ", " + formatNumber(kd.y, 3) + ", " + formatNumber(kd.z, 3) +
+           "): radiosity gives a patch one colour" +
+           (maxComponent(*mean) > kMaxTextureReflectance
+                ? std::string(", capped at ") + formatNumber(kMaxTextureReflectance) +
+                      " (a white texture would reflect all light)"
+                : std::string()));
+      kd = capped;
+    } else {
+      warn("map_Kd " + m.diffuse_texname + " cannot be read (" + file.string() + ": " + why +
+           "): Kd kept");
+    }
+  }
   const Vec3 ka{m.ambient[0], m.ambient[1], m.ambient[2]};
   Material mat;
   mat.name = m.name;

@@ -26,6 +26,9 @@ RawMesh readMeshFile(const std::string& path, bool repair = false);
 
 /// \brief Loads an OBJ with its MTL as a whole scene: each OBJ object or group is a named
 /// surface; MTL Kd becomes reflectance and Ke emission.
+/// A diffuse texture (map_Kd) gives the reflectance its mean linear colour, at most this.
+inline constexpr double kMaxTextureReflectance = 0.99;
+
 /// `replaced`: names of materials the including JSON scene defines itself; their MTL entries
 /// are neither checked nor warned about, so a JSON material can fix an MTL value radkit
 /// refuses (a window's Kd 1).

@@ -178,6 +178,42 @@ TEST(OwnModel, FacesOpenMeshCannotJoinAreReportedInRadkitsWords) {
   EXPECT_NE(r.output.find("input faces: 6"), std::string::npos) << "a face was lost\n" << r.output;
 }
 
+TEST(OwnModel, ADiffuseTextureGivesItsMeanLinearColour) {
+  // A 2×2 binary PPM: red, green, blue and sRGB grey 128 (linear 0.2158605).
+  test::TempDir dir;
+  const unsigned char px[12] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128};
+  dir.file("tex.ppm", "P6\n2 2\n255\n" + std::string(reinterpret_cast<const char*>(px), 12));
+  dir.file("m.mtl",
+           "newmtl painted\nKd 0.5 0.5 0.5\nmap_Kd tex.ppm\n"
+           "newmtl lost\nKd 0.25 0.25 0.25\nmap_Kd textures\\missing.png\n"
+           "newmtl lamp\nKd 0 0 0\nKe 1 1 1\n");
+  const std::string obj = dir.file(
+      "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 3 0 0\nv 3 1 0\n"
+               "v 0 0 1\nv 0 1 1\nv 1 1 1\n"
+               "o painted\nusemtl painted\nf 1 2 3 4\no lost\nusemtl lost\nf 5 6 7\n"
+               "o lamp\nusemtl lamp\nf 8 10 9\n");
+  const auto r = runRadkit("mesh '" + obj + "' --out '" + dir.path("o") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("map_Kd tex.ppm read as its mean linear colour"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("missing.png cannot be read"), std::string::npos) << r.output;
+  const double grey = 0.2158605001138992;  // ((128/255 + 0.055)/1.055)^2.4
+  const double mean = (1 + grey) / 4;
+  bool painted = false, lost = false;
+  for (auto& row : test::readCsv(dir.path("o/patches.csv"))) {
+    if (row["surface"] == "painted") {
+      painted = true;
+      EXPECT_NEAR(std::stod(row["rho_r"]), mean, 1e-12);
+      EXPECT_NEAR(std::stod(row["rho_g"]), mean, 1e-12);
+      EXPECT_NEAR(std::stod(row["rho_b"]), mean, 1e-12);
+    } else if (row["surface"] == "lost") {
+      lost = true;
+      EXPECT_EQ(std::stod(row["rho_r"]), 0.25);  // Kd kept
+    }
+  }
+  EXPECT_TRUE(painted && lost);
+}
+
 /// Width and height from a PNG's IHDR chunk.
 std::pair<int, int> pngSize(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
