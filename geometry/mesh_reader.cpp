@@ -139,6 +139,8 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool 
     raw.faces.push_back(std::move(face));
   }
   if (!refused.empty()) restoreFileVertices(raw, refused);
+  if (lowerExtension(path) == ".ply" && raw.faces.empty())
+    for (std::vector<int>& t : plyStripTriangles(path)) raw.faces.push_back(Face{std::move(t)});
   if (repeatedVertex && declaredFaces > (long long)raw.faces.size())
     raw.droppedFaces = declaredFaces - raw.faces.size();
   return raw;

@@ -255,6 +255,26 @@ void requireRegularFile(const std::string& path, const std::string& what) {
                      "Fix: give the path of a file.");
 }
 
+std::vector<std::vector<int>> plyStripTriangles(const std::string& path) {
+  std::vector<long long> strips;
+  checkPly(Fail(path), readAll(path), &strips);
+  std::vector<std::vector<int>> triangles;
+  std::vector<int> strip;
+  for (long long index : strips) {
+    if (index >= 0) {
+      strip.push_back(int(index));
+      continue;
+    }
+    for (std::size_t k = 2; k < strip.size(); ++k) {
+      const int a = strip[k - 2], b = strip[k - 1], c = strip[k];
+      if (a == b || b == c || a == c) continue;  // a join between strips
+      triangles.push_back(k % 2 == 0 ? std::vector<int>{a, b, c} : std::vector<int>{b, a, c});
+    }
+    strip.clear();
+  }
+  return triangles;
+}
+
 long long checkMeshStructure(const std::string& path) {
   requireRegularFile(path, "mesh file");
   const std::string ext = lower(fs::path(path).extension().string());

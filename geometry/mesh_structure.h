@@ -18,6 +18,11 @@ void requireRegularFile(const std::string& path, const std::string& what);
 /// character as tinyobjloader reads them.
 std::vector<std::string> mtllibFiles(const std::string& objDir, const std::string& rest);
 
+/// The triangles of a PLY's "tristrips" element (OpenMesh reads none of them): each strip
+/// a, b, c, d, ... gives (a, b, c), (c, b, d), ... alternating so all share one winding; -1
+/// restarts a strip, and the degenerate triangles strips use as joins are dropped.
+std::vector<std::vector<int>> plyStripTriangles(const std::string& path);
+
 /// \brief Throws InputError naming path, the line or element, and the fix when an OBJ (and the
 ///        MTL files it names), OFF, PLY or STL file is malformed. Returns the number of faces
 ///        the file declares (OFF, PLY, STL), or -1 where it declares none (OBJ).

@@ -86,9 +86,15 @@ bool isFaceIndexList(const PlyElement& e, const PlyProperty& p) {
          (p.name == "vertex_indices" || p.name == "vertex_index");
 }
 
+/// Triangle strips (Stanford's igea.ply and other range scans): index lists where -1 restarts.
+bool isStripIndexList(const PlyElement& e, const PlyProperty& p) {
+  return e.name == "tristrips" && p.countSize > 0 &&
+         (p.name == "vertex_indices" || p.name == "vertex_index");
+}
+
 void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, long line,
                   const std::string& format, const std::vector<PlyElement>& elements,
-                  long long vertices) {
+                  long long vertices, std::vector<long long>* strips) {
   const bool ascii = format == "ascii";
   TokenCursor tokens(text, pos, line);
   BinaryCursor bytes(text, pos, format == "binary_big_endian");
@@ -101,7 +107,8 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
              std::to_string(e.line) + ")." + kTruncated);
       };
       for (const PlyProperty& p : e.properties) {
-        const bool indices = isFaceIndexList(e, p);
+        const bool strip = isStripIndexList(e, p);
+        const bool indices = isFaceIndexList(e, p) || strip;
         long long n = 1;
         if (p.countSize > 0) {
           if (ascii) {
@@ -114,7 +121,7 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
             if (!bytes.has(p.countSize)) truncated();
             n = bytes.integer(p.countSize);
           }
-          if (indices) checkFaceSize(fail, ascii ? tokens.line() : 0, row, n);
+          if (indices && !strip) checkFaceSize(fail, ascii ? tokens.line() : 0, row, n);
         }
         if (!ascii) {
           if (!bytes.has(double(n) * p.size)) truncated();
@@ -133,15 +140,21 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
             index = bytes.integer(p.size);
             if (p.isSigned && index >= (1LL << (8 * p.size - 1))) index -= 1LL << (8 * p.size);
           }
+          if (strip && index == -1) {  // a restart
+            if (strips) strips->push_back(-1);
+            continue;
+          }
           if (indices) checkIndex(fail, ascii ? tokens.line() : 0, row, index, vertices);
+          if (strip && strips) strips->push_back(index);
         }
+        if (strip && strips) strips->push_back(-1);  // each row is its own strip
       }
     }
 }
 
 }  // namespace
 
-long long checkPly(const Fail& fail, const std::string& text) {
+long long checkPly(const Fail& fail, const std::string& text, std::vector<long long>* strips) {
   Lines lines(text);
   std::string line;
   if (!lines.next(line) || line != "ply") fail.at(1, "a PLY file starts with the line 'ply'.");
@@ -185,7 +198,8 @@ long long checkPly(const Fail& fail, const std::string& text) {
                 "unknown property type. Fix: use char, uchar, short, ushort, int, uint, float or "
                 "double "
                 "(an integer type for a list's count).");
-      if (isFaceIndexList(elements.back(), p) && p.isFloat)
+      if ((isFaceIndexList(elements.back(), p) || isStripIndexList(elements.back(), p)) &&
+          p.isFloat)
         fail.at(n, "vertex indices must have an integer type.");
       elements.back().properties.push_back(p);
     } else {
@@ -210,7 +224,7 @@ long long checkPly(const Fail& fail, const std::string& text) {
     if (e.name == "vertex") vertices = e.count;
     if (e.name == "face") faces = e.count;
   }
-  checkPlyBody(fail, text, lines.pos(), lines.number() + 1, format, elements, vertices);
+  checkPlyBody(fail, text, lines.pos(), lines.number() + 1, format, elements, vertices, strips);
   return faces;
 }
 

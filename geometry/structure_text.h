@@ -131,6 +131,8 @@ inline void checkFaceSize(const Fail& fail, long line, long long face, long long
 }
 
 /// The PLY check (ply_structure.cpp): returns the face count the header declares.
-long long checkPly(const Fail& fail, const std::string& text);
+/// `strips`: when given, the vertex indices of a "tristrips" element, each strip ended by -1.
+long long checkPly(const Fail& fail, const std::string& text,
+                   std::vector<long long>* strips = nullptr);
 
 }  // namespace radkit::structure

@@ -214,6 +214,48 @@ TEST(OwnModel, ADiffuseTextureGivesItsMeanLinearColour) {
   EXPECT_TRUE(painted && lost);
 }
 
+/// A PLY whose surface is given as triangle strips (as Stanford's igea.ply): 8 vertices, one
+/// row "3 0 4 1 5 2 -1 6 3 7" (two strips), in ASCII or binary little-endian.
+std::string stripPly(bool binary) {
+  const float v[8][3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0},
+                         {1, 1, 0}, {2, 1, 0}, {0, 3, 0}, {1, 3, 0}};
+  const int strip[10] = {3, 0, 4, 1, 5, 2, -1, 6, 3, 7};
+  std::string out = std::string("ply\nformat ") + (binary ? "binary_little_endian" : "ascii") +
+                    " 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+                    "property float z\nelement tristrips 1\nproperty list int int "
+                    "vertex_indices\nend_header\n";
+  if (!binary) {
+    std::ostringstream o;
+    for (const auto& p : v) o << p[0] << " " << p[1] << " " << p[2] << "\n";
+    o << 10;
+    for (int i : strip) o << " " << i;
+    return out + o.str() + "\n";
+  }
+  out.append(reinterpret_cast<const char*>(v), sizeof v);  // x86: little-endian already
+  const int count = 10;
+  out.append(reinterpret_cast<const char*>(&count), 4);
+  out.append(reinterpret_cast<const char*>(strip), sizeof strip);
+  return out;
+}
+
+TEST(OwnModel, TriangleStripsOfAPlyAreRead) {
+  // OpenMesh reads no "tristrips" element: igea.ply loaded as a mesh without faces.
+  for (bool binary : {false, true}) {
+    SCOPED_TRACE(binary ? "binary" : "ascii");
+    test::TempDir dir;
+    dir.file("strip.ply", stripPly(binary));
+    const std::string scene = dir.file(
+        "s.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
+          "surfaces": [{"name": "m", "material": "lamp", "mesh": "strip.ply"}]})");
+    const auto r = runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    // Four triangles of 0.5 m² from the first strip, one of 1 m² from the second, one winding.
+    EXPECT_NE(r.output.find("input faces: 5"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("total area: 3 m²"), std::string::npos) << r.output;
+    for (auto& row : test::readCsv(dir.path("o/patches.csv"))) EXPECT_EQ(row["nz"], "1");
+  }
+}
+
 /// Width and height from a PNG's IHDR chunk.
 std::pair<int, int> pngSize(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
