@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -103,10 +104,48 @@ std::vector<Vec3> readPolygon(ObjectReader& r, const json& j, const std::string&
   return points;
 }
 
-/// Applies scale (number or per-axis), then translate, to mesh vertices.
+/// A 3×3 rotation as rows.
+using Rotation = std::array<Vec3, 3>;
+
+Vec3 rotate(const Rotation& m, const Vec3& v) { return {dot(m[0], v), dot(m[1], v), dot(m[2], v)}; }
+
+Rotation compose(const Rotation& a, const Rotation& b) {  // a·b: b first
+  Rotation out;
+  for (int i = 0; i < 3; ++i)
+    out[i] = {dot(a[i], Vec3{b[0].x, b[1].x, b[2].x}), dot(a[i], Vec3{b[0].y, b[1].y, b[2].y}),
+              dot(a[i], Vec3{b[0].z, b[1].z, b[2].z})};
+  return out;
+}
+
+/// Rodrigues' rotation by `degrees` about the unit `axis` (right-handed).
+Rotation axisAngle(const Vec3& axis, double degrees) {
+  const double a = degrees * M_PI / 180, c = std::cos(a), s = std::sin(a), t = 1 - c;
+  const Vec3 u = axis;
+  return {Vec3{t * u.x * u.x + c, t * u.x * u.y - s * u.z, t * u.x * u.z + s * u.y},
+          Vec3{t * u.x * u.y + s * u.z, t * u.y * u.y + c, t * u.y * u.z - s * u.x},
+          Vec3{t * u.x * u.z - s * u.y, t * u.y * u.z + s * u.x, t * u.z * u.z + c}};
+}
+
+/// Applies a mesh surface's "transform": "up" (the model's up axis, turned onto radkit's +y),
+/// then scale (number or per-axis), then "rotate" (axis-angle) or "euler_deg" (about x, then
+/// y, then z), then translate.
 void applyTransform(ObjectReader& surface, const json& j, const std::string& file, Surface& s) {
   ObjectReader r(j, surface.where() + " transform", file);
-  r.allowOnly({"scale", "translate"});
+  r.allowOnly({"up", "scale", "rotate", "euler_deg", "translate"});
+  Rotation up{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+  if (r.has("up")) {
+    const std::string given = r.string("up", "y");
+    if (given == "z")  // +z onto +y: -90° about x, so (x, y, z) -> (x, z, -y)
+      up = axisAngle({1, 0, 0}, -90);
+    else if (given == "-z")
+      up = axisAngle({1, 0, 0}, 90);
+    else if (given == "x")
+      up = axisAngle({0, 0, 1}, 90);
+    else if (given != "y")
+      r.fail("\"up\" \"" + given +
+             "\" is not an axis radkit knows. Fix: \"z\" for a z-up model (most CAD and scan "
+             "tools), \"y\" (radkit's own), \"-z\" or \"x\"");
+  }
   Vec3 scale{1, 1, 1};
   if (r.has("scale")) {
     const json& given = j.at("scale");
@@ -114,9 +153,30 @@ void applyTransform(ObjectReader& surface, const json& j, const std::string& fil
         given.is_array() ? r.toVec3(given, "scale") : Vec3{1, 1, 1} * r.toNumber(given, "scale");
   }
   if (scale.x == 0 || scale.y == 0 || scale.z == 0) r.fail("\"scale\" must be non-zero");
-  Vec3 translate = r.vec3("translate", {0, 0, 0});
-  for (Vec3& v : s.vertices) v = mul(v, scale) + translate;
+  if (r.has("rotate") && r.has("euler_deg"))
+    r.fail("has both \"rotate\" and \"euler_deg\". Fix: give one rotation");
+  Rotation turn{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+  if (r.has("rotate")) {
+    ObjectReader rot(j.at("rotate"), surface.where() + " transform rotate", file);
+    rot.allowOnly({"axis", "degrees"});
+    const Vec3 axis = rot.vec3("axis", {0, 0, 0});
+    const double degrees = rot.number("degrees", 0);
+    if (!(length(axis) > 0))
+      rot.fail("\"axis\" must be a non-zero vector, e.g. [0, 1, 0] to turn about the vertical");
+    if (!(std::fabs(degrees) <= 36000))
+      rot.fail("\"degrees\" must be a finite angle within ±36000");
+    turn = axisAngle(normalize(axis), degrees);
+  } else if (r.has("euler_deg")) {
+    const Vec3 e = r.toVec3(j.at("euler_deg"), "euler_deg");
+    for (int c = 0; c < 3; ++c)
+      if (!(std::fabs(e[c]) <= 36000)) r.fail("\"euler_deg\" angles must lie within ±36000");
+    turn = compose(axisAngle({0, 0, 1}, e.z),
+                   compose(axisAngle({0, 1, 0}, e.y), axisAngle({1, 0, 0}, e.x)));
+  }
+  const Vec3 translate = r.vec3("translate", {0, 0, 0});
+  for (Vec3& v : s.vertices) v = rotate(turn, mul(rotate(up, v), scale)) + translate;
   // A mirroring scale turns counter-clockwise faces clockwise: reverse them to keep the front.
+  // (Rotations keep handedness.)
   if (scale.x * scale.y * scale.z < 0)
     for (Face& f : s.faces) std::reverse(f.vertices.begin(), f.vertices.end());
 }

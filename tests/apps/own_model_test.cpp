@@ -4,6 +4,7 @@
 // (docs/bring-your-own-model.md).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <utility>
@@ -254,6 +255,40 @@ TEST(OwnModel, TriangleStripsOfAPlyAreRead) {
     EXPECT_NE(r.output.find("total area: 3 m²"), std::string::npos) << r.output;
     for (auto& row : test::readCsv(dir.path("o/patches.csv"))) EXPECT_EQ(row["nz"], "1");
   }
+}
+
+TEST(OwnModel, TransformTurnsAZUpModelAndRotates) {
+  // The floor of a z-up CAD model (a quad facing +z) stands in radkit's y-up room with
+  // "up": "z"; "rotate" and "euler_deg" then turn it about radkit's axes.
+  test::TempDir dir;
+  dir.file("floor.obj", "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  const std::pair<std::string, std::array<double, 3>> cases[] = {
+      {R"({"up": "z"})", {0, 1, 0}},
+      {R"({"rotate": {"axis": [0, 1, 0], "degrees": 90}})", {1, 0, 0}},
+      {R"({"euler_deg": [0, 90, 0]})", {1, 0, 0}},
+      {R"({"up": "z", "euler_deg": [0, 0, 90]})", {-1, 0, 0}},
+      {R"({"up": "z", "scale": [1, -1, 1]})", {0, -1, 0}}};  // the front side is mirrored too
+  for (const auto& [transform, normal] : cases) {
+    SCOPED_TRACE(transform);
+    const std::string scene = dir.file(
+        "s.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
+          "surfaces": [{"name": "m", "material": "lamp", "mesh": "floor.obj", "transform": )" +
+                      transform + "}]}");
+    fs::remove_all(dir.path("o"));
+    const auto r = runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (auto& row : test::readCsv(dir.path("o/patches.csv"))) {
+      EXPECT_NEAR(std::stod(row["nx"]), normal[0], 1e-12);
+      EXPECT_NEAR(std::stod(row["ny"]), normal[1], 1e-12);
+      EXPECT_NEAR(std::stod(row["nz"]), normal[2], 1e-12);
+    }
+  }
+  const std::string bad = dir.file(
+      "bad.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
+        "surfaces": [{"name": "m", "material": "lamp", "mesh": "floor.obj", "transform": {"up": "w"}}]})");
+  const auto r = runRadkit("mesh '" + bad + "' --out '" + dir.path("b") + "'");
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("z-up model"), std::string::npos) << r.output;
 }
 
 /// Width and height from a PNG's IHDR chunk.
