@@ -93,7 +93,8 @@ void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalRe
                             // hierarchy, not the light
   RayScene rays(r.leaves);  // the image needs the leaf under each pixel
   if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
-  writeRadiosityPng(folder.path("render.png"), scene, r.leaves, rays, r.radiosity, s);
+  if (!writeRadiosityPng(folder.path("render.png"), scene, r.leaves, rays, r.radiosity, s))
+    std::fprintf(stderr, "radkit: warning: %s\n", blackPictureWarning("render.png").c_str());
 }
 
 /// Checks a user should see: light that went missing, and surfaces left dark.

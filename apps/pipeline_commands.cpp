@@ -98,7 +98,8 @@ void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult&
   s.width = cmd.imageWidth, s.height = cmd.imageHeight;
   s.smooth = cmd.smooth;
   if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
-  writeRadiosityPng(folder.path("render.png"), scene, r.mesh, *r.rays, r.radiosity, s);
+  if (!writeRadiosityPng(folder.path("render.png"), scene, r.mesh, *r.rays, r.radiosity, s))
+    std::fprintf(stderr, "radkit: warning: %s\n", blackPictureWarning("render.png").c_str());
 }
 
 void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd,

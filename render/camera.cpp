@@ -63,15 +63,18 @@ namespace {
 constexpr int kGrid = 64;
 
 /// Cells where the nearest surface, seen orthographically from `side`, shows its front.
-long long frontCells(const std::vector<Triangle>& triangles, const Bounds3& b, int axis,
-                     double sign) {
+long long frontCells(const std::vector<Triangle>& triangles, const std::vector<char>* emitting,
+                     const Bounds3& b, int axis, double sign) {
   const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
   const double u0 = b.lo[ua], v0 = b.lo[va];
   const double du = std::max(b.hi[ua] - u0, 1e-300) / kGrid,
                dv = std::max(b.hi[va] - v0, 1e-300) / kGrid;
   std::vector<double> depth(std::size_t(kGrid) * kGrid, -INFINITY);
   std::vector<char> front(std::size_t(kGrid) * kGrid, 0);
-  for (const Triangle& t : triangles) {
+  for (std::size_t n = 0; n < triangles.size(); ++n) {
+    const Triangle& t = triangles[n];
+    // A lamp occludes but does not count: a view into the lamp shows nothing lit.
+    const bool counts = !emitting || !(*emitting)[n];
     const double facing = cross(t[1] - t[0], t[2] - t[0])[axis] * sign;
     if (facing == 0) continue;  // edge-on: covers no cell
     double pu[3], pv[3], pd[3];
@@ -93,21 +96,42 @@ long long frontCells(const std::vector<Triangle>& triangles, const Bounds3& b, i
         if (w0 < 0 || w1 < 0 || w2 < 0) continue;
         const double d = w0 * pd[0] + w1 * pd[1] + w2 * pd[2];
         const int cell = j * kGrid + i;
-        if (d > depth[cell]) depth[cell] = d, front[cell] = facing > 0;
+        if (d > depth[cell]) depth[cell] = d, front[cell] = facing > 0 && counts;
       }
   }
   return std::count(front.begin(), front.end(), char(1));
 }
 
 void addPolygon(std::vector<Triangle>& out, const std::vector<Vec3>& points, const int* index,
-                int count) {
-  for (int k = 1; k + 1 < count; ++k)
+                int count, std::vector<char>* emitting = nullptr, bool emits = false) {
+  for (int k = 1; k + 1 < count; ++k) {
     out.push_back({points[index[0]], points[index[k]], points[index[k + 1]]});
+    if (emitting) emitting->push_back(emits ? 1 : 0);
+  }
+}
+
+/// A camera inside a closed scene (no side of its bounding box sees a front face from
+/// outside): just inside one end of its longer horizontal axis (radkit's up is +y), looking
+/// along that axis at the far end, wide enough to show the far wall whole.
+Camera insideCamera(const Bounds3& b) {
+  const Vec3 size = b.hi - b.lo, centre = (b.lo + b.hi) * 0.5;
+  const int axis = size.x > size.z ? 0 : 2;
+  Camera c;
+  c.position = centre;
+  c.position[axis] = b.lo[axis] + 0.02 * size[axis];
+  c.lookAt = centre;
+  c.lookAt[axis] = b.hi[axis];
+  c.up = {0, 1, 0};
+  const double distance = 0.98 * size[axis];
+  const double across = std::max(size.y, size[2 - axis] * 3.0 / 4.0);  // 4:3 frames
+  c.fovDeg = std::clamp(2 * std::atan(0.55 * across / std::max(distance, 1e-300)) * 180 / M_PI,
+                        40.0, 100.0);
+  return c;
 }
 
 }  // namespace
 
-Camera automaticCamera(const std::vector<Triangle>& triangles) {
+Camera automaticCamera(const std::vector<Triangle>& triangles, const std::vector<char>* emitting) {
   Bounds3 b;
   for (const Triangle& t : triangles)
     for (const Vec3& p : t) b.extend(p);
@@ -118,9 +142,12 @@ Camera automaticCamera(const std::vector<Triangle>& triangles) {
   int best = 0;
   long long bestCells = -1;
   for (int k = 0; k < 6; ++k) {
-    const long long cells = frontCells(triangles, b, axes[k], signs[k]);
+    const long long cells = frontCells(triangles, emitting, b, axes[k], signs[k]);
     if (cells > bestCells) best = k, bestCells = cells;
   }
+  // No side sees a lit front from outside: a closed room, or a box whose only front faces
+  // are lamps. The view from outside would be black.
+  if (bestCells == 0) return insideCamera(b);
   Vec3 side{0, 0, 0};
   side[axes[best]] = signs[best];
   return PinholeCamera::framing(b, side);
@@ -128,10 +155,12 @@ Camera automaticCamera(const std::vector<Triangle>& triangles) {
 
 Camera automaticCamera(const Scene& scene) {
   std::vector<Triangle> triangles;
+  std::vector<char> emitting;
   for (const Surface& s : scene.surfaces)
     for (const Face& f : s.faces)
-      addPolygon(triangles, s.vertices, f.vertices.data(), int(f.vertices.size()));
-  return automaticCamera(triangles);
+      addPolygon(triangles, s.vertices, f.vertices.data(), int(f.vertices.size()), &emitting,
+                 s.material >= 0 && scene.materials[s.material].emits());
+  return automaticCamera(triangles, &emitting);
 }
 
 Camera automaticCamera(const PatchMesh& mesh) {
@@ -141,8 +170,21 @@ Camera automaticCamera(const PatchMesh& mesh) {
   return automaticCamera(triangles);
 }
 
+/// The patches' camera with the scene's lamps known.
+Camera automaticCamera(const Scene& scene, const PatchMesh& mesh) {
+  std::vector<Triangle> triangles;
+  std::vector<char> emitting;
+  for (const Patch& p : mesh.patches) {
+    const bool emits = p.surface >= 0 && std::size_t(p.surface) < scene.surfaces.size() &&
+                       scene.surfaces[p.surface].material >= 0 &&
+                       scene.materials[scene.surfaces[p.surface].material].emits();
+    addPolygon(triangles, mesh.vertices, p.vertex.data(), p.vertexCount, &emitting, emits);
+  }
+  return automaticCamera(triangles, &emitting);
+}
+
 Camera sceneCamera(const Scene& scene, const PatchMesh& mesh) {
-  return scene.camera ? *scene.camera : automaticCamera(mesh);
+  return scene.camera ? *scene.camera : automaticCamera(scene, mesh);
 }
 
 Camera parseCamera(const std::string& option, const std::string& text) {

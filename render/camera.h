@@ -42,10 +42,16 @@ using Triangle = std::array<Vec3, 3>;
 /// viewer: it looks along the axis (±x, ±y, ±z) from which the most front faces are seen
 /// unoccluded (an orthographic 64×64 depth buffer per side), and frames the bounding box.
 /// An open box is seen through its open side, a closed model from its most front-facing
-/// side; ties (a closed room seen from outside) keep the −z side. Deterministic.
-Camera automaticCamera(const std::vector<Triangle>& triangles);
+/// side; ties keep the −z side. Lamps (`emitting`, one flag per triangle) occlude but do not
+/// count, so a model under a lamp is not seen from below, into the lamp. When no side sees a
+/// front face (a closed room seen from outside) the camera goes inside: just within one end
+/// of the longer horizontal axis (+y is up), looking at the far end, its field of view wide
+/// enough for the far wall (40–100°). Deterministic.
+Camera automaticCamera(const std::vector<Triangle>& triangles,
+                       const std::vector<char>* emitting = nullptr);
 Camera automaticCamera(const Scene& scene);
 Camera automaticCamera(const PatchMesh& mesh);
+Camera automaticCamera(const Scene& scene, const PatchMesh& mesh);
 
 /// The scene's camera, or automaticCamera(mesh) when it has none.
 Camera sceneCamera(const Scene& scene, const PatchMesh& mesh);

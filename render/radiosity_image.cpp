@@ -95,13 +95,20 @@ std::optional<int> pickPatch(const Visibility& rays, const Camera& camera, int w
   return std::nullopt;
 }
 
-void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+bool writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh,
                        const Visibility& rays, const std::vector<Vec3>& radiosity,
                        const ImageSettings& settings) {
   const std::vector<bool> twoSided = scene.twoSidedSurfaces();
   Camera camera = sceneCamera(scene, mesh);
   RadianceImage img = renderRadiosity(mesh, rays, camera, radiosity, twoSided, settings);
   writePng(path, toneMap(img, autoExposure(img, scene, mesh)));
+  return img.meanRadiance() > 0;
+}
+
+std::string blackPictureWarning(const std::string& file) {
+  return file +
+         " is black: the camera sees no lit surface (the backs of walls, or surfaces no light "
+         "reaches). Fix: give the scene a \"camera\", or --camera px,py,pz,lx,ly,lz";
 }
 
 }  // namespace radkit

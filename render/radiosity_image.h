@@ -51,9 +51,14 @@ RadianceImage renderRadiosity(const PatchMesh& mesh, const Visibility& rays, con
 
 /// \brief render.png of a run: the scene's camera (or one framing the mesh), each surface's
 /// two-sidedness from its material, automatic exposure and sRGB, written as PNG.
-void writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh,
+/// Returns whether any pixel is lit: a black picture (a camera that sees only the backs of
+/// walls or unlit surfaces) is for the caller to warn about.
+bool writeRadiosityPng(const std::string& path, const Scene& scene, const PatchMesh& mesh,
                        const Visibility& rays, const std::vector<Vec3>& radiosity,
                        const ImageSettings& settings);
+
+/// The warning for a render that came out black, naming the file and the fix.
+std::string blackPictureWarning(const std::string& file);
 
 /// Automatic exposure: maps the 95th percentile of non-emitting pixel luminance to 0.8.
 double autoExposure(const RadianceImage& image, const std::vector<bool>& pixelEmits);

@@ -30,10 +30,16 @@ namespace {
 /// render/'s automatic camera on the run's patches, so the viewer and render.png agree.
 Camera framingCamera(const PatchData& patches) {
   std::vector<Triangle> triangles;
-  for (const std::vector<int>& p : patches.polygons)
-    for (std::size_t k = 1; k + 1 < p.size(); ++k)
+  std::vector<char> emitting;
+  for (std::size_t i = 0; i < patches.polygons.size(); ++i) {
+    const std::vector<int>& p = patches.polygons[i];
+    const bool emits = i < patches.emission.size() && maxComponent(patches.emission[i]) > 0;
+    for (std::size_t k = 1; k + 1 < p.size(); ++k) {
       triangles.push_back({patches.points[p[0]], patches.points[p[k]], patches.points[p[k + 1]]});
-  return automaticCamera(triangles);
+      emitting.push_back(emits ? 1 : 0);
+    }
+  }
+  return automaticCamera(triangles, &emitting);
 }
 
 constexpr double kZeroColour[3] = {0.32, 0.32, 0.36};  // F_ij = 0: not seen from the picked patch

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "tests/common/test_util.h"
+#include "util/canvas.h"
 
 namespace radkit {
 namespace {
@@ -289,6 +290,34 @@ TEST(OwnModel, TransformTurnsAZUpModelAndRotates) {
   const auto r = runRadkit("mesh '" + bad + "' --out '" + dir.path("b") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("z-up model"), std::string::npos) << r.output;
+}
+
+TEST(OwnModel, AClosedRoomIsDrawnFromInsideAndABlackPictureIsNamed) {
+  test::TempDir dir;
+  const std::string scene = dir.file(
+      "room.json", R"({"materials": {"wall": {"reflectance": [0.6,0.6,0.6]},
+                                     "lamp": {"reflectance": [0,0,0], "emission": [10,10,10]}},
+        "surfaces": [
+          {"name": "floor", "material": "wall", "polygon": [[0,0,0],[0,0,5],[4,0,5],[4,0,0]]},
+          {"name": "ceiling", "material": "wall", "polygon": [[0,3,0],[4,3,0],[4,3,5],[0,3,5]]},
+          {"name": "west", "material": "wall", "polygon": [[0,0,0],[0,3,0],[0,3,5],[0,0,5]]},
+          {"name": "east", "material": "wall", "polygon": [[4,0,0],[4,0,5],[4,3,5],[4,3,0]]},
+          {"name": "south", "material": "wall", "polygon": [[0,0,0],[4,0,0],[4,3,0],[0,3,0]]},
+          {"name": "north", "material": "wall", "polygon": [[0,0,5],[0,3,5],[4,3,5],[4,0,5]]},
+          {"name": "lamp", "material": "lamp", "polygon": [[1.5,2.9,2],[2.5,2.9,2],[2.5,2.9,3],[1.5,2.9,3]]}]})");
+  auto r = runRadkit("run '" + scene + "' --patches 200 --size 32x24 --out '" + dir.path("a") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("is black"), std::string::npos) << r.output;
+  const Canvas png = readPng(dir.path("a/render.png"));
+  double sum = 0;
+  for (int y = 0; y < png.height(); ++y)
+    for (int x = 0; x < png.width(); ++x) sum += png.at(x, y).r;
+  EXPECT_GT(sum / (png.width() * png.height()), 20) << "a dark picture of the room";
+  // A camera outside, looking away: black, and said.
+  r = runRadkit("run '" + scene + "' --patches 200 --size 32x24 --camera 2,1.5,-10,2,1.5,-20 --out '" +
+                dir.path("b") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("render.png is black"), std::string::npos) << r.output;
 }
 
 /// Width and height from a PNG's IHDR chunk.

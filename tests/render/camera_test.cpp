@@ -50,6 +50,57 @@ TEST(AutomaticCamera, ClosedModelFromItsFrontFacingSide) {
   EXPECT_GT(length(cross(c.lookAt - c.position, c.up)), 0) << "up must not be the view direction";
 }
 
+/// Two triangles of the quad a, b, c, d (counter-clockwise seen from its front).
+void quad(std::vector<Triangle>& t, std::vector<char>& emitting, Vec3 a, Vec3 b, Vec3 c, Vec3 d,
+          bool emits = false) {
+  t.push_back({a, b, c});
+  t.push_back({a, c, d});
+  emitting.push_back(emits), emitting.push_back(emits);
+}
+
+/// A closed 4 × 3 × 5 room (y up) of inward-facing walls with a lamp under its ceiling.
+std::vector<Triangle> closedRoom(std::vector<char>& emitting) {
+  std::vector<Triangle> t;
+  quad(t, emitting, {0, 0, 0}, {0, 0, 5}, {4, 0, 5}, {4, 0, 0});  // floor, facing +y
+  quad(t, emitting, {0, 3, 0}, {4, 3, 0}, {4, 3, 5}, {0, 3, 5});  // ceiling, -y
+  quad(t, emitting, {0, 0, 0}, {0, 3, 0}, {0, 3, 5}, {0, 0, 5});  // +x
+  quad(t, emitting, {4, 0, 0}, {4, 0, 5}, {4, 3, 5}, {4, 3, 0});  // -x
+  quad(t, emitting, {0, 0, 0}, {4, 0, 0}, {4, 3, 0}, {0, 3, 0});  // +z
+  quad(t, emitting, {0, 0, 5}, {0, 3, 5}, {4, 3, 5}, {4, 0, 5});  // -z
+  quad(t, emitting, {1.5, 2.9, 2}, {2.5, 2.9, 2}, {2.5, 2.9, 3}, {1.5, 2.9, 3}, true);
+  return t;
+}
+
+TEST(AutomaticCamera, GoesInsideAClosedRoom) {
+  // From outside every side shows the backs of walls: the old camera drew a black picture.
+  std::vector<char> emitting;
+  const std::vector<Triangle> room = closedRoom(emitting);
+  const Camera c = automaticCamera(room, &emitting);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_GT(c.position[k], 0) << k;
+    EXPECT_LT(c.position[k], k == 0 ? 4 : k == 1 ? 3 : 5) << k;
+  }
+  // Along the longer horizontal axis (z, 5 m), from its near end toward the far wall.
+  EXPECT_LT(c.position.z, 0.5);
+  EXPECT_NEAR(c.lookAt.z, 5, 1e-12);
+}
+
+TEST(AutomaticCamera, DoesNotLookIntoTheLampUnderWhichAModelStands) {
+  // A unit cube under a large lamp facing down: from below the lamp filled the view and won.
+  std::vector<Triangle> t;
+  std::vector<char> emitting;
+  quad(t, emitting, {0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1});  // bottom, facing -y
+  quad(t, emitting, {0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0});  // top, +y
+  quad(t, emitting, {0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0});  // -x
+  quad(t, emitting, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1});  // +x
+  quad(t, emitting, {0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0});  // -z
+  quad(t, emitting, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1});  // +z
+  quad(t, emitting, {-3, 3, -3}, {4, 3, -3}, {4, 3, 4}, {-3, 3, 4}, true);  // lamp, facing -y
+  EXPECT_LT(automaticCamera(t).position.y, 0) << "without the lamp flags: from below";
+  const Camera c = automaticCamera(t, &emitting);
+  EXPECT_GE(c.position.y, 0) << "seen from below, into the lamp";
+}
+
 TEST(ParseCamera, GivesEveryPartAndRefusesNonsense) {
   const Camera c = parseCamera("--camera", "0,1,4,0,1,0,1,0,0,30");
   EXPECT_EQ(c.position.z, 4);
