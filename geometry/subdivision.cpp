@@ -58,7 +58,12 @@ SurfaceTopology buildTopology(const Surface& s) {
     // such a face gets its own copies of the vertices and joins its neighbours at none.
     if (!t.mesh.add_face(fv).is_valid()) {
       if (t.detachedFaces++ == 0) t.firstDetached = std::size_t(&f - s.faces.data());
-      for (auto& h : fv) h = t.mesh.add_vertex(t.mesh.point(h));
+      // The point is copied first: add_vertex takes it by reference and may reallocate the
+      // array it lives in (a use after free under ASan).
+      for (auto& h : fv) {
+        const PolyMesh::Point p = t.mesh.point(h);
+        h = t.mesh.add_vertex(p);
+      }
       if (!t.mesh.add_face(fv).is_valid())
         throw std::runtime_error(s.source + ": cannot build the surface mesh");
     }
