@@ -176,35 +176,16 @@ void runHierarchical(PipelineCommand& cmd) {
   runHierarchicalJob(job);
 }
 
-/// What MemoryBudgetError's fixes leave out: a mesh of one patch per input face cannot have
-/// fewer patches, and the hierarchical method keeps no n×n matrix.
-std::string memoryBudgetAdvice(const Scene& scene, const PipelineCommand& cmd, int patches) {
-  std::size_t faces = 0;
-  for (const Surface& s : scene.surfaces) faces += s.faces.size();
-  // Peak memory of `run --method hierarchical --no-render` on the shipped scenes, less radkit's
-  // own 40 MiB: terrain-room.json 4.9 kB per input face (51 201 faces, 291 MiB),
-  // models/spot-room.json 17 kB (5 870 faces, 141 MiB).
-  const double base = 40.0 * 1024 * 1024;
-  const double low = base + 4.9e3 * double(faces), high = base + 17e3 * double(faces);
-  std::string advice =
-      std::size_t(patches) <= faces + faces / 20
-          ? ". The mesh is at its floor: " + std::to_string(faces) +
-                " input faces, and a patch never spans two, so fewer patches cannot help."
-          : ". Fewer patches help down to about " + std::to_string(faces) +
-                ", the scene's input faces (a patch never spans two).";
-  if (cmd.job == Job::Run)
-    advice += " --method hierarchical keeps no n×n matrix: on the shipped scenes it took 40 MiB "
-              "and 4.9-17 kB per input face, about " +
-              formatBytes(low) + " to " + formatBytes(high) + " here (docs/hierarchical.md)";
-  return advice;
-}
-
+/// MemoryBudgetError's message with what it leaves out: a mesh of one patch per input face
+/// cannot have fewer patches (that fix is dropped), and the hierarchical method keeps no n×n
+/// matrix.
 std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene,
                                 const PipelineCommand& cmd) {
   std::size_t faces = 0;
   for (const Surface& s : scene.surfaces) faces += s.faces.size();
+  const bool atFloor = std::size_t(e.patches) <= faces + faces / 20;
   std::string message = e.what();
-  if (std::size_t(e.patches) <= faces + faces / 20) {  // at the floor, drop "fewer patches"
+  if (atFloor) {
     const std::string fewer = kFewerPatchesFix;
     if (const std::size_t at = message.find(fewer); at != std::string::npos) {
       message.erase(at, fewer.size());
@@ -213,7 +194,22 @@ std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene,
       message.erase(last, fewer.size());  // the last fix: ", use fewer ... smaller)"
     }
   }
-  return message + memoryBudgetAdvice(scene, cmd, e.patches);
+  message += atFloor ? ". The mesh is at its floor: " + std::to_string(faces) +
+                           " input faces, and a patch never spans two, so fewer patches cannot help."
+                     : ". Fewer patches help down to about " + std::to_string(faces) +
+                           ", the scene's input faces (a patch never spans two).";
+  if (cmd.job == Job::Run) {
+    // Peak memory of `run --method hierarchical --no-render` on the shipped scenes, less
+    // radkit's own 40 MiB: terrain-room.json 4.9 kB per input face (51 201 faces, 291 MiB),
+    // models/spot-room.json 17 kB (5 870 faces, 141 MiB).
+    const double base = 40.0 * 1024 * 1024;
+    const double low = base + 4.9e3 * double(faces), high = base + 17e3 * double(faces);
+    message += " --method hierarchical keeps no n×n matrix: on the shipped scenes it took 40 MiB "
+               "and 4.9-17 kB per input face, about " +
+               formatBytes(low) + " to " + formatBytes(high) +
+               " here (docs/bring-your-own-model.md)";
+  }
+  return message;
 }
 
 void runJob(PipelineCommand& cmd) {

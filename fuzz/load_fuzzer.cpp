@@ -7,8 +7,6 @@
 //  - ply, off, stl: the input is m.EXT, the mesh of a fixed one-surface scene.json.
 // InputError is the loaders' clean refusal and ends the case; anything else that escapes
 // (another exception, a sanitizer report, a hang, memory beyond -rss_limit_mb) is a finding.
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -17,6 +15,7 @@
 #include <string>
 #include <string_view>
 
+#include "fuzz/work_dir.h"
 #include "geometry/scene_loader.h"
 
 #ifndef RADKIT_FUZZ_FORMAT
@@ -29,21 +28,6 @@ namespace fs = std::filesystem;
 
 constexpr std::string_view kFormat = RADKIT_FUZZ_FORMAT;
 
-/// The target's folder, made once per process and removed at exit.
-const fs::path& workDir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() /
-                 ("radkit-fuzz-" + std::string(kFormat) + "-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    std::atexit([] {
-      std::error_code ec;
-      fs::remove_all(workDir(), ec);
-    });
-    return d;
-  }();
-  return dir;
-}
-
 void writeFile(const fs::path& path, const char* data, std::size_t size) {
   std::ofstream(path, std::ios::binary | std::ios::trunc)
       .write(data, static_cast<std::streamsize>(size));
@@ -52,7 +36,7 @@ void writeFile(const fs::path& path, const char* data, std::size_t size) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t size) {
-  const fs::path& dir = workDir();
+  const fs::path& dir = radkit::fuzz::workDir(std::string(kFormat));
   const char* data = reinterpret_cast<const char*>(bytes);
   fs::path scene;
   if (kFormat == "json") {

@@ -13,8 +13,6 @@
 // Each input is written into a private temp folder (the readers take paths). InputError is the
 // readers' clean refusal and ends the case; anything else that escapes (another exception, a
 // sanitizer report, a hang, memory beyond -rss_limit_mb) is a finding.
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -23,6 +21,7 @@
 #include <string>
 #include <string_view>
 
+#include "fuzz/work_dir.h"
 #include "geometry/scene_loader.h"
 #include "render/camera.h"
 #include "render/smooth_radiosity.h"
@@ -36,21 +35,6 @@ namespace fs = std::filesystem;
 constexpr const char* kFiles[] = {"report.json",     "radiosity.vtp", "formfactors.bin",
                                   "formfactors.mtx", "links.png",     "convergence.csv",
                                   "surfaces.csv"};
-
-/// The target's folder, made once per process and removed at exit.
-const fs::path& workDir() {
-  static const fs::path dir = [] {
-    fs::path d =
-        fs::temp_directory_path() / ("radkit-fuzz-run-folder-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    std::atexit([] {
-      std::error_code ec;
-      fs::remove_all(workDir(), ec);
-    });
-    return d;
-  }();
-  return dir;
-}
 
 /// What the views compute from a folder that was read, short of rendering it.
 void computeViews(const radkit::viewer::RunFolder& run) {
@@ -78,7 +62,7 @@ void computeViews(const radkit::viewer::RunFolder& run) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t size) {
-  const fs::path& dir = workDir();
+  const fs::path& dir = radkit::fuzz::workDir("run-folder");
   for (const char* name : kFiles) fs::remove(dir / name);
   const std::string_view text(reinterpret_cast<const char*>(bytes), size);
   const std::string_view marker = "%%file ";

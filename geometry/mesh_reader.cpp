@@ -156,9 +156,7 @@ std::vector<std::string> mtlFilesTinyobjWouldSplit(const std::string& path, bool
   for (std::string line; std::getline(in, line);) {
     const auto t = structure::tokens(structure::uncommented(line));
     if (t.empty() || t[0] != "mtllib") continue;
-    std::string rest;
-    for (std::size_t k = 1; k < t.size(); ++k) rest += (k > 1 ? " " : "") + t[k];
-    const auto named = mtllibFiles(dir, rest);
+    const auto named = mtllibFiles(dir, t);
     if (t.size() > 2 && named.size() == 1) needed = true;
     files.insert(files.end(), named.begin(), named.end());
   }

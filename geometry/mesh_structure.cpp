@@ -202,9 +202,7 @@ long long checkObj(const std::string& path, const Fail& fail, const std::string&
       }
       ++faces;
     } else if (t[0] == "mtllib") {
-      std::string rest;  // the tokens joined by one space: a name's single spaces survive
-      for (std::size_t k = 1; k < t.size(); ++k) rest += (k > 1 ? " " : "") + t[k];
-      for (const std::string& mtl : mtllibFiles(fs::path(path).parent_path().string(), rest)) {
+      for (const std::string& mtl : mtllibFiles(fs::path(path).parent_path().string(), t)) {
         // A name the file system refuses (too long, say) is a missing MTL, reported by the
         // reader: the non-throwing overload keeps it from ending as a filesystem_error.
         std::error_code ec;
@@ -220,12 +218,10 @@ long long checkObj(const std::string& path, const Fail& fail, const std::string&
 
 }  // namespace
 
-std::vector<std::string> mtllibFiles(const std::string& objDir, const std::string& rest) {
-  std::string whole = rest;
-  while (!whole.empty() && std::isspace(static_cast<unsigned char>(whole.back()))) whole.pop_back();
-  std::size_t start = 0;
-  while (start < whole.size() && std::isspace(static_cast<unsigned char>(whole[start]))) ++start;
-  whole = whole.substr(start);
+std::vector<std::string> mtllibFiles(const std::string& objDir,
+                                     const std::vector<std::string>& tokens) {
+  std::string whole;  // the names joined by one space: a name's single spaces survive
+  for (std::size_t k = 1; k < tokens.size(); ++k) whole += (k > 1 ? " " : "") + tokens[k];
   std::error_code ec;
   if (!whole.empty() && fs::is_regular_file(fs::path(objDir) / whole, ec))
     return {(fs::path(objDir) / whole).string()};

@@ -12,11 +12,13 @@ namespace radkit {
 /// Throws InputError naming path unless it is a regular file (FIFOs and devices hang readers).
 void requireRegularFile(const std::string& path, const std::string& what);
 
-/// The MTL files an OBJ line "mtllib REST" names, relative to `objDir`. REST is one file name
-/// when a file of that whole name exists (exporters write "mtllib 247_House 15_obj.mtl" for a
-/// name with a space); otherwise its whitespace-separated names, a backslash escaping the next
-/// character as tinyobjloader reads them.
-std::vector<std::string> mtllibFiles(const std::string& objDir, const std::string& rest);
+/// The MTL files an OBJ line "mtllib ..." names (`tokens`: the line's tokens, "mtllib" first),
+/// relative to `objDir`. The names joined by one space are one file name when a file of that
+/// whole name exists (exporters write "mtllib 247_House 15_obj.mtl" for a name with a space);
+/// otherwise each is a name, a backslash escaping the next character as tinyobjloader reads
+/// them.
+std::vector<std::string> mtllibFiles(const std::string& objDir,
+                                     const std::vector<std::string>& tokens);
 
 /// The triangles of a PLY's "tristrips" element (OpenMesh reads none of them): each strip
 /// a, b, c, d, ... gives (a, b, c), (c, b, d), ... alternating so all share one winding; -1

@@ -60,17 +60,13 @@ class Checker {
 using structure::uncommented;
 
 void checkObjLike(std::istream& in, const Checker& check, const std::vector<std::string>& keys,
-                  std::vector<std::string>* mtllibs) {
+                  std::vector<std::vector<std::string>>* mtllibs) {
   long n = 0;
   for (std::string line; std::getline(in, line);) {
     ++n;
     const auto t = tokens(uncommented(line));
     if (t.empty()) continue;
-    if (mtllibs && t[0] == "mtllib") {
-      std::string rest;
-      for (std::size_t k = 1; k < t.size(); ++k) rest += (k > 1 ? " " : "") + t[k];
-      mtllibs->push_back(rest);
-    }
+    if (mtllibs && t[0] == "mtllib") mtllibs->push_back(t);
     if (std::find(keys.begin(), keys.end(), t[0]) != keys.end()) check.numbers(t, 1, n);
   }
 }
@@ -141,18 +137,15 @@ void checkTextMeshNumbers(const std::string& path) {
   if (!in) return;  // a missing or unreadable file is the reader's to report
   const Checker check(path);
   if (ext == ".obj") {
-    std::vector<std::string> mtllibs;
+    std::vector<std::vector<std::string>> mtllibs;
     checkObjLike(in, check, {"v"}, &mtllibs);
-    std::vector<std::string> files;
-    for (const std::string& rest : mtllibs)
-      for (const std::string& f : mtllibFiles(fs::path(path).parent_path().string(), rest))
-        files.push_back(f);
-    for (const fs::path mtl : files) {
-      std::error_code ec;
-      if (!fs::is_regular_file(mtl, ec)) continue;  // the structure check names a pipe or folder
-      std::ifstream mtlIn(mtl, std::ios::binary);
-      if (mtlIn) checkObjLike(mtlIn, Checker(mtl.string()), {"Kd", "Ke"}, nullptr);
-    }
+    for (const auto& line : mtllibs)
+      for (const fs::path mtl : mtllibFiles(fs::path(path).parent_path().string(), line)) {
+        std::error_code ec;
+        if (!fs::is_regular_file(mtl, ec)) continue;  // the structure check names a pipe or folder
+        std::ifstream mtlIn(mtl, std::ios::binary);
+        if (mtlIn) checkObjLike(mtlIn, Checker(mtl.string()), {"Kd", "Ke"}, nullptr);
+      }
   } else if (ext == ".off") {
     checkOff(in, check);
   } else if (ext == ".ply") {

@@ -259,6 +259,13 @@ std::pair<std::int64_t, std::int64_t> sparseShape(const py::object& f) {
 /// A matrix from Python: a dense (n, n) array or any scipy.sparse matrix or array. CSR, CSC
 /// and COO arrays are read as they are and checked before scipy computes anything from them
 /// (its sum_duplicates and tocsr index memory by them unchecked); other formats through tocoo(),
+/// A sparse matrix's stored values, one real number per stored entry.
+Array dataVector(const py::object& sparse) {
+  Array data = realArray(sparse.attr("data"), "F.data");
+  if (data.ndim() != 1) throw py::value_error("F.data: expected a 1-D array");
+  return data;
+}
+
 /// which for them is Python and numpy code (bounds-checked), and the COO checks.
 std::shared_ptr<FormFactorMatrix> matrixFromPython(const py::object& f) {
   py::module_ sparse = py::module_::import("scipy.sparse");
@@ -269,8 +276,7 @@ std::shared_ptr<FormFactorMatrix> matrixFromPython(const py::object& f) {
     const auto [rows, cols] = sparseShape(f);
     const auto indptr = indexArray(f.attr("indptr"), "F.indptr");
     const auto indices = indexArray(f.attr("indices"), "F.indices");
-    const Array data = realArray(f.attr("data"), "F.data");
-    if (data.ndim() != 1) throw py::value_error("F.data: expected a 1-D array");
+    const Array data = dataVector(f);
     CompressedInput in;
     in.columns = format == "csc";
     in.rows = rows, in.cols = cols;
@@ -281,8 +287,7 @@ std::shared_ptr<FormFactorMatrix> matrixFromPython(const py::object& f) {
   const auto [rows, cols] = sparseShape(coo);
   const auto row = indexArray(coo.attr("row"), "F.row");
   const auto col = indexArray(coo.attr("col"), "F.col");
-  const Array data = realArray(coo.attr("data"), "F.data");
-  if (data.ndim() != 1) throw py::value_error("F.data: expected a 1-D array");
+  const Array data = dataVector(coo);
   CooInput in;
   in.rows = rows, in.cols = cols;
   in.row = refOf(row), in.col = refOf(col), in.data = refOf(data);

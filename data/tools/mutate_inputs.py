@@ -154,6 +154,28 @@ def classify(rc, output):
     return "clean error" if "error" in output.lower() or "Run with --help" in output else "silent failure"
 
 
+def run_and_count(args, cmd, case, label, written, log_tag, counts, cases, peak):
+    """Runs one command in `case` and counts its outcome under `label`: a hang, a crash, a clean
+    error, an error that left any of `written` behind, a success that wrote nan or inf into one
+    of them, or memory over the limit. Cases worth a look are appended to `cases`."""
+    rc, text, rss = run_radkit(args.radkit, cmd, case, args.timeout)
+    outcome = "hang" if rc is None else classify(rc, text)
+    if rc not in (None, 0) and written and os.path.exists(os.path.join(case, written[0])):
+        outcome = "error with output"
+    if outcome == "success" and written and non_finite_output(case, written):
+        outcome = "non-finite output"
+    if rss > MEMORY_LIMIT_MB:
+        outcome = "memory"
+    peak[label] = max(peak.get(label, 0.0), rss)
+    if args.log:
+        first = next((l for l in text.splitlines() if "error" in l.lower()), "")
+        with open(args.log, "a") as log:
+            log.write("%s\t%s\t%s\t%s\t%.0f MB\t%s\n" % (case, log_tag, label, outcome, rss, first[:300]))
+    counts[(label, outcome)] = counts.get((label, outcome), 0) + 1
+    if outcome not in ("success", "clean error"):
+        cases.append("%s %s %s: %s (exit %s)" % (case, label, log_tag, outcome, rc))
+
+
 RUN_FILES = ["radiosity.vtp", "report.json", "surfaces.csv", "convergence.csv", "formfactors.bin"]
 
 
@@ -204,24 +226,9 @@ def run_reader_cases(args, rng, counts, cases, peak):
                          "--report", "r.json", "--out", "o.pfm"]]
         for cmd in commands:
             label = "reader-" + cmd[0] + ("-" + cmd[-1] if cmd[0] == "view" else "")
-            rc, text, rss = run_radkit(args.radkit, cmd, case, args.timeout)
-            outcome = "hang" if rc is None else classify(rc, text)
             out = cmd[cmd.index("--out") + 1] if "--out" in cmd else (cmd[cmd.index("--screenshot") + 1])
-            if rc not in (None, 0) and os.path.exists(os.path.join(case, out)):
-                outcome = "error with output"
             written = [out] + (["r.json"] if "--report" in cmd else [])
-            if outcome == "success" and non_finite_output(case, written):
-                outcome = "non-finite output"
-            if rss > MEMORY_LIMIT_MB:
-                outcome = "memory"
-            peak[label] = max(peak.get(label, 0.0), rss)
-            if args.log:
-                first = next((l for l in text.splitlines() if "error" in l.lower()), "")
-                with open(args.log, "a") as log:
-                    log.write("%s\treader\t%s\t%s\t%.0f MB\t%s\n" % (case, label, outcome, rss, first[:300]))
-            counts[(label, outcome)] = counts.get((label, outcome), 0) + 1
-            if outcome not in ("success", "clean error"):
-                cases.append("%s %s: %s (exit %s)" % (case, label, outcome, rc))
+            run_and_count(args, cmd, case, label, written, "reader", counts, cases, peak)
         if not cases or not cases[-1].startswith(case + " "):
             shutil.rmtree(case)
     if not display:
@@ -298,23 +305,8 @@ def main():
             label = cmd[0] if cmd[0] != "bench" else "bench-" + cmd[1]
             if "hierarchical" in cmd and cmd[0] == "run":
                 label = "run-hierarchical"
-            rc, text, rss = run_radkit(args.radkit, cmd, case, args.timeout)
-            outcome = "hang" if rc is None else classify(rc, text)
-            if rc is not None and rc != 0 and cmd[-2] == "--out" and os.path.exists(os.path.join(case, cmd[-1])):
-                outcome = "error with output"
-            if outcome == "success" and cmd[-2] == "--out" and non_finite_output(case, [cmd[-1]]):
-                outcome = "non-finite output"
-            if rss > MEMORY_LIMIT_MB:
-                outcome = "memory"
-            peak[label] = max(peak.get(label, 0.0), rss)
-            if args.log:
-                first = next((l for l in text.splitlines() if "error" in l.lower()), "")
-                with open(args.log, "a") as log:
-                    log.write("%s\t%s\t%s\t%s\t%.0f MB\t%s\n" % (case, name, label, outcome, rss, first[:300]))
-            key = (label, outcome)
-            counts[key] = counts.get(key, 0) + 1
-            if outcome not in ("success", "clean error"):
-                cases.append("%s %s %s: %s (exit %s)" % (case, label, name, outcome, rc))
+            written = [cmd[-1]] if cmd[-2] == "--out" else []
+            run_and_count(args, cmd, case, label, written, name, counts, cases, peak)
         left = [e for e in os.listdir(case) if ".partial-" in e or ".old-" in e]
         if left:
             counts[("staging", "left behind")] = counts.get(("staging", "left behind"), 0) + 1
