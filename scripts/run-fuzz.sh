@@ -15,8 +15,10 @@ build=${BUILD_DIR:-build-sanitize}
 cmake --build "$build" -j"${RADKIT_JOBS:-2}" --target fuzz
 out=out/fuzz
 mkdir -p "$out/seeds"
-python3 fuzz/make_seeds.py "$out/seeds"
+# Before make_seeds.py: it runs the sanitizer build of radkit for the run-folder seeds, whose
+# third-party leaks tests/lsan.supp names (without it those runs fail and the seeds are lost).
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp" UBSAN_OPTIONS=print_stacktrace=1
+python3 fuzz/make_seeds.py "$out/seeds"
 for f in "${formats[@]}"; do
   mkdir -p "$out/corpus/$f"
   echo "fuzz_$f: ${seconds} s"
