@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "apps/common.h"
 #include "apps/report.h"
@@ -239,6 +240,8 @@ void runHierarchicalJob(HierarchicalJob job) {
     extra[1].values.push_back(r.system->linkCount(n));
   }
   writePatchesVtp(folder.path("radiosity.vtp"), scene, r.leaves, &r.radiosity, extra);
+  std::optional<nlohmann::json> panorama;
+  if (r.sky) panorama = writeSkyPanorama(folder, *r.sky);
   writeSurfacesCsv(folder.path("surfaces.csv"), scene, r.surfaces, job.photometric);
   writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), {r.solve},
                    scene.metresPerUnit());
@@ -308,6 +311,7 @@ void runHierarchicalJob(HierarchicalJob job) {
   report["load"] = loadJson(loaded);
   if (!linkCheck.is_null()) report["link_check"] = linkCheck;
   if (r.daylight) report["daylight"] = daylightJson(*r.sky, *r.daylight);
+  if (panorama) report["sky_panorama"] = *panorama;
   report["seconds"] = {{"hierarchy", r.seconds.hierarchy},
                        {"ray_scene", r.seconds.rayScene},
                        {"daylight", r.seconds.daylight},

@@ -302,6 +302,7 @@ void runJob(PipelineCommand& cmd) {
   if (cmd.job == Job::Run) {
     writeSurfacesCsv(folder.path("surfaces.csv"), scene, r.surfaces, cmd.photometric);
     writePatchesVtp(folder.path("radiosity.vtp"), scene, r.mesh, &r.radiosity);
+    if (r.sky) report["sky_panorama"] = writeSkyPanorama(folder, *r.sky);
     if (!cmd.noRender) renderImage(folder, scene, r, cmd);
   }
   double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

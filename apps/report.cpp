@@ -12,6 +12,8 @@
 #include <sstream>
 
 #include "output/run_files.h"
+#include "render/hdr_io.h"
+#include "render/sky_panorama.h"
 #include "solvers/convergence.h"
 #include "util/line_chart.h"
 #include "util/output_folder.h"
@@ -127,6 +129,20 @@ json daylightJson(const SkyModel& sky, const Daylight& d) {
     j["physical"] = {
         {"density", k.density}, {"altitude_m", k.altitude}, {"table_seconds", sky.tableSeconds()}};
   return j;
+}
+
+json writeSkyPanorama(OutputFolder& folder, const SkyModel& sky) {
+  const RadianceImage image = skyPanorama(sky);
+  writePfm(folder.path("sky.pfm"), image);
+  return {{"file", "sky.pfm"},
+          {"width", image.width},
+          {"height", image.height},
+          {"layout",
+           "equirectangular: bearing 360u deg clockwise from north towards east, "
+           "elevation 90 - 180v deg (u, v from the left and the top)"},
+          {"up", vec3Json(sky.toScene({0, 0, 1}))},
+          {"north", vec3Json(sky.toScene({0, 1, 0}))},
+          {"east", vec3Json(sky.toScene({1, 0, 0}))}};
 }
 
 void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceResult>& surfaces,

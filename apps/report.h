@@ -8,6 +8,10 @@
 #include "daylight/daylight.h"
 #include "radiosity/radiosity_pipeline.h"
 
+namespace radkit {
+class OutputFolder;
+}
+
 namespace radkit::app {
 
 /// [x, y, z] (an RGB triple, a point, a direction).
@@ -21,6 +25,10 @@ nlohmann::json solveJson(const SolveResult& result);
 nlohmann::json energyJson(const EnergyBalance& e);
 /// report.json's "daylight": the sky, the sun and the cost of the patches' daylight.
 nlohmann::json daylightJson(const SkyModel& sky, const Daylight& daylight);
+/// \brief Writes sky.pfm (render/sky_panorama.h) into `folder` and returns report.json's
+/// "sky_panorama": the file, its size and the frame (up, north, east in scene coordinates)
+/// that places it, which the viewer reads to draw the sky.
+nlohmann::json writeSkyPanorama(OutputFolder& folder, const SkyModel& sky);
 nlohmann::json surfacesJson(const std::vector<SurfaceResult>& surfaces);
 /// Prints the energy balance ("escaped" followed by `escapedNote`) and one line of radiosity
 /// per surface (with cd/m² and lux when photometric).

@@ -67,7 +67,7 @@ def python_arrays_seeds(out):
 
 # The files fuzz_run_folder reads, in the order of its seeds.
 RUN_FILES = ["report.json", "radiosity.vtp", "formfactors.bin", "formfactors.mtx", "links.png",
-             "convergence.csv", "surfaces.csv"]
+             "convergence.csv", "surfaces.csv", "sky.pfm"]
 
 # A three-patch folder in radkit's formats (the viewer tests' two walls), so the target has a
 # seed without a radkit binary.
@@ -120,6 +120,19 @@ TWO_WALLS = {
 }
 
 
+def sky_walls():
+    """The two walls under a sky: report.json's "sky_panorama" frame and an 8 x 4 sky.pfm
+    (little-endian floats, a blue sky over a grey ground)."""
+    import json, struct
+    files = dict(TWO_WALLS)
+    report = json.loads(TWO_WALLS["report.json"])
+    report["sky_panorama"] = {"file": "sky.pfm", "up": [0, 1, 0], "north": [0, 0, -1], "east": [1, 0, 0]}
+    files["report.json"] = json.dumps(report).encode() + b"\n"
+    rows = [(0.2, 0.4, 0.9)] * 16 + [(0.1, 0.1, 0.1)] * 16
+    files["sky.pfm"] = b"PF\n8 4\n-1\n" + b"".join(struct.pack("<3f", *p) for p in rows)
+    return files
+
+
 def run_folder_input(files):
     """A run folder as one fuzz_run_folder input: each file after a line "%%file NAME"."""
     return b"".join(b"%%file " + name.encode() + b"\n" + files[name] + b"\n"
@@ -136,6 +149,8 @@ def run_folder_seeds(out):
     os.makedirs(folder, exist_ok=True)
     with open(os.path.join(folder, "two-walls"), "wb") as f:
         f.write(run_folder_input(TWO_WALLS))
+    with open(os.path.join(folder, "two-walls-sky"), "wb") as f:
+        f.write(run_folder_input(sky_walls()))
     candidates = [os.environ.get("RADKIT_BINARY", "")] + [
         os.path.join(root, b, "apps", "radkit") for b in ("build-sanitize", "build")]
     radkit = next((c for c in candidates if c and os.access(c, os.X_OK)), None)

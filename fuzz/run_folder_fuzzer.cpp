@@ -1,8 +1,8 @@
 // libFuzzer target for the viewer's run-folder readers (fuzz_run_folder, fuzz/CMakeLists.txt):
 // readRunFolder with everything it reads (report.json, radiosity.vtp, formfactors.bin or .mtx,
-// links.png through stb_image, convergence.csv, surfaces.csv), then what the views compute from
-// the result without a window (exposure, colour range, smooth corners, the automatic camera,
-// the binned matrix, a row of F). Nothing is rendered.
+// links.png through stb_image, convergence.csv, surfaces.csv, sky.pfm), then what the views
+// compute from the result without a window (exposure, colour range, smooth corners, the
+// automatic camera, the binned matrix, a row of F, the sky's texels). Nothing is rendered.
 //
 // Input format: a run folder as one file. A line "%%file NAME" (at the start of the input or
 // after a newline) starts the file NAME, which runs to the newline before the next such line
@@ -34,7 +34,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kFiles[] = {"report.json",     "radiosity.vtp", "formfactors.bin",
                                   "formfactors.mtx", "links.png",     "convergence.csv",
-                                  "surfaces.csv"};
+                                  "surfaces.csv",    "sky.pfm"};
 
 /// What the views compute from a folder that was read, short of rendering it.
 void computeViews(const radkit::viewer::RunFolder& run) {
@@ -52,6 +52,8 @@ void computeViews(const radkit::viewer::RunFolder& run) {
       triangles.push_back({p.points[poly[0]], p.points[poly[k]], p.points[poly[k + 1]]});
   (void)radkit::automaticCamera(triangles);
   for (int i = 0; i < p.size(); ++i) (void)run.surfaceName(i);
+  if (run.sky)  // the sky's texels, tone mapped as the radiosity view does
+    for (const radkit::Vec3& l : run.sky->radiance) (void)trueColour(l * M_PI, 1.0);
   if (run.formFactors) {
     (void)downsampleMatrix(*run.formFactors, 64);
     (void)run.formFactors->row(p.size() - 1);

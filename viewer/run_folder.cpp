@@ -17,6 +17,7 @@
 #include "geometry/scene_loader.h"
 #include "geometry/validation.h"  // kMaxCoordinate
 #include "output/run_files.h"
+#include "render/hdr_io.h"
 #include "util/format.h"
 
 namespace radkit::viewer {
@@ -109,12 +110,12 @@ CsvTable readCsv(const std::string& path) {
 
 Vec3 jsonVec3(const nlohmann::json& j, const std::string& path, const std::string& key) {
   if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
-    fail(path, "scene.camera." + key + " must be an array of 3 numbers");
+    fail(path, key + " must be an array of 3 numbers");
   const Vec3 v{j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
   // The scenes' coordinate bound: far beyond it VTK's camera arithmetic (squared distances)
   // overflows.
   if (!isFinite(v) || std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}) > kMaxCoordinate)
-    fail(path, "scene.camera." + key + " must be 3 finite numbers within ±1e15. Fix: " + kRewrite);
+    fail(path, key + " must be 3 finite numbers within ±1e15. Fix: " + kRewrite);
   return v;
 }
 
@@ -165,15 +166,56 @@ RunReport readRunReport(const std::string& path) {
     if (!c.is_object())
       fail(path, "scene.camera must be an object or null. Fix: " + std::string(kRewrite));
     Camera cam;
-    cam.position = jsonVec3(c.value("position", nlohmann::json()), path, "position");
-    cam.lookAt = jsonVec3(c.value("look_at", nlohmann::json()), path, "look_at");
-    cam.up = jsonVec3(c.value("up", nlohmann::json()), path, "up");
+    cam.position = jsonVec3(c.value("position", nlohmann::json()), path, "scene.camera.position");
+    cam.lookAt = jsonVec3(c.value("look_at", nlohmann::json()), path, "scene.camera.look_at");
+    cam.up = jsonVec3(c.value("up", nlohmann::json()), path, "scene.camera.up");
     if (c.contains("fov_deg") && c["fov_deg"].is_number()) cam.fovDeg = c["fov_deg"].get<double>();
     if (!(cam.fovDeg > 0 && cam.fovDeg < 180))
       fail(path, "scene.camera.fov_deg must be in (0, 180)");
     r.camera = cam;
   }
+  if (j.contains("sky_panorama") && !j["sky_panorama"].is_null()) {
+    const nlohmann::json& p = j["sky_panorama"];
+    if (!p.is_object() || !p.contains("file") || !p["file"].is_string() ||
+        p["file"].get<std::string>() != "sky.pfm")
+      fail(path, "sky_panorama must be an object whose \"file\" is \"sky.pfm\". Fix: " +
+                     std::string(kRewrite));
+    SkyFrame f;
+    f.up = jsonVec3(p.value("up", nlohmann::json()), path, "sky_panorama.up");
+    f.north = jsonVec3(p.value("north", nlohmann::json()), path, "sky_panorama.north");
+    f.east = jsonVec3(p.value("east", nlohmann::json()), path, "sky_panorama.east");
+    // VTK's skybox takes the frame as it is: it must be a right-handed orthonormal one.
+    const double tolerance = 1e-6;
+    if (std::fabs(length(f.up) - 1) > tolerance || std::fabs(length(f.north) - 1) > tolerance ||
+        std::fabs(dot(f.up, f.north)) > tolerance ||
+        length(cross(f.north, f.up) - f.east) > tolerance)
+      fail(path, "sky_panorama's up, north and east are not a right-handed orthonormal frame "
+                 "(east = north × up). Fix: " + std::string(kRewrite));
+    r.skyFrame = f;
+  }
   return r;
+}
+
+SkyPanorama readSkyPanorama(const std::string& path) {
+  requireRegular(path, kRewrite);
+  RadianceImage image;
+  try {
+    image = readPfm(path);
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string(e.what()) + " (the run's sky panorama; " + kRewrite + ")");
+  }
+  if (image.width != 2 * image.height || image.width > kMaxSkySide)
+    fail(path, "is " + std::to_string(image.width) + "×" + std::to_string(image.height) +
+                   " pixels; a sky panorama is twice as wide as high and at most " +
+                   std::to_string(kMaxSkySide) + " wide. Fix: " + kRewrite);
+  for (const Vec3& v : image.radiance)
+    if (maxComponent(v) > kMaxRadiosity)
+      fail(path, "holds a radiance above " + formatNumber(kMaxRadiosity) + ". Fix: " + kRewrite);
+  SkyPanorama p;
+  p.width = image.width;
+  p.height = image.height;
+  p.radiance = std::move(image.radiance);
+  return p;
 }
 
 FormFactorRows readFormFactorsMtx(const std::string& path) {
@@ -453,6 +495,11 @@ RunFolder readRunFolder(const std::string& folder) {
   else
     run.convergenceMissing = "no convergence.csv in " + folder;
   if (present(file("surfaces.csv"), kRewrite)) run.surfaces = readSurfacesCsv(file("surfaces.csv"));
+  // A run under a sky: drawn behind the patches when its panorama is there.
+  if (run.report.skyFrame && present(file("sky.pfm"), kRewrite)) {
+    run.sky = readSkyPanorama(file("sky.pfm"));
+    run.sky->frame = *run.report.skyFrame;
+  }
   return run;
 }
 

@@ -60,11 +60,25 @@ struct SurfaceSummary {
   double luminance = NAN, illuminance = NAN;
 };
 
+/// Where a sky panorama's directions lie in the scene: a right-handed orthonormal frame.
+struct SkyFrame {
+  Vec3 up, north, east;  ///< east = north × up
+};
+
 /// What the viewer needs from report.json.
 struct RunReport {
   std::string sceneName, sceneFile, units;
   std::vector<std::string> surfaces;  ///< names in surface-index order
   std::optional<Camera> camera;
+  std::optional<SkyFrame> skyFrame;  ///< "sky_panorama" of a run under a sky
+};
+
+/// sky.pfm: the run's sky as radiance over directions (render/sky_panorama.h's layout:
+/// column u at bearing 360°u from north towards east, row v at elevation 90° − 180°v).
+struct SkyPanorama {
+  int width = 0, height = 0;
+  std::vector<Vec3> radiance;  ///< W m⁻² sr⁻¹, row-major, top row (the zenith) first
+  SkyFrame frame;
 };
 
 /// links.png decoded: 8-bit RGB, rows from the top.
@@ -89,13 +103,15 @@ struct RunFolder {
   /// Its pixels, decoded when the folder is read (so a damaged file is refused before a
   /// window opens).
   LinksImage links;
+  /// The sky behind the patches, when report.json names a panorama and sky.pfm is there.
+  std::optional<SkyPanorama> sky;
 
   /// Name of a patch's surface ("#3" when report.json lists fewer surfaces).
   std::string surfaceName(int patch) const;
 };
 
 /// \brief Reads radiosity.vtp and report.json (required), formfactors.bin or .mtx, links.png,
-/// convergence.csv and surfaces.csv (optional), and checks they agree (patch count, surface
+/// convergence.csv, surfaces.csv and sky.pfm (optional), and checks they agree (patch count, surface
 /// indices). Each must be a regular file (a FIFO would block the read).
 /// \throws radkit::InputError naming the file, the line or element and the fix.
 RunFolder readRunFolder(const std::string& folder);
@@ -110,6 +126,10 @@ FormFactorRows readFormFactorsMtx(const std::string& path);
 FormFactorRows readFormFactorsBin(const std::string& path);
 std::vector<SolverHistory> readConvergenceCsv(const std::string& path);
 std::vector<SurfaceSummary> readSurfacesCsv(const std::string& path);
+/// \brief sky.pfm: a colour PFM twice as wide as high (at most kMaxSkySide wide) of finite
+/// radiance >= 0. The frame is report.json's and is left empty here.
+SkyPanorama readSkyPanorama(const std::string& path);
+constexpr int kMaxSkySide = 8192;
 /// \brief links.png through stb_image: a PNG whose declared size is at most kMaxLinksSide per
 /// side and kMaxLinksPixels in all, checked before decoding.
 LinksImage readLinksPng(const std::string& path);

@@ -129,8 +129,43 @@ SceneView::SceneView(const RunFolder& run) : m_run(run) {
   m_renderer->AddActor2D(m_info);
   setFontSize(16);
 
+  if (run.sky) {
+    const SkyPanorama& sky = *run.sky;
+    m_skyImage->SetDimensions(sky.width, sky.height, 1);
+    m_skyImage->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+    m_skyTexture->SetInputData(m_skyImage);
+    m_skyTexture->InterpolateOn();
+    m_skyTexture->RepeatOn();  // bearing wraps around at the panorama's left and right edges
+    m_skybox->SetTexture(m_skyTexture);
+    // vtkSkybox's sphere projection: texture u = atan2(d·right, d·(plane × right))/2π + 1/2,
+    // v = elevation/π + 1/2. With right = −east, plane × right is −north and u is the bearing
+    // over 2π: sky.pfm's layout.
+    m_skybox->SetProjection(vtkSkybox::Sphere);
+    m_skybox->SetFloorPlane(sky.frame.up.x, sky.frame.up.y, sky.frame.up.z, 0);
+    m_skybox->SetFloorRight(-sky.frame.east.x, -sky.frame.east.y, -sky.frame.east.z);
+    m_skybox->PickableOff();
+    m_skybox->VisibilityOff();
+    m_renderer->AddActor(m_skybox);
+  }
   m_renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
   resetCamera();
+}
+
+void SceneView::showSky(double exposure) {
+  if (!m_run.sky) return;
+  m_skybox->SetVisibility(exposure >= 0);
+  if (exposure < 0 || exposure == m_skyExposure) return;
+  const SkyPanorama& sky = *m_run.sky;
+  auto* pixels = static_cast<unsigned char*>(m_skyImage->GetScalarPointer());
+  // VTK images start at the bottom row; the panorama's first row is the zenith.
+  for (int y = 0; y < sky.height; ++y)
+    for (int x = 0; x < sky.width; ++x) {
+      // trueColour takes radiosity B = πL of a Lambertian surface; the sky is radiance L.
+      const auto c = trueColour(sky.radiance[std::size_t(y) * sky.width + x] * M_PI, exposure);
+      std::copy(c.begin(), c.end(), pixels + 3 * (std::size_t(sky.height - 1 - y) * sky.width + x));
+    }
+  m_skyImage->Modified();
+  m_skyExposure = exposure;
 }
 
 void SceneView::setFontSize(int pixels) {
@@ -178,6 +213,7 @@ void SceneView::showTrueColour(const ViewSettings& s) {
                                    : VTK_SCALAR_MODE_USE_CELL_FIELD_DATA);
   m_mapper->SelectColorArray("colour");
   m_scalarBar->SetVisibility(false);
+  showSky(m_exposureUsed);
   std::string note;
   if (s.mode == ViewMode::FormFactorRow)
     note = m_run.formFactors ? "  [click a patch to paint its row of F]"
@@ -189,6 +225,7 @@ void SceneView::showTrueColour(const ViewSettings& s) {
 }
 
 void SceneView::showFalseColour(const ViewSettings& s) {
+  showSky(-1);  // a colour scale's background stays neutral
   std::vector<double> v(m_run.patches.size());
   for (int i = 0; i < m_run.patches.size(); ++i)
     v[i] = channelValue(m_run.patches.radiosity[i], s.channel, s.photometric);
@@ -208,6 +245,7 @@ void SceneView::showFalseColour(const ViewSettings& s) {
 }
 
 void SceneView::showFormFactorRow(const ViewSettings& s) {
+  showSky(-1);
   std::vector<double> row = m_run.formFactors->row(s.picked);
   const double max = std::max(1e-300, *std::max_element(row.begin(), row.end()));
   const double hi = std::pow(10.0, std::ceil(std::log10(max) - 1e-9));

@@ -3,13 +3,16 @@
 #pragma once
 
 #include <vtkActor.h>
+#include <vtkImageData.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
+#include <vtkSkybox.h>
 #include <vtkTextActor.h>
+#include <vtkTexture.h>
 
 #include <string>
 
@@ -28,8 +31,8 @@ class SceneView {
 
   vtkRenderer* renderer() { return m_renderer; }
 
-  /// \brief Recolours the patches: settings.mode Radiosity (true colour), FalseColour, or
-  /// FormFactorRow (row settings.picked of F, log scale; falls back to true colour with a
+  /// \brief Recolours the patches: settings.mode Radiosity (true colour, with the run's sky
+  /// behind them at the same exposure), FalseColour, or FormFactorRow (row settings.picked of F, log scale; falls back to true colour with a
   /// note when the run has no matrix or nothing is picked). Updates title, scalar bar, the
   /// picked patch's outline and its info panel.
   void show(const ViewSettings& settings);
@@ -53,6 +56,8 @@ class SceneView {
   void showFormFactorRow(const ViewSettings& s);
   void setValues(const std::vector<double>& perPatch, bool smooth);
   void showOutline(int patch);
+  /// The run's sky (if it has one) behind the patches at `exposure`; hidden when < 0.
+  void showSky(double exposure);
   std::string patchInfo(int patch) const;
 
   const RunFolder& m_run;
@@ -67,6 +72,11 @@ class SceneView {
   vtkNew<vtkPolyData> m_outline;
   vtkNew<vtkPolyDataMapper> m_outlineMapper;
   vtkNew<vtkActor> m_outlineActor;
+  // A run under a sky: its panorama, tone mapped like the patches, as a sphere skybox.
+  vtkNew<vtkImageData> m_skyImage;
+  vtkNew<vtkTexture> m_skyTexture;
+  vtkNew<vtkSkybox> m_skybox;
+  double m_skyExposure = -1;  ///< the exposure m_skyImage holds
 };
 
 }  // namespace radkit::viewer

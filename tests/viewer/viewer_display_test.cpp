@@ -12,6 +12,8 @@
 #include "geometry/subdivision.h"
 #include "output/run_files.h"
 #include "render/camera.h"
+#include "render/hdr_io.h"
+#include "render/sky_panorama.h"
 #include "tests/common/open_box.h"
 #include "tests/common/test_util.h"
 #include "tests/viewer/test_run.h"
@@ -35,8 +37,9 @@ class ViewerDisplay : public ::testing::Test {
   std::string folder() const { return m_dir.path(""); }
 
   /// Renders `mode` at w × h and reads the PNG back.
-  Canvas shot(const std::string& mode, int w, int h, bool smooth = false) {
+  Canvas shot(const std::string& mode, int w, int h, bool smooth = false, double exposure = 0) {
     ViewerOptions o;
+    o.exposure = exposure;
     o.runFolder = folder();
     o.screenshot = m_dir.path(mode.substr(0, mode.find(':')) + (smooth ? "-smooth" : "") + ".png");
     o.mode = mode;
@@ -223,6 +226,63 @@ TEST_F(ViewerDisplay, RunWithoutCameraIsSeenThroughItsOpenSide) {
       EXPECT_EQ(mesh.patches[picked].surface, surface)
           << (plusZ ? "+z" : "-z") << " box, pixel " << x << ", " << y;
     }
+  }
+}
+
+// A run under a sky: the radiosity view draws sky.pfm behind the patches in the directions
+// report.json's frame gives, at the patches' exposure, and the colour-scale views do not.
+TEST_F(ViewerDisplay, RadiosityDrawsTheRunsSkyInItsDirections) {
+  // The test camera is y-up and looks along −z: make −z north, so east (+x) is on the right.
+  SkyDescription frame;
+  frame.up = {0, 1, 0};
+  frame.north = {0, 0, -1};
+  const SkyModel sky(frame);
+  // Red in the east, blue in the west, green more than 5° above the horizon.
+  RadianceImage p;
+  p.width = 256, p.height = 128;
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x) {
+      const Vec3 d = panoramaDirection(sky, (x + 0.5) / p.width, (y + 0.5) / p.height);
+      p.radiance.push_back({d.x > 0 ? 0.8 : 0.05, d.y > std::sin(5 * M_PI / 180) ? 0.8 : 0.05,
+                            d.x < 0 ? 0.8 : 0.05});
+    }
+  writePfm(m_dir.path("sky.pfm"), p);
+  std::ofstream(m_dir.path("report.json"))
+      << R"({"command": "run", "scene": {"name": "two-walls", "file": "two-walls.json", "units": "m",
+            "surfaces": ["left wall", "right wall"],
+            "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov_deg": 40}},
+            "sky_panorama": {"file": "sky.pfm", "up": [0, 1, 0], "north": [0, 0, -1],
+                             "east": [1, 0, 0]}})";
+  const int w = 400, h = 300;
+  // Exposure 1: a radiance of 0.8 shows as sRGB 231, 0.05 as 63. The points lie outside the
+  // walls, 11.5° above or below the horizon and 21° either side of north.
+  const Canvas c = shot("radiosity", w, h, false, 1.0);
+  const Vec3 upLeft = meanColour(c, w * 0.1, h * 0.2), upRight = meanColour(c, w * 0.9, h * 0.2);
+  const Vec3 downLeft = meanColour(c, w * 0.1, h * 0.8);
+  const Vec3 downRight = meanColour(c, w * 0.9, h * 0.8);
+  auto expectColour = [](const Vec3& got, bool r, bool g, bool b, const char* where) {
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(got[k], (k == 0 ? r : k == 1 ? g : b) ? 231 : 63, 12) << where << " channel " << k;
+  };
+  expectColour(upLeft, false, true, true, "up, west");
+  expectColour(upRight, true, true, false, "up, east");
+  expectColour(downLeft, false, false, true, "down, west");
+  expectColour(downRight, true, false, false, "down, east");
+  // The walls are drawn over the sky, unchanged.
+  double x, y;
+  test::projectToPixel({-0.5, -0.25, 0}, w, h, x, y);
+  EXPECT_GT(meanColour(c, x, y).x, 2 * meanColour(c, x, y).y) << "left wall should be red";
+  // False colour keeps the neutral background behind its colour scale.
+  const Canvas f = shot("false-colour", w, h);
+  const Vec3 plain = meanColour(f, w * 0.1, h * 0.8);
+  EXPECT_LT(std::abs(plain.x - plain.z), 10) << "false colour should not draw the sky";
+  // A damaged panorama is refused by name before a window opens.
+  { std::ofstream(m_dir.path("sky.pfm")) << "PF\n4 4\n-1\n"; }
+  try {
+    readRunFolder(folder());
+    FAIL() << "a truncated sky.pfm should be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sky.pfm"), std::string::npos) << e.what();
   }
 }
 
