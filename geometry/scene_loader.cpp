@@ -483,9 +483,11 @@ bool fromUnitlessMesh(const Scene& scene, const Surface& s) {
 }
 
 /// A unitless mesh (STL, OBJ) over 10 m, alone or among room-sized surfaces, was probably
-/// written in millimetres: a 31 mm bolt read as metres is a 31 m bolt.
-void warnOnUnitlessGiants(const Scene& scene, LoadReport& report) {
-  if (scene.sky) return;  // a street or a landscape may hold large meshes
+/// written in millimetres: a 31 mm bolt read as metres is a 31 m bolt. Returns whether it
+/// warned.
+bool warnOnUnitlessGiants(const Scene& scene, LoadReport& report) {
+  if (scene.sky) return false;  // a street or a landscape may hold large meshes
+  bool warned = false;
   constexpr double kLargestObjectMetres = 10, kRoomMetres = 20;
   const double unit = scene.metresPerUnit();
   std::vector<double> extent(scene.surfaces.size());
@@ -519,7 +521,9 @@ void warnOnUnitlessGiants(const Scene& scene, LoadReport& report) {
                               "mm when the whole scene is in mm)")
                 : std::string("--units mm")) +
         ".");
+    warned = true;
   }
+  return warned;
 }
 
 /// A scene whose extent is far from a room's or an object's was probably written in another
@@ -572,13 +576,20 @@ Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& 
           ": no material emits light, so every result would be black. Fix: give the "
           "light's material an emission \"Ke r g b\" (W/m²) in the MTL file; Ka is ambient "
           "colour, which radkit does not read as emission.");
-  } else
+  } else if (ext == ".stl" || ext == ".ply" || ext == ".off")
+    // A bare mesh has neither materials nor a light: say how to give it both.
+    throw InputError(path + ": this " + std::string(ext == ".ply" ? "PLY" : ext == ".off" ? "OFF" : "STL") +
+                     " file is a mesh without materials or lights, not a scene. Fix: name it "
+                     "as a surface's \"mesh\" in a JSON scene, with a material and a lamp "
+                     "(docs/formats.md), or stand it in a lit room with "
+                     "data/tools/make_model_room.py MODEL --out SCENE.json.");
+  else
     throw InputError(path + ": unknown scene format '" + ext +
                      "'. Fix: give a .json scene or an .obj with its .mtl.");
   if (ext == ".obj" && !options.units.empty()) scene.units = options.units;
   validateScene(scene, out, options.repair);
-  warnOnImplausibleSize(scene, out);
-  warnOnUnitlessGiants(scene, out);
+  // A mesh named as too large says what the scene-wide size warning would, with its file.
+  if (!warnOnUnitlessGiants(scene, out)) warnOnImplausibleSize(scene, out);
   return scene;
 }
 
