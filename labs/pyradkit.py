@@ -13,7 +13,18 @@ from pathlib import Path
 
 import numpy as np
 
-REPO = Path(__file__).resolve().parent.parent
+LABS = Path(__file__).resolve().parent
+REPO = LABS.parent
+
+
+def data_file(name):
+    """A scene the labs use: labs/data/NAME in a handout (labs/make_handout.py copies them
+    there), else the repository's data/NAME."""
+    for folder in (LABS / "data", REPO / "data"):
+        if (folder / name).exists():
+            return folder / name
+    raise SystemExit(f"{name}: not found in {LABS / 'data'} or {REPO / 'data'}. Fix: run the lab "
+                     "from the repository or from a complete handout (labs/make_handout.py)")
 
 
 def import_radkit(lab):

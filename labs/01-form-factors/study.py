@@ -14,7 +14,7 @@ import numpy as np
 sys.dont_write_bytecode = True  # importing the student's file leaves no __pycache__ there
 LAB = Path(__file__).resolve().parent
 sys.path.insert(0, str(LAB.parent))
-from pyradkit import (REPO, find_radkit, load_student, need_radkit,  # noqa: E402
+from pyradkit import (data_file, find_radkit, load_student, need_radkit,  # noqa: E402
                       radkit_surface_factors, run_study, save_figure)
 
 
@@ -51,8 +51,8 @@ def main():
         print(f"{name:28s} {exact:12.9f}" + "".join(f"{e:10.2e}" for e in errs))
 
     print("\nAgainst radkit formfactors (F_ij both ways, n = 8):")
-    for scene in (REPO / "data" / "parallel-squares.json",
-                  REPO / "data" / "perpendicular-squares.json", LAB / "tilted-pair.json"):
+    for scene in (data_file("parallel-squares.json"),
+                  data_file("perpendicular-squares.json"), LAB / "tilted-pair.json"):
         polygons, ref = scene_polygons(scene), radkit_surface_factors(radkit, scene)
         (a, pa), (b, pb) = polygons.items()
         for i, pi, j, pj in ((a, pa, b, pb), (b, pb, a, pa)):

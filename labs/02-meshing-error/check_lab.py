@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import (REPO, guarded, howell_b3 as b3, load_student,  # noqa: E402
+from pyradkit import (data_file, guarded, howell_b3 as b3, load_student,  # noqa: E402
                       need_radkit, run_radkit, sentence, slope_mistakes, which)
 
 RICHARDSON_TOLERANCE = 1e-5
@@ -228,7 +228,7 @@ def check(student_dir, radkit=None):
     with tempfile.TemporaryDirectory() as tmp:
         runs = {n: Path(tmp) / f"parallel-{n}" for n in COUNTS}
         for n, out in runs.items():
-            run_radkit(radkit, "run", REPO / "data" / "parallel-squares.json", "--patches", n,
+            run_radkit(radkit, "run", data_file("parallel-squares.json"), "--patches", n,
                        "--tol", "1e-10", "--seed", 1, "--threads", 2, "--no-render", "--out", out)
         peaks = [read_run(runs[n], "lower")[1] for n in COUNTS]
         check_reading(lab, task, failures, runs[32],

@@ -16,7 +16,7 @@ import numpy as np
 sys.dont_write_bytecode = True  # importing the student's file leaves no __pycache__ there
 LAB = Path(__file__).resolve().parent
 sys.path.insert(0, str(LAB.parent))
-from pyradkit import (REPO, find_radkit, load_student, need_radkit, run_radkit,  # noqa: E402
+from pyradkit import (data_file, find_radkit, load_student, need_radkit, run_radkit,  # noqa: E402
                       run_study, save_figure)
 
 
@@ -52,7 +52,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         # A: the floor's peak under the lamp, whose limit is a closed form.
         exact = point_limit(0.5, 1.0, 1.0, 1.0, 1.0)
-        means, peaks = series(lab, radkit, REPO / "data" / "parallel-squares.json", "lower", counts, tmp)
+        means, peaks = series(lab, radkit, data_file("parallel-squares.json"), "lower", counts, tmp)
         print(f"A. data/parallel-squares.json, surface 'lower': peak radiosity -> {exact:.10f} "
               "(Howell B-3, rho E F at the centre)")
         print(f"{'patches':>8s} {'h':>8s} {'mean':>14s} {'peak':>14s} {'error':>10s} "
@@ -91,7 +91,7 @@ def main():
             surfaces = None
             table = []
             for n in cornell:
-                out = run(radkit, REPO / "data" / "cornell-box.json", n, Path(tmp) / f"cornell-{n}")
+                out = run(radkit, data_file("cornell-box.json"), n, Path(tmp) / f"cornell-{n}")
                 with open(out / "surfaces.csv") as f:
                     rows = list(csv.DictReader(f))
                 surfaces = [r["surface"] for r in rows]

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import REPO, import_radkit, load_student  # noqa: E402
+from pyradkit import data_file, import_radkit, load_student  # noqa: E402
 
 
 def direct(F, rho, E):
@@ -93,7 +93,7 @@ def check(student_dir, radkit_binary=None):
 
     # 3. The order of shots, on a scene where areas differ: after k shots B must equal the
     #    built-in southwell's after k shots (same choice rule, same arithmetic up to rounding).
-    scene = rk.load_scene(str(REPO / "data" / "cornell-box.json"))
+    scene = rk.load_scene(str(data_file("cornell-box.json")))
     mesh = rk.mesh(scene, patches=150)
     cornell = rk.System(rk.form_factors(mesh))
     k = 60

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import REPO, attempt, import_radkit, load_student  # noqa: E402
+from pyradkit import data_file, attempt, import_radkit, load_student  # noqa: E402
 
 
 def two_patch(rk, rho):
@@ -50,7 +50,7 @@ def check(student_dir, radkit_binary=None):
     # sums of F (1 - d), which move the factor by at most rho * d. The solve stops at 1e-8,
     # where the residual's own rounding moves the ratios by about 1e-8 (by 2e-6 at 1e-10,
     # by 1e-4 at 1e-12); 1e-6 is allowed for it.
-    mesh = rk.mesh(rk.load_scene(str(REPO / "data" / "furnace.json")), patches=96)
+    mesh = rk.mesh(rk.load_scene(str(data_file("furnace.json"))), patches=96)
     ff = rk.form_factors(mesh)
     d = ff.diagnostics["row_sum"]["max_abs_deviation_from_one"]
     furnace = rk.System(ff)
@@ -67,7 +67,7 @@ def check(student_dir, radkit_binary=None):
         failures.append(f"spectral_radius: the furnace gave {radius:.6g}; rho F with rows summing "
                         "to 1 has spectral radius rho = 0.5.")
     cornell = rk.System(rk.form_factors(rk.mesh(
-        rk.load_scene(str(REPO / "data" / "cornell-box.json")), patches=150)))
+        rk.load_scene(str(data_file("cornell-box.json"))), patches=150)))
     radius = task("2", lambda: lab.spectral_radius(cornell.F, cornell.reflectance))
     if radius is not None:
         measured = rk.solve(cornell, "jacobi", tolerance=1e-13)

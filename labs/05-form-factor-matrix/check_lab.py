@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import REPO, attempt, import_radkit, load_student  # noqa: E402
+from pyradkit import data_file, attempt, import_radkit, load_student  # noqa: E402
 
 C11 = 0.19982489569838746
 C14 = 0.20004377607540316
@@ -55,7 +55,7 @@ def check(student_dir, radkit_binary=None):
 
     # Tasks 1 and 2 on the closed unit cube: opposite faces C-11, adjacent C-14, and every row
     # of F sums to 1 up to F's accuracy.
-    cube_file = REPO / "data" / "cube-one-emitter.json"
+    cube_file = data_file("cube-one-emitter.json")
     mesh = rk.mesh(rk.load_scene(str(cube_file)), patches=150)
     ff = rk.form_factors(mesh)
     F, area, surface = ff.dense(), mesh.area, mesh.surface
@@ -108,7 +108,7 @@ def check(student_dir, radkit_binary=None):
                             f"{mean:.3g}); that F is reciprocal by construction, so both are 0 "
                             "up to rounding. Compare A_i F_ij with A_j F_ji, not F_ij with F_ji.")
         else:
-            cornell = rk.mesh(rk.load_scene(str(REPO / "data" / "cornell-box.json")), patches=150)
+            cornell = rk.mesh(rk.load_scene(str(data_file("cornell-box.json"))), patches=150)
             noisy = rk.form_factors(cornell, method="hemisphere", samples=64, seed=5)
             report = noisy.diagnostics["reciprocity"]
             largest, mean = lab.reciprocity_error(noisy.dense(), cornell.area)

@@ -14,7 +14,7 @@ import numpy as np
 from scipy import integrate, optimize
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import REPO, attempt, guarded, howell_b3, import_radkit, load_student  # noqa: E402
+from pyradkit import data_file, attempt, guarded, howell_b3, import_radkit, load_student  # noqa: E402
 
 LAB = Path(__file__).resolve().parent
 Z = 4.0  # standard errors a statistical comparison may differ by (two-sided p ~ 6e-5)
@@ -95,7 +95,7 @@ def check_task1(lab, task, rk, failures):
 
 
 def check_task2(lab, task, rk, failures):
-    mesh = rk.mesh(rk.load_scene(str(REPO / "data" / "cornell-box.json")), patches=120)
+    mesh = rk.mesh(rk.load_scene(str(data_file("cornell-box.json"))), patches=120)
     N, seed = 20000, 3
     pm = rk.photon_map(mesh, photons=N, seed=seed)
     tally = rk.photons(mesh, photons=N, seed=seed)  # the same photons, tallied by radkit

@@ -32,7 +32,7 @@ import numpy as np
 LAB = Path(__file__).resolve().parent
 sys.path.insert(0, str(LAB.parent))
 sys.path.insert(0, str(LAB))  # squares.py, which the student's hierarchy.py imports
-from pyradkit import (REPO, guarded, load_student, need_radkit, run_radkit,  # noqa: E402
+from pyradkit import (data_file, guarded, load_student, need_radkit, run_radkit,  # noqa: E402
                       sentence, slope_mistakes, which as shared_which)
 from squares import (C11, EMISSION, FLOOR, LAMP, MIN_SIZE, RHO, Square,  # noqa: E402
                      floor_leaves, l1_error, leaf_mean, point_factor, sample_points)
@@ -543,7 +543,7 @@ def check(student_dir, radkit=None):
         runs = {}
         for eps in EPSILONS:
             runs[eps] = Path(tmp) / f"hierarchical-{eps:g}"
-            run_radkit(radkit, "run", REPO / "data" / "parallel-squares.json", "--method",
+            run_radkit(radkit, "run", data_file("parallel-squares.json"), "--method",
                        "hierarchical", "--epsilon", eps, "--seed", 1, "--threads", 2,
                        "--no-render", "--out", runs[eps])
         radkit_runs = check_read_run(lab, task, failures, runs)

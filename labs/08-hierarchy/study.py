@@ -19,7 +19,7 @@ sys.dont_write_bytecode = True  # importing the student's file leaves no __pycac
 LAB = Path(__file__).resolve().parent
 sys.path.insert(0, str(LAB.parent))
 sys.path.insert(0, str(LAB))  # squares.py, which hierarchy.py imports
-from pyradkit import (REPO, find_radkit, load_student, need_radkit, run_radkit,  # noqa: E402
+from pyradkit import (data_file, find_radkit, load_student, need_radkit, run_radkit,  # noqa: E402
                       run_study, save_figure)
 from squares import (C11, EMISSION, LAMP, RHO, floor_leaves, l1_error, leaf_mean,  # noqa: E402
                      quadtree_leaves)
@@ -96,7 +96,7 @@ def main():
               f"{'L1 error':>9s} {'seconds':>8s}")
         for e in SQUARES_EPS:
             out = Path(tmp) / f"squares-{e:g}"
-            seconds, _ = hierarchical(radkit, REPO / "data" / "parallel-squares.json", e, out)
+            seconds, _ = hierarchical(radkit, data_file("parallel-squares.json"), e, out)
             links, mean, leaves = lab.read_run(out)
             l1 = l1_error(leaves)
             theirs["links"].append(links)
@@ -113,7 +113,7 @@ def main():
             runs = {}
             for e in CORNELL_EPS:
                 out = Path(tmp) / f"cornell-{e:g}"
-                seconds, report = hierarchical(radkit, REPO / "data" / "cornell-box.json", e, out)
+                seconds, report = hierarchical(radkit, data_file("cornell-box.json"), e, out)
                 runs[e] = (seconds, report["hierarchy"], surface_means(out))
             finest = runs[CORNELL_EPS[-1]][2]
             print(f"\nC. radkit run --method hierarchical on data/cornell-box.json; the change "
