@@ -221,4 +221,8 @@ void printField(const std::string& label, const std::string& value) {
   std::printf("%22s: %s\n", label.c_str(), value.c_str());
 }
 
+void printLogLine(const std::string& line) {
+  std::fprintf(stderr, "%s%s\n", line.rfind("warning: ", 0) == 0 ? "radkit: " : "", line.c_str());
+}
+
 }  // namespace radkit::app

@@ -70,6 +70,10 @@ PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
 
 /// One number printed with a printf format ("%.3g").
 std::string fmt(const char* format, double value);
+/// Prints a line of the library's log to stderr; its warnings ("warning: ...") get the
+/// "radkit: " every other warning of the command line starts with.
+void printLogLine(const std::string& line);
+
 /// Prints a right-aligned "label: value" line to stdout.
 void printField(const std::string& label, const std::string& value);
 

@@ -224,7 +224,7 @@ void runHierarchicalJob(HierarchicalJob job) {
   log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
   log.message = [&](const std::string& line) {
     progress.finish();
-    std::fprintf(stderr, "%s\n", line.c_str());
+    printLogLine(line);
   };
   HierarchicalResult r = solveHierarchical(scene, job.settings, log);
   progress.finish();

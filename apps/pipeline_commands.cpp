@@ -184,8 +184,13 @@ std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene,
   std::size_t faces = 0;
   for (const Surface& s : scene.surfaces) faces += s.faces.size();
   const bool atFloor = std::size_t(e.patches) <= faces + faces / 20;
+  // F grows with the square of the patch count: at one patch per input face it would need
+  // about this much in the smallest storage.
+  const double ratio = double(faces) / double(std::max(1, e.patches));
+  const double atFloorBytes = double(e.smallestBytes) * ratio * ratio;
+  const bool floorTooBig = !atFloor && e.budget > 0 && atFloorBytes > double(e.budget);
   std::string message = e.what();
-  if (atFloor) {
+  if (atFloor || floorTooBig) {
     const std::string fewer = kFewerPatchesFix;
     if (const std::size_t at = message.find(fewer); at != std::string::npos) {
       message.erase(at, fewer.size());
@@ -196,8 +201,14 @@ std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene,
   }
   message += atFloor ? ". The mesh is at its floor: " + std::to_string(faces) +
                            " input faces, and a patch never spans two, so fewer patches cannot help."
-                     : ". Fewer patches help down to about " + std::to_string(faces) +
-                           ", the scene's input faces (a patch never spans two).";
+               : floorTooBig
+                   ? ". Fewer patches cannot help enough: at the floor of " +
+                         std::to_string(faces) +
+                         " patches (one per input face; a patch never spans two) F would "
+                         "still need about " +
+                         formatBytes(atFloorBytes) + "."
+                   : ". Fewer patches help down to about " + std::to_string(faces) +
+                         ", the scene's input faces (a patch never spans two).";
   if (cmd.job == Job::Run) {
     // Peak memory of `run --method hierarchical --no-render` on the shipped scenes, less
     // radkit's own 40 MiB: terrain-room.json 4.9 kB per input face (51 201 faces, 291 MiB),
@@ -238,7 +249,7 @@ void runJob(PipelineCommand& cmd) {
   log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
   log.message = [&](const std::string& line) {
     progress.finish();
-    std::fprintf(stderr, "%s\n", line.c_str());
+    printLogLine(line);
   };
   nlohmann::json adaptiveJson;
   PipelineResult r;

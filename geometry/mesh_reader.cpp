@@ -9,6 +9,8 @@
 #include <stb/stb_image.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -77,24 +79,52 @@ void restoreFileVertices(RawMesh& raw, const std::vector<std::size_t>& refused) 
     for (int& v : face.vertices) v = renumber[v];
 }
 
-/// An ASCII OFF file without its comments and blank lines, or nullopt if it has none (or is
-/// binary). OFF allows '#' comments anywhere; OpenMesh's reader takes a comment after the
-/// header for the counts and then reads for tens of seconds, or asks for gigabytes.
-std::optional<std::string> offWithoutComments(const std::string& path) {
+/// An ASCII OFF file as OpenMesh reads it right: without comments, blank lines and per-face
+/// colours, or nullopt when it has none of them (or is binary). OFF allows '#' comments
+/// anywhere; OpenMesh's reader takes a comment after the header for the counts and then reads
+/// for tens of seconds, or asks for gigabytes.
+std::optional<std::string> offForOpenMesh(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::istringstream firstLine(text.substr(0, text.find('\n')));
   std::string key, second;
   firstLine >> key >> second;
   for (char& c : second) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (second == "binary" || text.find('#') == std::string::npos) return std::nullopt;
+  if (second == "binary") return std::nullopt;
+  std::vector<std::string> lines;
+  std::istringstream stream(text);
+  for (std::string line; std::getline(stream, line);) {
+    line = structure::uncommented(line);
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+  }
+  // Per-face colours after a face's indices are legal OFF, but OpenMesh then stops reading
+  // faces: each face line is cut to its count and indices. Laid out one element per line (as
+  // every exporter writes OFF); another layout is left to OpenMesh as it is.
+  bool cut = false;
+  std::istringstream header(lines.empty() ? std::string() : lines[0]);
+  std::vector<long long> counts;
+  for (std::string t; header >> t;)
+    if (std::isdigit(static_cast<unsigned char>(t[0]))) counts.push_back(std::atoll(t.c_str()));
+  std::size_t at = 1;
+  if (counts.empty() && lines.size() > 1) {
+    std::istringstream c(lines[1]);
+    for (long long v; c >> v;) counts.push_back(v);
+    at = 2;
+  }
+  if (counts.size() >= 2 && counts[0] >= 0 && counts[1] >= 0 &&
+      at + std::size_t(counts[0]) + std::size_t(counts[1]) == lines.size())
+    for (std::size_t f = at + std::size_t(counts[0]); f < lines.size(); ++f) {
+      std::istringstream face(lines[f]);
+      long long n = 0;
+      if (!(face >> n) || n < 0) break;
+      std::string kept = std::to_string(n), token;
+      for (long long k = 0; k < n && face >> token; ++k) kept += ' ' + token;
+      if (face >> token) lines[f] = kept, cut = true;
+    }
+  if (!cut && text.find('#') == std::string::npos) return std::nullopt;
   std::string clean;
   clean.reserve(text.size());
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    line = structure::uncommented(line);
-    if (line.find_first_not_of(" \t\r") != std::string::npos) clean += line + '\n';
-  }
+  for (const std::string& line : lines) clean += line + '\n';
   return clean;
 }
 
@@ -107,7 +137,7 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool 
   CapturedOpenMeshErrors errors;
   OpenMesh::IO::Options options;
   const std::optional<std::string> off =
-      lowerExtension(path) == ".off" ? offWithoutComments(path) : std::nullopt;
+      lowerExtension(path) == ".off" ? offForOpenMesh(path) : std::nullopt;
   std::istringstream offStream(off ? *off : std::string());
   if (!(off ? OpenMesh::IO::read_mesh(mesh, offStream, ".off", options)
             : OpenMesh::IO::read_mesh(mesh, path, options))) {
@@ -319,8 +349,9 @@ std::optional<Vec3> meanTextureColour(const fs::path& file, std::string& why) {
   return mean;
 }
 
+/// `ambientOnly` collects the materials whose Ka is ignored (one warning names them all).
 Material mtlMaterial(const tinyobj::material_t& m, const std::string& path,
-                     std::vector<std::string>* warnings) {
+                     std::vector<std::string>* warnings, std::vector<std::string>& ambientOnly) {
   auto warn = [&](const std::string& what) {
     if (warnings) warnings->push_back(path + ": MTL material \"" + m.name + "\": " + what);
   };
@@ -374,8 +405,7 @@ Material mtlMaterial(const tinyobj::material_t& m, const std::string& path,
     if (maxComponent(kd) <= 0 && !mat.emits())
       warn("Kd is 0 and there is no Ks: it absorbs all light (black)");
   }
-  if (maxComponent(ka) > 0 && !mat.emits())
-    warn("Ka (ambient colour) is ignored; if this is a light, give it Ke (emission in W/m²)");
+  if (maxComponent(ka) > 0 && !mat.emits()) ambientOnly.push_back(m.name);
   try {
     resolveMaterial(mat);
   } catch (const BsdfParamError& e) {
@@ -408,6 +438,7 @@ Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings,
                      "). Fix: correct the \"mtllib\" line to the MTL's file name (relative to "
                      "the OBJ's folder, case included), or copy the MTL there.");
   }
+  std::vector<std::string> ambientOnly;
   for (const auto& m : reader.GetMaterials()) {
     if (replaced && replaced->count(m.name)) {
       Material placeholder;  // the including scene's material of this name takes its place
@@ -415,7 +446,18 @@ Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings,
       scene.materials.push_back(placeholder);
       continue;
     }
-    scene.materials.push_back(mtlMaterial(m, path, warnings));
+    scene.materials.push_back(mtlMaterial(m, path, warnings, ambientOnly));
+  }
+  // Exporters write Ka beside Kd on every material; one line says it, not one per material.
+  if (warnings && !ambientOnly.empty()) {
+    std::string names;
+    for (std::size_t k = 0; k < ambientOnly.size() && k < 5; ++k)
+      names += (k ? ", \"" : "\"") + ambientOnly[k] + "\"";
+    if (ambientOnly.size() > 5) names += ", ...";
+    warnings->push_back(path + ": Ka (ambient colour) is ignored in " +
+                        std::to_string(ambientOnly.size()) + " MTL material" +
+                        (ambientOnly.size() > 1 ? "s" : "") + " (" + names +
+                        "); if one of them is a light, give it Ke (emission in W/m²)");
   }
   std::vector<Vec3> all = objVertices(reader.GetAttrib());
   // Surface index by name: looked up once per face, so it must not be a scan (a scan per face

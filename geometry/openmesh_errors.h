@@ -4,8 +4,11 @@
 
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <algorithm>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace radkit {
 
@@ -18,7 +21,24 @@ class CapturedOpenMeshErrors {
   ~CapturedOpenMeshErrors() { omerr().rdbuf(m_saved); }
   CapturedOpenMeshErrors(const CapturedOpenMeshErrors&) = delete;
   CapturedOpenMeshErrors& operator=(const CapturedOpenMeshErrors&) = delete;
-  std::string text() const { return m_text.str(); }
+  /// What OpenMesh said, one clause per distinct line ("; "-joined), a repeated line once
+  /// with its count: a bad file can make it say the same thing once per face.
+  std::string text() const {
+    std::istringstream lines(m_text.str());
+    std::vector<std::pair<std::string, int>> seen;
+    for (std::string line; std::getline(lines, line);) {
+      while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+      if (line.empty()) continue;
+      auto it = std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == line; });
+      if (it == seen.end()) seen.emplace_back(line, 1);
+      else ++it->second;
+    }
+    std::string out;
+    for (const auto& [line, count] : seen)
+      out += (out.empty() ? "" : "; ") + line +
+             (count > 1 ? " (" + std::to_string(count) + " times)" : "");
+    return out;
+  }
 
  private:
   std::stringbuf m_text;

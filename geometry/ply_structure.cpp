@@ -99,12 +99,30 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
   TokenCursor tokens(text, pos, line);
   BinaryCursor bytes(text, pos, format == "binary_big_endian");
   std::string token;
-  for (const PlyElement& e : elements)
+  for (const PlyElement& e : elements) {
+    long previousRowEnd = -1;  // ASCII: the line the previous row's last value was on
+    std::string names;
+    for (const PlyProperty& p : e.properties) names += (names.empty() ? "" : ", ") + p.name;
     for (long long row = 0; row < e.count; ++row) {
       auto truncated = [&]() {
         fail("the file ends inside element '" + e.name + "' row " + std::to_string(row) +
              " of the " + std::to_string(e.count) + " its header declares (line " +
              std::to_string(e.line) + ")." + kTruncated);
+      };
+      bool first = true;
+      // An ASCII token; the row's first must start a line after the previous row's last, or
+      // that row held more values than the header's properties take (any later complaint
+      // would name the wrong row).
+      auto nextToken = [&]() {
+        if (!tokens.next(token)) truncated();
+        if (first && row > 0 && tokens.line() == previousRowEnd)
+          fail.at(tokens.line(),
+                  "element '" + e.name + "' row " + std::to_string(row - 1) +
+                      " has more values than its header's properties (" + names +
+                      ") take, so row " + std::to_string(row) +
+                      " would start inside it. Fix: give each row exactly the values the "
+                      "header declares (a list's count first), or declare the extra ones.");
+        first = false;
       };
       for (const PlyProperty& p : e.properties) {
         const bool strip = isStripIndexList(e, p);
@@ -112,7 +130,7 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
         long long n = 1;
         if (p.countSize > 0) {
           if (ascii) {
-            if (!tokens.next(token)) truncated();
+            nextToken();
             if (!parseInteger(token, n) || n < 0)
               fail.at(tokens.line(), "'" + token + "' is not a list length in element '" + e.name +
                                          "' row " + std::to_string(row) +
@@ -133,7 +151,7 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
         for (long long k = 0; k < n; ++k) {
           long long index = 0;
           if (ascii) {
-            if (!tokens.next(token)) truncated();
+            nextToken();
             if (indices && !parseInteger(token, index))
               fail.at(tokens.line(), "'" + token + "' is not a vertex index.");
           } else {
@@ -149,7 +167,9 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
         }
         if (strip && strips) strips->push_back(-1);  // each row is its own strip
       }
+      if (ascii && !first) previousRowEnd = tokens.line();
     }
+  }
 }
 
 }  // namespace
@@ -224,6 +244,17 @@ long long checkPly(const Fail& fail, const std::string& text, std::vector<long l
     if (e.name == "vertex") vertices = e.count;
     if (e.name == "face") faces = e.count;
   }
+  // OpenMesh, which reads the PLY, misreads a binary face row holding a list besides its
+  // indices (MeshLab's per-face texture coordinates): every index after the first row is off.
+  if (format != "ascii")
+    for (const PlyElement& e : elements)
+      for (const PlyProperty& p : e.properties)
+        if (e.name == "face" && p.countSize > 0 && !isFaceIndexList(e, p))
+          fail.at(e.line, "element 'face' has the list '" + p.name +
+                              "' beside its vertex indices, which the binary PLY reader radkit "
+                              "uses (OpenMesh) cannot read. Fix: save the mesh without it "
+                              "(MeshLab: untick the per-face texture coordinates on export), or "
+                              "as ASCII PLY or OFF.");
   checkPlyBody(fail, text, lines.pos(), lines.number() + 1, format, elements, vertices, strips);
   return faces;
 }

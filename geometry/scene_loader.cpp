@@ -574,8 +574,11 @@ Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& 
       throw InputError(
           path +
           ": no material emits light, so every result would be black. Fix: give the "
-          "light's material an emission \"Ke r g b\" (W/m²) in the MTL file; Ka is ambient "
-          "colour, which radkit does not read as emission.");
+          "light's material an emission \"Ke r g b\" (W/m²) in the MTL file (Ka is ambient "
+          "colour, which radkit does not read as emission); or, for a model without a lamp "
+          "(a CAD part, a scan), include it from a JSON scene that adds one (\"include\", "
+          "docs/formats.md), or stand it in a lit room with data/tools/make_model_room.py "
+          "MODEL --out SCENE.json.");
   } else if (ext == ".stl" || ext == ".ply" || ext == ".off")
     // A bare mesh has neither materials nor a light: say how to give it both.
     throw InputError(path + ": this " + std::string(ext == ".ply" ? "PLY" : ext == ".off" ? "OFF" : "STL") +

@@ -113,7 +113,9 @@ StoragePlan planStorage(const PatchMesh& mesh, const FormFactorSettings& setting
            (estimated ? "at least " : "up to ") +
            formatBytes(double(sparseBytes(n, plan.facingPairs, 4))) + ")";
   if (msg.size() >= 2 && msg.compare(msg.size() - 2, 2, ", ") == 0) msg.resize(msg.size() - 2);
-  throw MemoryBudgetError(msg, n);
+  const std::size_t smallest =
+      std::min(std::size_t(n) * std::size_t(n) * 4, sparseBytes(n, plan.facingPairs, 4));
+  throw MemoryBudgetError(msg, n, smallest, plan.budget);
 }
 
 double formFactorAt(const FormFactorMatrix& f, int i, int j) {

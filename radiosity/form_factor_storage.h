@@ -22,9 +22,13 @@ inline constexpr const char* kFewerPatchesFix =
 /// Thrown when no storage fits the budget; the message names the options that would help.
 class MemoryBudgetError : public std::runtime_error {
  public:
-  MemoryBudgetError(const std::string& message, int patches)
-      : std::runtime_error(message), patches(patches) {}
-  int patches;  ///< the mesh's patch count
+  MemoryBudgetError(const std::string& message, int patches, std::size_t smallestBytes = 0,
+                    std::size_t budget = 0)
+      : std::runtime_error(message), patches(patches), smallestBytes(smallestBytes),
+        budget(budget) {}
+  int patches;                ///< the mesh's patch count
+  std::size_t smallestBytes;  ///< the least any storage needs for them (float, dense or sparse)
+  std::size_t budget;         ///< the budget it was refused against
 };
 
 /// The storage chosen for a run and the memory it needs.

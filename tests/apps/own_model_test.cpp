@@ -123,6 +123,20 @@ TEST(OwnModel, ADenseRunAtItsPatchFloorNamesTheHierarchicalMethod) {
   EXPECT_NE(r.output.find("at its floor"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("--method hierarchical"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir.path("o")));
+  // Split four ways (about 16 400 patches): fewer patches are offered only when the floor of
+  // one patch per face (4 097 patches: F at least 64 MiB in float) fits the budget.
+  auto refused = [&](const std::string& budget) {
+    return runRadkit("run '" + scene + "' --max-area 1.3e-4 --memory-budget " + budget +
+                     " --no-render --out '" + dir.path("o") + "'");
+  };
+  auto tight = refused("1MiB");
+  EXPECT_NE(tight.exitCode, 0) << tight.output;
+  EXPECT_NE(tight.output.find("cannot help enough"), std::string::npos) << tight.output;
+  EXPECT_EQ(tight.output.find("use fewer patches"), std::string::npos) << tight.output;
+  auto roomy = refused("100MiB");
+  EXPECT_NE(roomy.exitCode, 0) << roomy.output;
+  EXPECT_NE(roomy.output.find("Fewer patches help down to about 4097"), std::string::npos)
+      << roomy.output;
 }
 
 /// An ASCII STL of an axis-aligned box `w` long in x (a bolt's bounding shape).
@@ -424,6 +438,79 @@ TEST(OwnModel, TheWalkthroughModelsGiveLitPicturesFromSensibleCameras) {
   r = runRadkit("mesh '" + unscaled + "' --out '" + dir.path("unscaled") + "'", 300);
   EXPECT_NE(r.output.find("bracket.stl"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\"scale\": 0.001"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace radkit
+
+namespace radkit {
+namespace {
+
+// data/tools/make_model_room.py reads every mesh radkit reads (here a binary PLY and an ASCII
+// STL), stands a z-up model upright with --up z, and refuses a point cloud before writing.
+TEST(OwnModel, TheRoomToolReadsBinaryPlyAndAsciiStlAndStandsAZUpModelUp) {
+  test::TempDir dir;
+  // A 1 × 1 × 3 block, tall along z, as a binary little-endian PLY of 12 triangles.
+  const double v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                          {0, 0, 3}, {1, 0, 3}, {1, 1, 3}, {0, 1, 3}};
+  const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                        {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 8\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 12\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : v)
+    for (double c : p) {
+      const float x = float(c);
+      ply.append(reinterpret_cast<const char*>(&x), 4);
+    }
+  for (const auto& t : f) {
+    ply.push_back(3);
+    ply.append(reinterpret_cast<const char*>(t), 12);
+  }
+  dir.file("tall.ply", ply);
+  std::string stl = "solid tall\n";
+  for (const auto& t : f) {
+    stl += "facet normal 0 0 0\nouter loop\n";
+    for (int k : t)
+      stl += "vertex " + std::to_string(v[k][0]) + " " + std::to_string(v[k][1]) + " " +
+             std::to_string(v[k][2]) + "\n";
+    stl += "endloop\nendfacet\n";
+  }
+  dir.file("tall.stl", stl + "endsolid tall\n");
+  auto room = [&](const std::string& model, const std::string& up) {
+    const std::string scene = dir.path(model + up + ".json");
+    const int rc = std::system(("python3 '" + test::dataPath("tools/make_model_room.py") + "' '" +
+                                dir.path(model) + "' --out '" + scene + "'" +
+                                (up.empty() ? "" : " --up " + up) + " > /dev/null 2>&1")
+                                   .c_str());
+    return std::make_pair(rc, scene);
+  };
+  // The model's height: the largest y of its patch centroids (its top is at 1.2 m upright).
+  auto height = [&](const std::string& scene) {
+    const auto r = runRadkit("mesh '" + scene + "' --out '" + scene + ".out'", 300);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    double top = 0;
+    for (const auto& row : test::readCsv(scene + ".out/patches.csv"))
+      if (row.at("surface") == "model") top = std::max(top, std::stod(row.at("cy_m")));
+    return top;
+  };
+  for (const std::string model : {"tall.ply", "tall.stl"}) {
+    SCOPED_TRACE(model);
+    const auto [rcUp, upright] = room(model, "z");
+    ASSERT_EQ(rcUp, 0);
+    EXPECT_NEAR(height(upright), 1.2, 1e-6) << "stood up: 3 (its largest side) scaled to 1.2 m";
+    const auto [rcFlat, flat] = room(model, "");
+    ASSERT_EQ(rcFlat, 0);
+    EXPECT_NEAR(height(flat), 0.4, 1e-6) << "lying as written: its y side, 1 of 3, is 0.4 m";
+  }
+  // A point cloud (vertices, no faces) is refused by the tool, with nothing written.
+  dir.file("cloud.ply",
+           "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+           "property float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n");
+  const auto [rcCloud, cloud] = room("cloud.ply", "");
+  EXPECT_NE(rcCloud, 0);
+  EXPECT_FALSE(fs::exists(cloud));
 }
 
 }  // namespace

@@ -99,6 +99,24 @@ INSTANTIATE_TEST_SUITE_P(
         MeshCase{
             "ObjIndexZero", "a.obj", std::string(kTriangleObj) + "f 0 1 2\n", {"line 4", "'0'"}},
         // 2: PLY property before any element.
+        // A binary face row with a second list (MeshLab's per-face texture coordinates):
+        // OpenMesh misread every index after it and said so once per face.
+        MeshCase{"PlyBinaryFaceWithASecondList",
+                 "p.ply",
+                 [] {
+                   std::string s = binaryPly(2);
+                   s.insert(s.find("end_header"), "property list uchar float texcoord\n");
+                   s.push_back(0);  // an empty texcoord list
+                   return s;
+                 }(),
+                 {"line 7", "'texcoord'", "ASCII PLY or OFF"}},
+        // An ASCII row with more values than the header declares: the next row would start
+        // inside it, and its complaint would name the wrong face.
+        MeshCase{"PlyAsciiRowRunsOn",
+                 "p.ply",
+                 ply("element face 2\nproperty list uchar int vertex_indices\n",
+                     "3 0 1 2 7 7\n3 0 1 2\n"),
+                 {"line 13", "row 0 has more values", "vertex_indices"}},
         MeshCase{"PlyPropertyBeforeElement",
                  "p.ply",
                  "ply\nformat ascii 1.0\nproperty float x\nend_header\n",
@@ -231,6 +249,22 @@ TEST(MalformedMeshCli, RefusesPipesAndDevices) {
 
 // The checks leave well-formed files alone: binary big-endian PLY, OFF with face colours,
 // an STL with 'endsolid', OBJ with relative and slashed indices.
+// OFF allows colours after a face's indices (RGBA floats here, with comments, as in trimesh's
+// test models); OpenMesh stopped after the first such face.
+TEST(MalformedMeshCli, OffFacesWithColoursAreAllRead) {
+  test::TempDir dir;
+  dir.file("cube.off",
+           "OFF\n# a cube with per-face RGBA\n8 6 12\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+           "0 0 1\n1 0 1\n1 1 1  # a comment\n0 1 1\n"
+           "4 0 3 2 1 1.0 0.0 0.0 0.75\n4 4 5 6 7 0.3 0.4 0.0 0.75\n4 0 1 5 4 0.2 0.5 0.1 0.75\n"
+           "4 2 3 7 6 0.1 0.6 0.2 0.75\n4 0 4 7 3 0.5 0.5 0.5 0.75\n4 1 2 6 5 0.9 0.1 0.1 0.75\n");
+  const std::string scene = dir.file("scene.json", R"({"materials": {"lamp": {"emission": [1,1,1]}},
+      "surfaces": [{"name": "cube", "material": "lamp", "mesh": "cube.off"}]})");
+  const test::RunResult r = test::runRadkit("mesh '" + scene + "' --out '" + dir.path("out") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("total area: 6 m"), std::string::npos) << r.output;
+}
+
 TEST(MalformedMeshCli, AcceptsWellFormedVariants) {
   test::TempDir dir;
   std::string big =

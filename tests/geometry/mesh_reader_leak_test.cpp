@@ -8,6 +8,7 @@
 #include <new>
 
 #include "geometry/mesh_reader.h"
+#include "geometry/openmesh_errors.h"
 #include "tests/common/test_util.h"
 
 namespace {
@@ -47,6 +48,20 @@ TEST(MeshReader, ReadingLeavesNoAllocationBehind) {
     EXPECT_EQ(readMeshFile(ply).faces.size(), 1u);
   }
   EXPECT_LT(g_live.load() - before, 10) << "allocations still live after 40 reads";
+}
+
+// A bad file can make OpenMesh say the same thing once per face: radkit's message quotes each
+// distinct line once, with its count, on one line.
+TEST(MeshReader, OpenMeshsRepeatedComplaintsAreQuotedOnce) {
+  std::string text;
+  {
+    const CapturedOpenMeshErrors errors;
+    for (int k = 0; k < 3; ++k) omerr() << "ImporterT: Face contains invalid vertex index\n";
+    omerr() << "another complaint\n";
+    omerr().flush();
+    text = errors.text();
+  }
+  EXPECT_EQ(text, "ImporterT: Face contains invalid vertex index (3 times); another complaint");
 }
 
 }  // namespace

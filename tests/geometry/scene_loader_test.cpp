@@ -285,7 +285,21 @@ TEST(SceneLoader, MtlSemanticsAreWarnedNotSilent) {
   std::string all;
   for (const std::string& w : report.warnings) all += w + "\n";
   EXPECT_NE(all.find("\"shiny\": Ks read as a glossy Phong lobe"), std::string::npos) << all;
-  EXPECT_NE(all.find("\"shiny\": Ka (ambient colour) is ignored"), std::string::npos) << all;
+  EXPECT_NE(all.find("Ka (ambient colour) is ignored in 1 MTL material (\"shiny\")"),
+            std::string::npos)
+      << all;
+  // Exporters give every material a Ka: one warning names them, not one per material.
+  dir.file("box.mtl",
+           "newmtl shiny\nKd 0.5 0.5 0.5\nKa 0.5 0.5 0.5\nnewmtl dull\nKd 0.2 0.2 0.2\nKa 0.2 "
+           "0.2 0.2\nnewmtl lamp\nKd 0.5 0.5 0.5\nKa 1 1 1\nKe 5 5 5\n");
+  report = {};
+  loadScene(dir.file("box.obj", kBox), &report);
+  int ambient = 0;
+  for (const std::string& w : report.warnings) ambient += w.find("Ka (ambient") != std::string::npos;
+  EXPECT_EQ(ambient, 1);
+  all.clear();
+  for (const std::string& w : report.warnings) all += w + "\n";
+  EXPECT_NE(all.find("ignored in 2 MTL materials (\"shiny\", \"dull\")"), std::string::npos) << all;
 
   // Kd + Ks above 1 is scaled below 1, with a warning.
   dir.file("box.mtl", "newmtl shiny\nKd 0.8 0.8 0.8\nKs 1 1 1\nnewmtl lamp\nKe 5 5 5\n");
