@@ -6,12 +6,15 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 #include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -46,6 +49,16 @@ using namespace radkit;
 namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// An array property as read-only: each access makes a new copy, so a write into it would
+/// change nothing the object holds and must fail instead of being lost.
+py::object readOnly(py::object a) {
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+/// Square metres per scene unit², the factor from scene-unit areas to the module's m².
+double squareMetres(const Scene& scene) { return scene.metresPerUnit() * scene.metresPerUnit(); }
 
 Array vec3Array(const std::vector<Vec3>& v) {
   Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
@@ -126,19 +139,19 @@ struct PySystem {
 
 // ---- scene, mesh ----
 
-PyScene loadScenePy(const std::string& path, const std::string& units, bool repair) {
+PyScene loadScenePy(const std::filesystem::path& path, const std::string& units, bool repair) {
   LoadOptions options;
   options.units = units;
   options.repair = repair;
-  return {std::make_shared<const Scene>(loadScene(path, nullptr, options))};
+  return {std::make_shared<const Scene>(loadScene(path.string(), nullptr, options))};
 }
 
 PyMesh meshPy(const PyScene& s, int patches, double maxArea) {
-  if (patches < 0 || !(maxArea >= 0))
-    throw py::value_error("mesh: patches and max_area must be >= 0 (0: no limit)");
+  if (patches < 0 || !(maxArea >= 0) || !std::isfinite(maxArea))
+    throw py::value_error("mesh: patches and max_area must be finite and >= 0 (0: no limit)");
   SubdivisionSettings settings;
   settings.targetPatches = patches;
-  settings.maxArea = maxArea;
+  settings.maxArea = maxArea / squareMetres(*s.scene);  // m² to the subdivision's scene units²
   PyMesh m;
   m.scene = s.scene;
   m.mesh = std::make_shared<const PatchMesh>(subdivide(*s.scene, settings, &m.warnings));
@@ -206,6 +219,19 @@ py::object sparseMatrix(const FormFactorMatrix& f) {
 /// A real array (bool, integer or floating dtype) as doubles in C order; `what` names it.
 /// Complex, object and text dtypes are refused rather than cast (a cast drops imaginary parts).
 Array realArray(const py::handle& object, const std::string& what) {
+  // A masked array's data still holds the values behind its mask, which would be read as given.
+  const py::module_ ma = py::module_::import("numpy.ma");
+  if (ma.attr("isMaskedArray")(object).cast<bool>()) {
+    const py::object masked =
+        py::module_::import("numpy").attr("argwhere")(ma.attr("getmaskarray")(object));
+    if (py::len(masked) > 0) {
+      std::string index;
+      for (const py::handle k : masked[py::int_(0)])
+        index += (index.empty() ? "" : ", ") + py::str(k).cast<std::string>();
+      throw py::value_error(what + "[" + index + "] is masked. Fix: " + what +
+                            ".filled(value) with the value it stands for");
+    }
+  }
   const py::array a = py::array::ensure(object);
   if (!a) throw py::value_error(what + ": expected an array of numbers");
   const char kind = a.dtype().kind();
@@ -403,7 +429,46 @@ py::dict resultDict(const SolveResult& r) {
   return d;
 }
 
-py::dict solvePy(const py::object& pySystem, const py::object& solver, const std::string& params,
+/// A built-in solver's parameters: "key=value,..." text or a dict {key: value} of numbers,
+/// bools (1 or 0) or number texts. A dict's texts go through the text parser, so both forms
+/// refuse the same values with the same message; unknown keys are left for makeSolver.
+SolverParams solverParams(const py::object& params) {
+  if (py::isinstance<py::str>(params)) return SolverParams::parse(params.cast<std::string>());
+  if (!py::isinstance<py::dict>(params))
+    throw py::type_error("params: expected text \"key=value,...\" or a dict {key: value}, got " +
+                         py::str(params.get_type().attr("__name__")).cast<std::string>() +
+                         ". Fix: e.g. params={\"omega\": 1.2}");
+  std::map<std::string, double> values;
+  for (const auto& [k, v] : params.cast<py::dict>()) {
+    if (!py::isinstance<py::str>(k))
+      throw py::value_error("params: key " + py::repr(k).cast<std::string>() +
+                            " is not a string. Fix: the parameter's name, e.g. \"omega\"");
+    const std::string key = k.cast<std::string>();
+    // The text form separates items by ',' and key from value by '=': either inside a key or
+    // a text value would be read as another parameter.
+    if (key.empty() || key.find_first_of(",=") != std::string::npos)
+      throw py::value_error("params: key '" + key +
+                            "' is not a parameter name. Fix: a name such as \"omega\"");
+    if (py::isinstance<py::bool_>(v)) {
+      values[key] = v.cast<bool>() ? 1.0 : 0.0;
+    } else if (py::isinstance<py::str>(v)) {
+      const std::string item = key + "=" + v.cast<std::string>();
+      if (item.find(',') != std::string::npos)
+        throw py::value_error("solver parameter '" + item +
+                              "': expected key=number, e.g. omega=1.5");
+      values[key] = SolverParams::parse(item).get(key, 0.0);
+    } else {
+      const py::object number = py::module_::import("numbers").attr("Real");
+      if (!py::isinstance(v, number))
+        throw py::value_error("solver parameter '" + key + "=" + py::repr(v).cast<std::string>() +
+                              "': expected a number, e.g. {\"omega\": 1.5}");
+      values[key] = py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
+    }
+  }
+  return SolverParams(std::move(values));
+}
+
+py::dict solvePy(const py::object& pySystem, const py::object& solver, const py::object& params,
                  double tolerance, long maxIterations, double maxSeconds, const std::string& norm) {
   const PySystem& s = pySystem.cast<const PySystem&>();
   SolverSettings settings;
@@ -414,7 +479,7 @@ py::dict solvePy(const py::object& pySystem, const py::object& solver, const std
   if (!(tolerance > 0)) throw py::value_error("tolerance must be > 0");
   if (py::isinstance<py::str>(solver)) {
     std::unique_ptr<Solver> builtIn =
-        makeSolver(solver.cast<std::string>(), SolverParams::parse(params));
+        makeSolver(solver.cast<std::string>(), solverParams(params));
     SolveResult r;
     {
       py::gil_scoped_release release;
@@ -422,7 +487,8 @@ py::dict solvePy(const py::object& pySystem, const py::object& solver, const std
     }
     return resultDict(r);
   }
-  if (!params.empty())
+  if (!(py::isinstance<py::str>(params) || py::isinstance<py::dict>(params)) ||
+      py::len(params) != 0)
     throw py::value_error("params are for built-in solvers; a Python solver takes its own");
   if (py::hasattr(solver, "step") && py::hasattr(solver, "start")) {
     PythonSolver adapter(solver, pySystem);
@@ -534,7 +600,7 @@ py::dict photonsPy(const PyMesh& m, std::size_t photons, std::uint64_t seed) {
   py::list surfaces;
   for (const SurfaceEstimate& e : estimate.surfaces) {
     py::dict s;
-    s["name"] = e.name, s["area"] = e.area;
+    s["name"] = e.name, s["area"] = e.area * squareMetres(*m.scene);
     s["radiosity"] = vec3Array({e.radiosity}).attr("reshape")(3);
     s["radiosity_error"] = vec3Array({e.radiosityError}).attr("reshape")(3);
     s["photons"] = e.photons;
@@ -554,11 +620,11 @@ struct PyPhotonMap {
   Vec3 emittedPower;
 };
 
-/// One Vec3 per stored photon, (m, 3).
-Array photonVectors(const PyPhotonMap& p, Vec3 (Photon::*get)() const) {
+/// One Vec3 per stored photon times `scale`, (m, 3).
+Array photonVectors(const PyPhotonMap& p, Vec3 (Photon::*get)() const, double scale) {
   std::vector<Vec3> v;
   v.reserve(p.map->size());
-  for (const Photon& ph : p.map->photons()) v.push_back((ph.*get)());
+  for (const Photon& ph : p.map->photons()) v.push_back((ph.*get)() * scale);
   return vec3Array(v);
 }
 
@@ -687,7 +753,10 @@ PYBIND11_MODULE(radkit, mod) {
   mod.doc() =
       "radkit: radiosity and global illumination. Load a scene, mesh it into patches, compute "
       "the form-factor matrix, solve B = E + rho F B with a built-in or a Python solver, and "
-      "render; every per-patch quantity is a numpy array (docs/python.md).";
+      "render; every per-patch quantity is a numpy array (docs/python.md). Areas are m^2 "
+      "(positions and lengths stay in the scene's units); array properties are read-only, "
+      "arrays a function returns are yours to change.";
+  mod.attr("__version__") = RADKIT_VERSION;
 
   py::register_exception<InputError>(mod, "InputError", PyExc_ValueError);
   py::register_exception<MemoryBudgetError>(mod, "MemoryBudgetError", PyExc_MemoryError);
@@ -707,40 +776,46 @@ PYBIND11_MODULE(radkit, mod) {
                std::to_string(s.scene->surfaces.size()) + " surfaces>";
       });
 
-  py::class_<PyMesh>(mod, "Mesh", "The scene split into patches (mesh); arrays are copies")
+  py::class_<PyMesh>(mod, "Mesh",
+                     "The scene split into patches (mesh). Array properties are read-only copies; "
+                     "positions in scene units, areas in m^2")
       .def("__len__", [](const PyMesh& m) { return m.mesh->size(); })
       .def_property_readonly("scene", [](const PyMesh& m) { return PyScene{m.scene}; })
       .def_property_readonly("warnings", [](const PyMesh& m) { return m.warnings; })
       .def_property_readonly(
           "area",
           [](const PyMesh& m) {
+            const double m2 = squareMetres(*m.scene);
             Array a(m.mesh->size());
-            for (int i = 0; i < m.mesh->size(); ++i) a.mutable_at(i) = m.mesh->patches[i].area;
-            return a;
+            for (int i = 0; i < m.mesh->size(); ++i) a.mutable_at(i) = m.mesh->patches[i].area * m2;
+            return readOnly(a);
           },
-          "patch areas, scene units^2")
+          "(n,) patch areas in m^2 (as System.area), whatever the scene's units")
       .def_property_readonly("centroid",
                              [](const PyMesh& m) {
                                std::vector<Vec3> v;
                                for (const Patch& p : m.mesh->patches) v.push_back(p.centroid);
-                               return vec3Array(v);
-                             })
+                               return readOnly(vec3Array(v));
+                             },
+                             "(n, 3) patch centroids, scene units")
       .def_property_readonly("normal",
                              [](const PyMesh& m) {
                                std::vector<Vec3> v;
                                for (const Patch& p : m.mesh->patches) v.push_back(p.normal);
-                               return vec3Array(v);
-                             })
+                               return readOnly(vec3Array(v));
+                             },
+                             "(n, 3) unit normals of the patches' front sides")
       .def_property_readonly("surface",
                              [](const PyMesh& m) {
                                py::array_t<int> a(m.mesh->size());
                                for (int i = 0; i < m.mesh->size(); ++i)
                                  a.mutable_at(i) = m.mesh->patches[i].surface;
-                               return a;
+                               return readOnly(a);
                              },
                              "index into scene.surface_names per patch")
-      .def_property_readonly("vertices",
-                             [](const PyMesh& m) { return vec3Array(m.mesh->vertices); })
+      .def_property_readonly(
+          "vertices", [](const PyMesh& m) { return readOnly(vec3Array(m.mesh->vertices)); },
+          "(V, 3) vertex positions, scene units")
       .def_property_readonly(
           "patch_vertices",
           [](const PyMesh& m) {
@@ -748,21 +823,22 @@ PYBIND11_MODULE(radkit, mod) {
             auto v = a.mutable_unchecked<2>();
             for (int i = 0; i < m.mesh->size(); ++i)
               for (int k = 0; k < 4; ++k) v(i, k) = m.mesh->patches[i].vertex[k];
-            return a;
+            return readOnly(a);
           },
           "(n, 4) vertex indices, counter-clockwise from the front; -1 fourth for triangles")
       .def_property_readonly(
           "reflectance",
           [](const PyMesh& m) {
             const FormFactorMatrix none;
-            return channelsArray(makeRadiositySystem(*m.scene, *m.mesh, none).reflectance);
+            return readOnly(
+                channelsArray(makeRadiositySystem(*m.scene, *m.mesh, none).reflectance));
           },
           "(n, 3) diffuse reflectance")
       .def_property_readonly(
           "emission",
           [](const PyMesh& m) {
             const FormFactorMatrix none;
-            return channelsArray(makeRadiositySystem(*m.scene, *m.mesh, none).emission);
+            return readOnly(channelsArray(makeRadiositySystem(*m.scene, *m.mesh, none).emission));
           },
           "(n, 3) emitted radiosity E, W/m^2")
       .def("__repr__", [](const PyMesh& m) {
@@ -790,25 +866,37 @@ PYBIND11_MODULE(radkit, mod) {
   py::class_<PySystem>(mod, "System", "The radiosity system B = E + rho F B, three channels")
       .def(py::init(&systemFromArrays), py::arg("F"), py::arg("area"), py::arg("reflectance"),
            py::arg("emission"),
-           "A system from arrays: F (n, n) or scipy.sparse, area (n,), reflectance and "
+           "A system from arrays: F (n, n) or scipy.sparse, area (n,) in m^2, reflectance and "
            "emission (n, 3) or (n,). Checked before use (ValueError naming the element): F's "
            "entries finite and >= 0, each row summing to at most 1.05, sparse indices in range; "
-           "A > 0, rho in [0, 1), E >= 0, all finite. Sparse duplicates are summed")
+           "A > 0, rho in [0, 1), E >= 0, all finite; no masked entries. Sparse duplicates are "
+           "summed")
       .def(py::init(&systemFromFormFactors), py::arg("form_factors"),
            "The system of a mesh: areas in m^2, reflectance and emission from its materials")
       .def("__len__", [](const PySystem& s) { return s.system.size(); })
-      .def_property_readonly("F", [](const PySystem& s) { return denseArray(*s.matrix); },
-                             "F as an (n, n) numpy array (a copy)")
-      .def_property_readonly("F_sparse", [](const PySystem& s) { return sparseMatrix(*s.matrix); })
-      .def_property_readonly("area",
-                             [](const PySystem& s) {
-                               return Array(static_cast<py::ssize_t>(s.system.area.size()),
-                                            s.system.area.data());
-                             })
-      .def_property_readonly("reflectance",
-                             [](const PySystem& s) { return channelsArray(s.system.reflectance); })
-      .def_property_readonly("emission",
-                             [](const PySystem& s) { return channelsArray(s.system.emission); })
+      .def_property_readonly(
+          "F", [](const PySystem& s) { return readOnly(denseArray(*s.matrix)); },
+          "F as an (n, n) numpy array (a read-only copy)")
+      // scipy's in-place methods (sort_indices, eliminate_zeros) fail on read-only arrays, so the
+      // sparse copy stays writeable.
+      .def_property_readonly(
+          "F_sparse", [](const PySystem& s) { return sparseMatrix(*s.matrix); },
+          "F as scipy.sparse.csr_matrix, a new copy on every access (changing it changes "
+          "nothing in the system)")
+      .def_property_readonly(
+          "area",
+          [](const PySystem& s) {
+            return readOnly(
+                Array(static_cast<py::ssize_t>(s.system.area.size()), s.system.area.data()));
+          },
+          "(n,) patch areas in m^2 (read-only)")
+      .def_property_readonly(
+          "reflectance",
+          [](const PySystem& s) { return readOnly(channelsArray(s.system.reflectance)); },
+          "(n, 3) diffuse reflectance (read-only)")
+      .def_property_readonly(
+          "emission", [](const PySystem& s) { return readOnly(channelsArray(s.system.emission)); },
+          "(n, 3) emitted radiosity E, W/m^2 (read-only)")
       .def(
           "residual",
           [](const PySystem& s, const Array& b, const std::string& norm) {
@@ -829,22 +917,24 @@ PYBIND11_MODULE(radkit, mod) {
 
   mod.def("load_scene", &loadScenePy, py::arg("path"), py::arg("units") = "",
           py::arg("repair") = false,
-          "Loads and validates a scene (.json, or .obj with its MTL); errors raise InputError "
-          "naming the file, the element and the fix");
+          "Loads and validates a scene (.json, or .obj with its MTL) from a path (str or "
+          "os.PathLike); errors raise InputError naming the file, the element and the fix");
   mod.def("mesh", &meshPy, py::arg("scene"), py::arg("patches") = 0, py::arg("max_area") = 0.0,
-          "Splits a scene into about `patches` patches (or patches of at most max_area)");
+          "Splits a scene into about `patches` patches (or patches of at most max_area m^2)");
   mod.def("form_factors", &formFactorsPy, py::arg("mesh"), py::arg("method") = "point-polygon",
           py::arg("samples") = 16, py::arg("seed") = 1, py::arg("precision") = "double",
           py::arg("pair_levels") = kMaxPairLevel,
           "Computes F (docs/formfactors.md): method point-polygon, monte-carlo or hemisphere; "
           "samples = rays per blockable pair");
   mod.def("solve", &solvePy, py::arg("system"), py::arg("solver") = "gauss-seidel",
-          py::arg("params") = "", py::arg("tolerance") = 1e-6,
+          py::arg("params") = py::str(""), py::arg("tolerance") = 1e-6,
           py::arg("max_iterations") = 100000000L,
           py::arg("max_seconds") = std::numeric_limits<double>::infinity(),
           py::arg("norm") = "relative",
           "Solves from B = E with a built-in solver (solver_names()), a Python object with "
-          "start(system), step() and radiosity(), or a function system -> B. Returns a dict: "
+          "start(system), step() and radiosity(), or a function system -> B. params (built-in "
+          "solvers): text \"omega=1.2,power_iterations=30\" or a dict {\"omega\": 1.2}. "
+          "Returns a dict: "
           "radiosity (n, 3), converged, exit, iterations, residual, checked_residual, seconds, "
           "spectral_radius and history (numpy arrays per column)");
   mod.def("solver_names", &solverNames, "The built-in solvers' names");
@@ -861,33 +951,42 @@ PYBIND11_MODULE(radkit, mod) {
   mod.def("photons", &photonsPy, py::arg("mesh"), py::arg("photons") = 200000,
           py::arg("seed") = 1,
           "Photon tracing tallied per patch: radiosity, radiosity_error (standard errors), "
-          "irradiance as (n, 3) and per-surface estimates");
+          "irradiance as (n, 3) and per-surface estimates (area in m^2)");
   py::class_<PyPhotonMap>(mod, "PhotonMap",
                           "Traced photons (photon_map) and their k-nearest irradiance estimate")
       .def("__len__", [](const PyPhotonMap& p) { return p.map->size(); })
       .def_property_readonly(
-          "positions", [](const PyPhotonMap& p) { return photonVectors(p, &Photon::point); },
-          "(m, 3) where each stored photon landed (stored as float: 7 digits)")
+          "positions",
+          [](const PyPhotonMap& p) { return readOnly(photonVectors(p, &Photon::point, 1.0)); },
+          "(m, 3) where each stored photon landed, scene units (stored as float: 7 digits)")
       .def_property_readonly(
-          "power", [](const PyPhotonMap& p) { return photonVectors(p, &Photon::flux); },
-          "(m, 3) incident power per channel, scene units² · W/m²")
+          "power",
+          [](const PyPhotonMap& p) {
+            return readOnly(photonVectors(p, &Photon::flux, squareMetres(*p.mesh.scene)));
+          },
+          "(m, 3) incident power per channel, W (stored as float: 7 digits)")
       .def_property_readonly(
           "patch",
           [](const PyPhotonMap& p) {
-            return photonIndices(p, [](const Photon& ph) { return std::int64_t(ph.patch); });
+            return readOnly(
+                photonIndices(p, [](const Photon& ph) { return std::int64_t(ph.patch); }));
           },
           "(m,) the patch each photon landed on")
       .def_property_readonly(
           "path",
           [](const PyPhotonMap& p) {
-            return photonIndices(p, [](const Photon& ph) { return std::int64_t(ph.path); });
+            return readOnly(
+                photonIndices(p, [](const Photon& ph) { return std::int64_t(ph.path); }));
           },
           "(m,) the emitted photon (path) that left each stored photon")
       .def_property_readonly("emitted", [](const PyPhotonMap& p) { return p.stats.emitted; })
-      .def_property_readonly("emitted_power",
-                             [](const PyPhotonMap& p) {
-                               return vec3Array({p.emittedPower}).attr("reshape")(3);
-                             })
+      .def_property_readonly(
+          "emitted_power",
+          [](const PyPhotonMap& p) {
+            const Vec3 watts = p.emittedPower * squareMetres(*p.mesh.scene);
+            return readOnly(vec3Array({watts}).attr("reshape")(3));
+          },
+          "(3,) the emitted photons' total power per channel, W")
       .def("irradiance", &photonIrradiancePy, py::arg("points"), py::arg("normals"),
            py::arg("k") = 100, py::arg("filter") = "epanechnikov",
            "k-nearest-photon irradiance at points with the given normals (photons on surfaces "

@@ -2,7 +2,8 @@
 functions below and run `labs/check 6` until it passes.
 
 Photons come from radkit.photon_map(mesh, photons=N, seed=s): positions (m, 3), power (m, 3)
-in W (scene units^2 * W/m^2), patch (m,) and path (m,), the emitted photon that left each one.
+in W, patch (m,) and path (m,), the emitted photon that left each one; areas (mesh.area) are
+m².
 """
 import numpy as np
 from scipy.spatial import cKDTree  # noqa: F401  (Task 1 wants it)
