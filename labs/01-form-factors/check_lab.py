@@ -6,10 +6,13 @@ Oracles, from Howell, "A Catalog of Radiation Heat Transfer Configuration Factor
   it is the exact factor from any point of a parallel plane to a rectangle, so it also gives the
   exact value of any quadrature rule on parallel rectangles: the student's rule is checked to
   rounding, not to a tolerance.
-- C-11 (parallel opposed rectangles) and C-14 (perpendicular, common edge), evaluated here and
-  checked against the catalogue's tabulated values before use.
+- C-11 (parallel opposed rectangles) and C-14 (perpendicular, common edge) as values: the
+  catalogue's table, and a few evaluated once to 17 digits (mpmath) and written down here. The
+  check holds no copy of a formula a task asks for (no contour sum, no C-11 or C-14): it names
+  a slip from how the student's own values behave (a ratio, a growth with size, a normal that
+  is ignored).
 - The summation rule: the five faces of a cube, seen from a point of the sixth, fill its
-  hemisphere, so their factors sum to exactly 1.
+  hemisphere, so their factors sum to exactly 1, and the four walls to 1 minus the top's B-3.
 radkit formfactors is the reference for the pair with no closed form (tilted-pair.json).
 
 Tolerances: where the check knows the rule's exact value, rounding only (1e-10 relative).
@@ -52,44 +55,28 @@ def point_under(px, py, x0, x1, y0, y1, h):
             - b3(x1 - px, y0 - py, h) + b3(x0 - px, y0 - py, h))
 
 
-def c11(a, b, c):
-    X, Y = a / c, b / c
-    x1, y1 = math.sqrt(1 + X * X), math.sqrt(1 + Y * Y)
-    return 2 / (math.pi * X * Y) * (math.log(x1 * y1 / math.sqrt(1 + X * X + Y * Y))
-                                    + X * y1 * math.atan(X / y1) + Y * x1 * math.atan(Y / x1)
-                                    - X * math.atan(X) - Y * math.atan(Y))
-
-
-def c14(l, w, h):
-    W, H = w / l, h / l
-    R2 = W * W + H * H
-    R = math.sqrt(R2)
-    log_term = (math.log((1 + W * W) * (1 + H * H) / (1 + R2))
-                + W * W * math.log(W * W * (1 + R2) / ((1 + W * W) * R2))
-                + H * H * math.log(H * H * (1 + R2) / ((1 + H * H) * R2)))
-    return (W * math.atan(1 / W) + H * math.atan(1 / H) - R * math.atan(1 / R)
-            + log_term / 4) / (math.pi * W)
-
-
-# Howell's tabulated values (docs/oracles.md), with half a unit of their last digit.
+# Howell's closed forms, as values (the formulas are Task 4): the catalogue's tabulated
+# values (docs/oracles.md) with half a unit of their last digit, and C-11 at X = Y = 1 and
+# C-14 at W = H = 1 to 17 digits.
 C11_TABLE = [((1, 1, 1), 0.19982489569838746, 1e-15), ((0.5, 0.5, 1), 0.068590, 5e-7),
              ((2, 2, 1), 0.415253, 5e-7), ((1, 5, 1), 0.359167, 5e-7),
              ((1, 1.5, 0.5), 0.4755764365, 5e-11)]
 C14_TABLE = [((1, 1, 1), 0.20004377607540316, 1e-15), ((1, 1, 2), 0.232853, 5e-7),
              ((1, 2, 1), 0.116426, 5e-7), ((1, 0.5, 0.5), 0.240636, 5e-7)]
-for _args, _value, _tol in C11_TABLE:
-    assert abs(c11(*_args) - _value) <= _tol + 1e-15, ("C-11", _args)
-for _args, _value, _tol in C14_TABLE:
-    assert abs(c14(*_args) - _value) <= _tol + 1e-15, ("C-14", _args)
-
-
-def gl_rule_exact(x0, x1, y0, y1, h, n, upper):
-    """The exact value of the n x n Gauss-Legendre rule on the rectangle [x0, x1] x [y0, y1]
-    (facing up) for the factor to the rectangle `upper` = (x0, x1, y0, y1) h above it."""
-    t, w = np.polynomial.legendre.leggauss(n)
-    xs, ys = x0 + (t + 1) / 2 * (x1 - x0), y0 + (t + 1) / 2 * (y1 - y0)
-    return sum(w[a] * w[b] / 4 * point_under(xs[a], ys[b], *upper, h)
-               for a in range(n) for b in range(n))
+# Closer than the catalogue prints, for the n = 8 rule's tolerances: C-11(1, 1.5, 0.5) and
+# C-14(1, 1, 2), the closed forms of README.md evaluated once with mpmath at 30 digits.
+C11_1_15_05 = 0.47557643653295292
+C14_1_1_2 = 0.23285260279536189
+# The exact value of the n x n Gauss-Legendre rule for F between the 1 x 1.5 rectangles 0.5
+# apart: B-3 summed over the corners (point_under) at the rule's nodes, weighted. Evaluated
+# once with mpmath at 30 digits (Legendre nodes as roots of P_n).
+GL_RULE_1_15_05 = {2: 0.48157640308898528, 5: 0.47561908416401444}
+# Unit squares d apart: C-11(1, 1, d) and the relative error of the 2 x 2 rule against it,
+# evaluated once the same way.
+NEAR_FIELD = [(1.0, 0.19982489569838738, 0.0072509322053159718),
+              (0.5, 0.41525328357714674, 0.0022149857090046655),
+              (0.25, 0.63203643001386029, 0.05479191606873384),
+              (0.1, 0.82699452239725658, 0.099525963306670421)]
 
 
 def integrate_x5y5(points, weights):
@@ -98,24 +85,28 @@ def integrate_x5y5(points, weights):
 
 
 # --- what the usual mistakes give ----------------------------------------------------------------
-def contour_variant(x, normal, polygon, kind):
-    """Lambert's contour sum with one deliberate mistake (for diagnosis only)."""
-    P = np.asarray(polygon, dtype=float)
-    v = P - np.asarray(x, dtype=float)
-    v /= np.linalg.norm(v, axis=1)[:, None]
-    w = np.roll(v, -1, axis=0)
-    c = np.cross(v, w)
-    s = np.linalg.norm(c, axis=1)
-    gamma = np.arctan2(s, np.einsum("ij,ij->i", v, w))
-    n = np.asarray(normal, dtype=float)
-    if kind == "polygon normal":
-        m = np.cross(P, np.roll(P, -1, axis=0)).sum(axis=0)
-        n = m / np.linalg.norm(m)
-    if kind == "no gamma":
-        return abs((c @ n).sum()) / (2 * math.pi)
-    if kind == "cross not normalised":
-        return abs((gamma * (c @ n)).sum()) / (2 * math.pi)
-    return abs((gamma * (c @ n) / s).sum()) / (2 * math.pi)
+def contour_slip(lab, task):
+    """The contour-sum slip that scales with the polygon's size, or None. The check carries no
+    contour sum of its own: it measures how the student's error grows as a square shrinks.
+    Under a square of side s, 1 above, F ~ s²/π; leaving out γ_k leaves a sum ~ s (ratio to F
+    ~ 1/s), not dividing by |v_k × v_k+1| = sin γ_k ~ s adds a factor s (ratio ~ s)."""
+    up = np.array([0.0, 0.0, 1.0])
+    ratios = []
+    for s in (1e-2, 1e-3):
+        got = task("point_to_polygon", lambda: float(lab.point_to_polygon(
+            np.zeros(3), up, rect(-s / 2, s / 2, -s / 2, s / 2, 1.0, down=True))))
+        if got is None or got == 0 or not math.isfinite(got):
+            return None
+        ratios.append(got / point_under(0, 0, -s / 2, s / 2, -s / 2, s / 2, 1.0))
+    growth = ratios[0] / ratios[1]  # 10 when the error is ~ s, 0.1 when ~ 1/s
+    if 0.05 < growth < 0.2:
+        return ("you summed n·(v_k × v_k+1)/|v_k × v_k+1| without the angle γ_k: each edge "
+                "counts γ_k times its unit normal (your error grows like 1/size as a square "
+                "shrinks)")
+    if 5 < growth < 20:
+        return ("the edge's normal v_k × v_k+1 must be divided by its length |v_k × v_k+1| "
+                "(= sin γ_k): your value falls like size³, not size², as a square shrinks")
+    return None
 
 
 RATIO_MISTAKES = [
@@ -157,41 +148,47 @@ def check_point_to_polygon(lab, task, failures):
             return False
         exact = point_under(x[0], x[1], x0, x1, y0, y1, h)
         if not math.isclose(got, exact, rel_tol=ROUNDING):
-            hint = diagnose_ratio(got, exact)
-            for kind, text in (("no gamma", "you summed n·(v_k × v_k+1)/|v_k × v_k+1| without "
-                                "the angle γ_k: each edge counts γ_k times its unit normal"),
-                               ("cross not normalised", "the edge's normal v_k × v_k+1 must be "
-                                "divided by its length |v_k × v_k+1| (= sin γ_k)")):
-                if hint is None and math.isclose(got, contour_variant(x, up, polygon, kind),
-                                                 rel_tol=1e-6):
-                    hint = text
+            hint = diagnose_ratio(got, exact) or contour_slip(lab, task)
             failures.append(f"Task 1, point_to_polygon from a point {where}: {got:.10g}, Howell "
                             f"B-3 gives {exact:.10g}. "
                             f"{sentence(hint or 'compare with the formula in README.md')}")
             return False
 
     # Summation rule: from (0.3, 0.6, 0) on the floor of the unit cube the other five faces
-    # (each counter-clockwise seen from inside) cover the hemisphere: their sum is 1.
-    faces = [rect(0, 1, 0, 1, 1, down=True),
-             np.array([[0, 0, 0], [0, 0, 1], [1, 0, 1], [1, 0, 0]], dtype=float),
+    # (each counter-clockwise seen from inside) cover the hemisphere: their sum is 1, so the
+    # four walls sum to 1 minus the top's B-3 value. The walls test x's normal: with the
+    # polygon's normal in its place the five still sum to 1 (solid angles over 2π).
+    top = rect(0, 1, 0, 1, 1, down=True)
+    walls = [np.array([[0, 0, 0], [0, 0, 1], [1, 0, 1], [1, 0, 0]], dtype=float),
              np.array([[0, 1, 0], [1, 1, 0], [1, 1, 1], [0, 1, 1]], dtype=float),
              np.array([[0, 0, 0], [0, 1, 0], [0, 1, 1], [0, 0, 1]], dtype=float),
              np.array([[1, 0, 0], [1, 0, 1], [1, 1, 1], [1, 1, 0]], dtype=float)]
     x = np.array([0.3, 0.6, 0.0])
-    total = task("point_to_polygon",
-                 lambda: sum(float(lab.point_to_polygon(x.copy(), up, f.copy())) for f in faces))
-    if total is None:
-        return False
-    if not math.isclose(total, 1.0, rel_tol=ROUNDING):
-        wrong = sum(contour_variant(x, up, f, "polygon normal") for f in faces)
-        hint = ("you used the polygon's normal; the cosine at x needs x's own normal n (the walls "
-                "are perpendicular to it)" if math.isclose(total, wrong, rel_tol=1e-6) else
-                "each face's term must use the normal at x, and every face lies in front of x, "
-                "so no clipping is needed")
-        failures.append(f"Task 1, point_to_polygon: the five faces of a unit cube seen from a "
-                        f"point on the sixth sum to {total:.10g}; they fill the hemisphere, so the "
-                        f"sum is exactly 1 (Nusselt's analogy). {sentence(hint)}")
-        return False
+    for faces, exact, what in (([top] + walls, 1.0, "the five faces of a unit cube seen from a "
+                                "point on the sixth sum to {total:.10g}; they fill the "
+                                "hemisphere, so the sum is exactly 1 (Nusselt's analogy)"),
+                               (walls, 1 - point_under(0.3, 0.6, 0, 1, 0, 1, 1.0),
+                                "the four walls of a unit cube seen from a point on its floor "
+                                "sum to {total:.10g}; with the top (Howell B-3) they fill the "
+                                "hemisphere, so the sum is exactly {exact:.10g}")):
+        total = task("point_to_polygon", lambda: sum(
+            float(lab.point_to_polygon(x.copy(), up, f.copy())) for f in faces))
+        if total is None:
+            return False
+        if not math.isclose(total, exact, rel_tol=ROUNDING):
+            # A value that ignores the normal it is given used some other normal.
+            tilted = np.array([0.6, 0.0, 0.8])
+            same = task("point_to_polygon", lambda: math.isclose(
+                float(lab.point_to_polygon(x.copy(), up, walls[0].copy())),
+                float(lab.point_to_polygon(x.copy(), tilted, walls[0].copy())), rel_tol=1e-12))
+            hint = ("your value does not change when x's normal does: you used the polygon's "
+                    "normal, but the cosine at x needs x's own normal n (the walls are "
+                    "perpendicular to it)" if same else
+                    "each face's term must use the normal at x, and every face lies in front "
+                    "of x, so no clipping is needed")
+            failures.append(f"Task 1, point_to_polygon: {what.format(total=total, exact=exact)}. "
+                            f"{sentence(hint)}")
+            return False
     return True
 
 
@@ -248,7 +245,7 @@ def check_form_factor(lab, task, failures, radkit):
         got = form_factor(lower, upper, n)
         if got is None:
             return False
-        exact = gl_rule_exact(0, 1, 0, 1.5, 0.5, n, (0, 1, 0, 1.5))
+        exact = GL_RULE_1_15_05[n]
         if not math.isclose(got, exact, rel_tol=ROUNDING):
             r = got / exact
             if math.isclose(r, 1.5, rel_tol=1e-6):
@@ -269,8 +266,8 @@ def check_form_factor(lab, task, failures, radkit):
     # Against the closed forms at n = 8: (patch i, patch j, exact, the reference rule's measured
     # relative error, what, the factor the other way round). Tolerance: ten times that error,
     # at least 1e-9. The wall-to-floor direction converges only algebraically (README.md).
-    f12 = c14(1, 1, 2)
-    cases = [(lower, upper, c11(1, 1.5, 0.5), 3.5e-7, "C-11, 1 x 1.5 rectangles 0.5 apart", None),
+    f12 = C14_1_1_2
+    cases = [(lower, upper, C11_1_15_05, 3.5e-7, "C-11, 1 x 1.5 rectangles 0.5 apart", None),
              (FLOOR, WALL_2, f12, 7.2e-16, "C-14, from the 1 x 1 floor to the 1 x 2 wall", f12 / 2),
              (WALL_2, FLOOR, f12 / 2, 3.3e-4, "C-14, from the 1 x 2 wall to the 1 x 1 floor", f12)]
     for pi, pj, exact, measured, what, other in cases:
@@ -322,8 +319,9 @@ def check_closed_forms(lab, task, failures):
                 break
             if not abs(got - value) <= max(tol, 1e-12 * value):
                 hint = "compare it term by term with README.md (math.log is the natural logarithm)"
-                if name == "howell_c14" and math.isclose(got, c14(args[0], args[2], args[1]),
-                                                         rel_tol=1e-6):
+                # Swapping w and h gives the factor the other way, by reciprocity value w/h.
+                if name == "howell_c14" and args[1] != args[2] and math.isclose(
+                        got, value * args[1] / args[2], rel_tol=1e-5):
                     hint = ("that is the factor from the l x h rectangle: W = w/l belongs to A1, "
                             "the one the light leaves, H = h/l to A2")
                 failures.append(f"Task 4, {name}({', '.join(f'{a:g}' for a in args)}) ({names}) "
@@ -334,14 +332,13 @@ def check_closed_forms(lab, task, failures):
 
 
 def check_near_field(lab, task, failures, earlier_ok):
-    distances = [1.0, 0.5, 0.25, 0.1]
+    distances = [d for d, _, _ in NEAR_FIELD]
     got = task("near_field_errors",
                lambda: np.asarray(lab.near_field_errors(list(distances), 2), dtype=float))
     if got is None:
         return None
-    c = np.array([c11(1, 1, d) for d in distances])
-    exact = np.array([abs(gl_rule_exact(0, 1, 0, 1, d, 2, (0, 1, 0, 1)) - f) / f
-                      for d, f in zip(distances, c)])
+    c = np.array([f for _, f, _ in NEAR_FIELD])
+    exact = np.array([e for _, _, e in NEAR_FIELD])
     if got.shape != exact.shape or not np.allclose(got, exact, rtol=1e-8, atol=0):
         hint = "return |F_n - F| / F per distance, F from Howell C-11, F_n from form_factor(..., n)"
         if not earlier_ok:

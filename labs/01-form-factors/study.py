@@ -43,7 +43,12 @@ def main():
               howell_c11(1, 1.5, 0.5)),
              ("C-14 W = 1, H = 2", ([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
                                     [[0, 0, 0], [0, 0, 2], [1, 0, 2], [1, 0, 0]]),
-              howell_c14(1, 1, 2))]
+              howell_c14(1, 1, 2)),
+             # The other way round, F21 = F12 A1/A2 by reciprocity: over the wall, whose
+             # integrand has a kink at the common edge (README.md, question 2).
+             ("C-14 F21 over the wall", ([[0, 0, 0], [0, 0, 2], [1, 0, 2], [1, 0, 0]],
+                                         [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+              howell_c14(1, 1, 2) / 2)]
     print(f"{'case':28s} {'exact':>12s}" + "".join(f"{'n=' + str(n):>10s}"
                                                     for n in (1, 2, 4, 8, 16)))
     for name, (pi, pj), exact in cases:

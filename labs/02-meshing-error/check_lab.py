@@ -1,27 +1,35 @@
 """Check for lab 2: meshing error (meshing.py).
 
-Oracles: Howell's B-3 (a point under one corner of a parallel rectangle; docs/oracles.md) gives
-the converged peak radiosity of data/parallel-squares.json's floor, rho E 4 B-3(a/2, b/2, h).
-Synthetic series whose limit and order are known exactly test the slope, Richardson and order
-formulas. radkit runs (in a temporary folder) supply the real series.
+Oracles; the check holds no copy of what a task computes:
+- radkit's own record of each run in files Task 1 does not read: the surface means in
+  report.json ("surfaces") and the patch radiosities in radiosity.vtp (cell data "surface" and
+  "radiosity"; docs/formats.md). The floor's peaks at 8 to 512 patches feed Task 6.
+- Howell B-3 (docs/oracles.md) as values: the factor from a point under the centre of a parallel
+  rectangle (four quarter rectangles) and B-3 of the whole rectangle, for the cases below,
+  evaluated once with mpmath at 40 digits. The centre value gives the converged peak radiosity
+  of data/parallel-squares.json's floor.
+- Series built so that the answer is known without computing it: a power law's slope is its
+  exponent; f = f* + C h^p has limit f* and order p. For the one series that is no power law, its
+  least-squares slope and the usual wrong slopes, evaluated once with mpmath at 40 digits.
 
-Tolerances: on synthetic data rounding only (1e-9). On radkit's series, Richardson's estimate
-keeps the next term of the error, O(h⁴). The reference solution measures it at 3.1e-6 from the
-runs at 128 and 512 patches (and at 2.0e-7 from 512 and 2048: a factor of 16 per halving of h,
-as O(h⁴) predicts). The tolerance is 1e-5. The usual mistakes (the wrong exponent, no
+Tolerances: on the values and series rounding only (1e-9). On radkit's series, Richardson's
+estimate keeps the next term of the error, O(h⁴). The reference solution measures it at 3.1e-6
+from the runs at 128 and 512 patches (and at 2.0e-7 from 512 and 2048: a factor of 16 per halving
+of h, as O(h⁴) predicts). The tolerance is 1e-5. The usual mistakes (the wrong exponent, no
 extrapolation, the sign) leave 2.8e-4 or more.
 """
-import csv
+import json
 import math
 import sys
 import tempfile
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from pyradkit import (data_file, guarded, howell_b3 as b3, load_student,  # noqa: E402
-                      need_radkit, run_radkit, sentence, slope_mistakes, which)
+from pyradkit import (data_file, guarded, load_student, need_radkit, run_radkit,  # noqa: E402
+                      sentence, which)
 
 RICHARDSON_TOLERANCE = 1e-5
 RICHARDSON_MEASURED = 3.1e-6  # the reference solution's remainder from 128 and 512 patches
@@ -30,13 +38,59 @@ TASK_OF = {"surface_radiosity": 1, "point_limit": 2, "loglog_slope": 3, "richard
            "observed_order": 5, "extrapolate": 6}
 
 
-def read_run(run_dir, surface):
-    """(mean, peak) red-channel radiosity of a surface, read here independently of the student."""
-    with open(Path(run_dir) / "surfaces.csv") as f:
-        mean = next(float(r["b_r_W_m2"]) for r in csv.DictReader(f) if r["surface"] == surface)
-    with open(Path(run_dir) / "patches.csv") as f:
-        peak = max(float(r["b_r_W_m2"]) for r in csv.DictReader(f) if r["surface"] == surface)
-    return mean, peak
+# Howell B-3, evaluated once with mpmath at 40 digits: (a, b, h) -> (4 B-3(a/2, b/2, h), the
+# factor from the point under the centre of the a x b rectangle; B-3(a, b, h), the factor from
+# the point under one of its corners).
+B3_VALUES = {(1.0, 1.0, 1.0): (0.23945647046077353883, 0.13853160599489299678),
+             (2.0, 1.0, 0.5): (0.66950003965753506966, 0.22077762233476158560)}
+# The floor's converged peak in data/parallel-squares.json: ρ E 4 B-3(1/2, 1/2, 1), ρ = 0.5, E = 1.
+PEAK_LIMIT = 0.5 * B3_VALUES[(1.0, 1.0, 1.0)][0]
+
+# Task 3's series at x = 8, 32, ..., 2048. For y = 0.3 x^-1.25 the slope is -1.25 and the
+# swapped axes give 1/-1.25 by construction. The rest, least squares evaluated once with mpmath
+# at 40 digits on the double-precision data: (slope, linear axes, log y against x, y against
+# log x, swapped axes, end points).
+SLOPE_SERIES = [
+    (lambda x: 0.3 * x ** -1.25, "y = 0.3 x^-1.25",
+     (-1.25, -4.7810963026291313e-6, -0.0026467313529445614, -0.0034891753053769917, -0.8,
+      -1.25)),
+    (lambda x: 0.02 / x * (1 + 3 / np.sqrt(x)), "y = 0.02/x (1 + 3/sqrt(x)), not a power",
+     (-1.1167618387347662, -1.1151001171128789e-6, -0.0023227753094533079,
+      -0.00080752616259692604, -0.8946156184003314, -1.1188131297265819)),
+]
+
+
+def radkit_results(run_dir):
+    """{surface: (mean, peak)} red radiosity of a run, from report.json's surface means and
+    radiosity.vtp's patches: radkit's own record, not the CSV files Task 1 reads."""
+    run = Path(run_dir)
+    report = json.loads((run / "report.json").read_text())
+    means = {s["surface"]: float(s["radiosity_W_m2"][0]) for s in report["surfaces"]}
+    cells = ET.parse(run / "radiosity.vtp").getroot().find("PolyData/Piece/CellData")
+    arrays = {a.get("Name"): a.text.split() for a in cells.iter("DataArray")}
+    surface = np.array(arrays["surface"], dtype=int)
+    red = np.array(arrays["radiosity"], dtype=float)[0::3]
+    return {name: (means[name], float(red[surface == k].max()))
+            for k, name in enumerate(report["scene"]["surfaces"])}
+
+
+def slope_hints(exact, linear, semilog, ylogx, swapped, ends):
+    """(text, value) of the usual wrong log-log slopes, for which()."""
+    bases = ("the logs have different bases (log10 of one axis, ln of the other): use the same "
+             "for both")
+    return [
+        ("that is the slope on linear axes: a power law is a straight line only on log-log "
+         "axes; fit log(y) against log(x)", linear),
+        ("that is the slope of log(y) against x (semi-log): take the log of x too", semilog),
+        ("that is the slope of y against log(x): take the log of y too", ylogx),
+        ("the axes are swapped: fit log(y) against log(x), not log(x) against log(y)", swapped),
+        ("the sign is lost: the error falls as the patch count grows, so the slope is negative",
+         -exact),
+        (bases, exact * math.log(10)),
+        (bases, exact / math.log(10)),
+        ("that is the slope through the first and last points only: fit all points by least "
+         "squares (numpy.polyfit on the logs)", ends),
+    ]
 
 
 def extrapolation_mistakes(counts, values, p):
@@ -60,6 +114,7 @@ def extrapolation_mistakes(counts, values, p):
 
 # --- the tasks -----------------------------------------------------------------------------------
 def check_reading(lab, task, failures, run_dir, expected):
+    """expected: radkit_results of the run; the CSV files print the same doubles to 17 digits."""
     for surface, (mean, peak) in expected.items():
         got = task("surface_radiosity",
                    lambda: tuple(map(float, lab.surface_radiosity(str(run_dir), surface))))
@@ -78,7 +133,8 @@ def check_reading(lab, task, failures, run_dir, expected):
             hint = hint or ("the mean is surfaces.csv's b_r_W_m2 (area-weighted), the peak the "
                             "largest b_r_W_m2 of the surface's rows in patches.csv")
             failures.append(f"Task 1, surface_radiosity(run at 32 patches, '{surface}') = {got}; "
-                            f"the files say mean {mean:.10g}, peak {peak:.10g}. {sentence(hint)}")
+                            f"radkit's report.json and radiosity.vtp say mean {mean:.10g}, peak "
+                            f"{peak:.10g}. {sentence(hint)}")
             return False
     return True
 
@@ -89,17 +145,17 @@ def check_point_limit(lab, task, failures):
         got = task("point_limit", lambda: float(lab.point_limit(*args)))
         if got is None:
             return False
-        F = 4 * b3(a / 2, b / 2, h)
+        F, corner = B3_VALUES[(a, b, h)]
         exact = rho * e * F
         if not math.isclose(got, exact, rel_tol=1e-9):
             hint = which(got, [
                 ("that is B-3 for the whole rectangle with its corner above the point: the point "
                  "is under the centre, so split the rectangle into four a/2 x b/2 ones, each with "
-                 "a corner above the point, and add them (superposition)", rho * e * b3(a, b, h)),
+                 "a corner above the point, and add them (superposition)", rho * e * corner),
                 ("that is one of the four quarter rectangles: add all four (multiply by 4)",
                  rho * e * F / 4),
                 ("four corners of the full size: each quarter is a/2 x b/2",
-                 rho * e * 4 * b3(a, b, h)),
+                 rho * e * 4 * corner),
                 ("the reflectance is missing: the floor reflects rho of what arrives, "
                  "B = rho E F", e * F),
                 ("the emission is missing: B = rho E F", rho * F),
@@ -113,15 +169,14 @@ def check_point_limit(lab, task, failures):
 
 def check_slope(lab, task, failures):
     x = np.array([8.0, 32, 128, 512, 2048])
-    for y, what in ((0.3 * x ** -1.25, "y = 0.3 x^-1.25"),
-                    (0.02 / x * (1 + 3 / np.sqrt(x)), "y = 0.02/x (1 + 3/sqrt(x)), not a power")):
+    for f, what, slopes in SLOPE_SERIES:
+        y = f(x)
         got = task("loglog_slope", lambda: float(lab.loglog_slope(x.copy(), y.copy())))
         if got is None:
             return False
-        exact = float(np.polyfit(np.log(x), np.log(y), 1)[0])
+        exact = slopes[0]
         if not math.isclose(got, exact, rel_tol=1e-9):
-            hint = which(got, slope_mistakes(
-                x, y, "the error falls as the patch count grows, so the slope is negative")) \
+            hint = which(got, slope_hints(*slopes)) \
                 or "fit a straight line to (log x, log y) by least squares and return its slope"
             failures.append(f"Task 3, loglog_slope on {what} at x = 8 .. 2048: {got:.6g}, "
                             f"expected {exact:.6g}. {sentence(hint)}")
@@ -202,7 +257,7 @@ def check_extrapolate(lab, task, failures, peaks, richardson_ok):
             return None
 
     # radkit's series: the floor's peak under the lamp, limit rho E F at the centre (B-3).
-    limit = 0.5 * 1.0 * 4 * b3(0.5, 0.5, 1.0)
+    limit = PEAK_LIMIT
     got = task("extrapolate", lambda: float(lab.extrapolate(list(COUNTS), list(peaks), 2.0)))
     if got is None:
         return None
@@ -230,9 +285,8 @@ def check(student_dir, radkit=None):
         for n, out in runs.items():
             run_radkit(radkit, "run", data_file("parallel-squares.json"), "--patches", n,
                        "--tol", "1e-10", "--seed", 1, "--threads", 2, "--no-render", "--out", out)
-        peaks = [read_run(runs[n], "lower")[1] for n in COUNTS]
-        check_reading(lab, task, failures, runs[32],
-                      {s: read_run(runs[32], s) for s in ("lower", "upper")})
+        peaks = [radkit_results(runs[n])["lower"][1] for n in COUNTS]
+        check_reading(lab, task, failures, runs[32], radkit_results(runs[32]))
 
     check_point_limit(lab, task, failures)
     check_slope(lab, task, failures)

@@ -3,15 +3,17 @@
 Oracles: radkit's own photon map and tallies on the same photons (Tasks 1 and 2); the kernel
 integral of a quadratic field by quadrature (Task 3a); a simulation of the Poisson process whose
 squared distances, times pi times the density, are a unit-rate process's arrival times (Task 3b);
-a numerical minimisation (Task 4); and the lamp's closed-form irradiance (Howell B-3 by
-superposition) against 512 photon runs, within four estimated standard errors (Task 3 in use).
+the minimum's defining property, no lower error 1 % either side (Task 4); and the lamp's
+closed-form irradiance (Howell B-3 by superposition) against 512 photon runs, within four
+estimated standard errors (Task 3 in use). The check holds no estimate of its own: the usual
+slips of Task 1 are named from radkit's estimates with other filters.
 """
 import math
 import sys
 from pathlib import Path
 
 import numpy as np
-from scipy import integrate, optimize
+from scipy import integrate
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from pyradkit import data_file, attempt, guarded, howell_b3, import_radkit, load_student  # noqa: E402
@@ -72,20 +74,20 @@ def check_task1(lab, task, rk, failures):
                             f"{np.max(np.abs(r / ref['radius'] - 1)):.3g}). r is the last of "
                             "the k distances cKDTree.query returns, not the square or the mean.")
             return False
-        # Name the usual mistakes by computing them on the same photons.
-        from scipy.spatial import cKDTree
-        d, i = cKDTree(P).query(points, k)
-        r2 = d[:, -1:] ** 2
-        flux = W[i]
+        # Name the usual mistakes from radkit's own estimates, not from a copy of the estimate:
+        # every photon on this floor carries the same power (the lamp's direct light), so the
+        # unweighted disc sum is k p / (pi r^2); 2 (1 - d/r) is 2/3 of the cone filter.
+        p = float(np.asarray(W)[0, 0])
+        cone = pm.irradiance(points, [0, 0, 1], k=k, filter="cone")["irradiance"]
         variants = {
             "you summed the photons' power over the disc, sum / (pi r^2), without the "
-            "Epanechnikov weights 2 (1 - d^2/r^2)": np.einsum("qkc->qc", flux) / (np.pi * r2),
+            "Epanechnikov weights 2 (1 - d^2/r^2)":
+                np.repeat((k * p / (np.pi * ref["radius"] ** 2))[:, None], 3, axis=1),
             "the weights lack their factor 2: K = 2/(pi r^2) (1 - d^2/r^2) integrates to 1 over "
-            "the disc": np.einsum("qk,qkc->qc", 1 - d ** 2 / r2, flux) / (np.pi * r2),
-            "the weights use d/r where the kernel has d^2/r^2": np.einsum(
-                "qk,qkc->qc", 2 * (1 - d / np.sqrt(r2)), flux) / (np.pi * r2),
+            "the disc": ref["irradiance"] / 2,
+            "the weights use d/r where the kernel has d^2/r^2": cone * 2 / 3,
         }
-        hint = next((text for text, wrong in variants.items() if np.allclose(E, wrong, rtol=1e-5)),
+        hint = next((text for text, wrong in variants.items() if np.allclose(E, wrong, rtol=1e-3)),
                     "compare with the formula in the docstring")
         ratio = np.median(E[:, 0] / ref["irradiance"][:, 0])
         failures.append(f"irradiance_estimate at k = {k} differs from radkit's estimate on the "
@@ -122,14 +124,12 @@ def check_task2(lab, task, rk, failures):
     if np.allclose(se[ok], expected[ok], rtol=1e-6, atol=0):
         return
     # Photons taken as independent draws: paths that leave several photons on one patch count
-    # them apart, so the cross terms of a path's own photons are missed.
-    A = mesh.area[:, None]
-    s1, s2 = np.zeros((len(mesh), 3)), np.zeros((len(mesh), 3))
-    np.add.at(s1, pm.patch, pm.power)
-    np.add.at(s2, pm.patch, pm.power ** 2)
-    per_photon = np.sqrt(np.maximum(N / (N - 1) * (s2 - s1 ** 2 / N), 0)) / A
+    # them apart, so the cross terms of a path's own photons are missed. Such a solver ignores
+    # `path`: giving each photon a path of its own leaves its answer unchanged.
+    alone = task("patch_tally", lambda: np.asarray(lab.patch_tally(
+        pm.patch, np.arange(len(pm.patch)), pm.power, mesh.area, N)[1], dtype=float))
     no_bessel = expected * math.sqrt((N - 1) / N)
-    if np.allclose(se[ok], per_photon[ok], rtol=1e-6):
+    if alone is not None and alone.shape == se.shape and np.array_equal(alone, se):
         hint = ("each stored photon was taken as a draw; a path that bounces leaves several "
                 "photons on the same patch, and they are one draw X_ji, summed before squaring")
     elif np.allclose(se[ok], no_bessel[ok], rtol=1e-6):
@@ -208,15 +208,19 @@ def check_task4(lab, task, failures):
         def mse(k):
             r2 = k / (N * math.pi * E)
             return (float(lab.knn_bias(lap, r2)) / E) ** 2 + float(lab.knn_relative_variance(k))
-        best = optimize.minimize_scalar(mse, bounds=(2.01, 1e7), method="bounded",
-                                        options={"xatol": 1e-3}).x
-        if not math.isclose(got, best, rel_tol=0.01):
+
+        def is_minimum(k):
+            """No lower error 1 % either side: the check tests the minimum, it does not seek it."""
+            return k > 2 and mse(k) <= min(mse(k * 1.01), mse(k / 1.01))
+        if not is_minimum(got):
             hint = (" (a square root where the cube root belongs: d/dk of (a k)^2 + 4/(3k) is "
-                    "zero at k^3 = 2/(3a^2))" if math.isclose(got, best ** 1.5, rel_tol=0.05)
+                    "zero at k^3 = 2/(3a^2))" if is_minimum(got ** (2 / 3))
                     else " (pi r^2 holds k photons: pi r^2 * N E / total_power = k)")
-            failures.append(f"optimal_k(N = {N:g}, Laplacian {lap:g}, E {E:g}, 1 W) = {got:.1f}; "
-                            f"the minimum of your own bias and variance is at k = {best:.1f}"
-                            f"{hint}.")
+            side = got * 1.01 if got > 2 and mse(got * 1.01) < mse(got / 1.01) else got / 1.01
+            failures.append(f"optimal_k(N = {N:g}, Laplacian {lap:g}, E {E:g}, 1 W) = {got:.1f} "
+                            f"is not where your own bias and variance balance: the relative "
+                            f"mean squared error is {mse(got):.4g} there and {mse(side):.4g} at "
+                            f"k = {side:.1f}{hint}.")
             return
 
 

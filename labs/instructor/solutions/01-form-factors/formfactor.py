@@ -1,7 +1,7 @@
 """Lab 1: form factors by hand. Reference solution.
 
 Polygons are (k, 3) arrays of vertices, counter-clockwise seen from their front side (the side
-their normal points to). `labs/01-form-factors/study.py --dir labs/solutions/01-form-factors`
+their normal points to). `labs/01-form-factors/study.py --dir labs/instructor/solutions/01-form-factors`
 runs the study on it.
 """
 import math

@@ -1,6 +1,6 @@
 """Lab 2: meshing error. Reference solution.
 
-`labs/02-meshing-error/study.py --dir labs/solutions/02-meshing-error` runs the study on it.
+`labs/02-meshing-error/study.py --dir labs/instructor/solutions/02-meshing-error` runs the study on it.
 """
 import csv
 import math

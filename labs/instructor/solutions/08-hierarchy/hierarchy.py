@@ -1,6 +1,6 @@
 """Lab 8: hierarchical radiosity, ε against links and error. Reference solution.
 
-`labs/08-hierarchy/study.py --dir labs/solutions/08-hierarchy` runs the study on it.
+`labs/08-hierarchy/study.py --dir labs/instructor/solutions/08-hierarchy` runs the study on it.
 """
 import csv
 import json
