@@ -153,6 +153,26 @@ def howell_b3(a, b, h):
     return (X / x1 * math.atan(Y / x1) + Y / y1 * math.atan(X / y1)) / (2 * math.pi)
 
 
+def slope_hints(exact, linear, semilog, ylogx, swapped, ends, sign_reason):
+    """(text, value) of the usual wrong log-log slopes, for which(): each value is what that
+    slip gives on the check's data (the check tabulates them); sign_reason says why the sign
+    matters there."""
+    bases = ("the logs have different bases (log10 of one axis, ln of the other): use the same "
+             "for both")
+    return [
+        ("that is the slope on linear axes: a power law is a straight line only on log-log "
+         "axes; fit log(y) against log(x)", linear),
+        ("that is the slope of log(y) against x (semi-log): take the log of x too", semilog),
+        ("that is the slope of y against log(x): take the log of y too", ylogx),
+        ("the axes are swapped: fit log(y) against log(x), not log(x) against log(y)", swapped),
+        (f"the sign is lost: {sign_reason}", -exact),
+        (bases, exact * math.log(10)),
+        (bases, exact / math.log(10)),
+        ("that is the slope through the first and last points only: fit all points by least "
+         "squares (numpy.polyfit on the logs)", ends),
+    ]
+
+
 def save_figure(fig, folder, name, dpi=110):
     """Lays a study's figure out, writes folder/name and says where."""
     fig.tight_layout()

@@ -29,7 +29,9 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from pyradkit import (data_file, guarded, load_student, need_radkit, run_radkit,  # noqa: E402
-                      sentence, which)
+                      sentence, slope_hints, which)
+
+SIGN_REASON = "the error falls as the patch count grows, so the slope is negative"
 
 RICHARDSON_TOLERANCE = 1e-5
 RICHARDSON_MEASURED = 3.1e-6  # the reference solution's remainder from 128 and 512 patches
@@ -72,25 +74,6 @@ def radkit_results(run_dir):
     red = np.array(arrays["radiosity"], dtype=float)[0::3]
     return {name: (means[name], float(red[surface == k].max()))
             for k, name in enumerate(report["scene"]["surfaces"])}
-
-
-def slope_hints(exact, linear, semilog, ylogx, swapped, ends):
-    """(text, value) of the usual wrong log-log slopes, for which()."""
-    bases = ("the logs have different bases (log10 of one axis, ln of the other): use the same "
-             "for both")
-    return [
-        ("that is the slope on linear axes: a power law is a straight line only on log-log "
-         "axes; fit log(y) against log(x)", linear),
-        ("that is the slope of log(y) against x (semi-log): take the log of x too", semilog),
-        ("that is the slope of y against log(x): take the log of y too", ylogx),
-        ("the axes are swapped: fit log(y) against log(x), not log(x) against log(y)", swapped),
-        ("the sign is lost: the error falls as the patch count grows, so the slope is negative",
-         -exact),
-        (bases, exact * math.log(10)),
-        (bases, exact / math.log(10)),
-        ("that is the slope through the first and last points only: fit all points by least "
-         "squares (numpy.polyfit on the logs)", ends),
-    ]
 
 
 def extrapolation_mistakes(counts, values, p):
@@ -176,7 +159,7 @@ def check_slope(lab, task, failures):
             return False
         exact = slopes[0]
         if not math.isclose(got, exact, rel_tol=1e-9):
-            hint = which(got, slope_hints(*slopes)) \
+            hint = which(got, slope_hints(*slopes, sign_reason=SIGN_REASON)) \
                 or "fit a straight line to (log x, log y) by least squares and return its slope"
             failures.append(f"Task 3, loglog_slope on {what} at x = 8 .. 2048: {got:.6g}, "
                             f"expected {exact:.6g}. {sentence(hint)}")

@@ -36,15 +36,17 @@ def check(student_dir, radkit_binary=None):
         hint = ("that is 0.5^0.1: you measured per iteration (history row); measure per sweep "
                 "(the 'sweeps' column)" if math.isclose(factor, 0.5 ** 0.1, rel_tol=1e-6) else
                 "fit log(residual) against sweeps: a straight line whose slope is log(factor)")
-        failures.append(f"convergence_factor: residual 0.5^sweeps gave {factor:.6g}, not 0.5; {hint}.")
+        failures.append(f"Task 1, convergence_factor: residual 0.5^sweeps gave {factor:.6g}, "
+                        f"not 0.5; {hint}.")
     s = np.arange(0.0, 201.0)
     factor = task("1", lambda: lab.convergence_factor(
         {"sweeps": s, "residual": 0.9 ** s + 100 * 0.3 ** s, "iteration": s}))
     if factor is not None and not math.isclose(factor, 0.9, rel_tol=1e-3):
         failures.append(
-            f"convergence_factor: residual 0.9^k + 100 * 0.3^k gave {factor:.6g}, not 0.9. The "
-            "asymptotic factor is the slowest mode's; the first sweeps fall faster while the fast "
-            "modes die out, so use the tail of the history only (the last `tail` of its sweeps).")
+            f"Task 1, convergence_factor: residual 0.9^k + 100 * 0.3^k gave {factor:.6g}, not "
+            "0.9. The asymptotic factor is the slowest mode's; the first sweeps fall faster while "
+            "the fast modes die out, so use the tail of the history only (the last `tail` of its "
+            "sweeps).")
 
     # Task 1 on a real solve: Jacobi in the furnace falls by rho = 0.5 per sweep, up to the row
     # sums of F (1 - d), which move the factor by at most rho * d. The solve stops at 1e-8,
@@ -57,15 +59,16 @@ def check(student_dir, radkit_binary=None):
     jacobi = rk.solve(furnace, "jacobi", tolerance=1e-8)
     factor = task("1", lambda: lab.convergence_factor(jacobi["history"]))
     if factor is not None and abs(factor - 0.5) > 0.5 * d + 1e-6:
-        failures.append(f"convergence_factor: Jacobi in the furnace (rho = 0.5, rows of F sum to "
-                        f"1 within {d:.1e}) gave {factor:.6g}; the residual halves each sweep.")
+        failures.append(f"Task 1, convergence_factor: Jacobi in the furnace (rho = 0.5, rows "
+                        f"of F sum to 1 within {d:.1e}) gave {factor:.6g}; the residual halves "
+                        "each sweep.")
 
     # Task 2: the furnace's spectral radius is rho (F is stochastic); on the Cornell box it is
     # the factor Jacobi is measured to converge at.
     radius = task("2", lambda: lab.spectral_radius(furnace.F, furnace.reflectance))
     if radius is not None and abs(radius - 0.5) > 0.5 * d + 1e-9:
-        failures.append(f"spectral_radius: the furnace gave {radius:.6g}; rho F with rows summing "
-                        "to 1 has spectral radius rho = 0.5.")
+        failures.append(f"Task 2, spectral_radius: the furnace gave {radius:.6g}; rho F with "
+                        "rows summing to 1 has spectral radius rho = 0.5.")
     cornell = rk.System(rk.form_factors(rk.mesh(
         rk.load_scene(str(data_file("cornell-box.json"))), patches=150)))
     radius = task("2", lambda: lab.spectral_radius(cornell.F, cornell.reflectance))
@@ -81,8 +84,8 @@ def check(student_dir, radkit_binary=None):
                     if math.isclose(radius, norm, rel_tol=1e-6) else
                     "take the largest |eigenvalue| of rho_c F for each channel c, then the "
                     "largest over channels")
-            failures.append(f"spectral_radius: the Cornell box gave {radius:.6g} where Jacobi is "
-                            f"measured to converge at {rate:.6g} per sweep; {hint}.")
+            failures.append(f"Task 2, spectral_radius: the Cornell box gave {radius:.6g} where "
+                            f"Jacobi is measured to converge at {rate:.6g} per sweep; {hint}.")
 
     # Task 3: Young's formula.
     for rho_j in (0.5, 0.95):
@@ -93,7 +96,7 @@ def check(student_dir, radkit_binary=None):
         if not math.isclose(omega, exact, rel_tol=1e-12):
             hint = (" (that is 2/(1 + sqrt(1 - rho_J)): the square of rho_J is missing)"
                     if math.isclose(omega, 2 / (1 + math.sqrt(1 - rho_j)), rel_tol=1e-9) else "")
-            failures.append(f"young_omega({rho_j}) = {omega:.6g}, Young's optimum is "
+            failures.append(f"Task 3, young_omega({rho_j}) = {omega:.6g}, Young's optimum is "
                             f"{exact:.6g}{hint}.")
 
     # Task 4 on a known function, then on SOR itself: the two-patch system is consistently
@@ -102,8 +105,8 @@ def check(student_dir, radkit_binary=None):
     omegas = np.round(np.arange(1.0, 1.91, 0.02), 2)
     best = task("4", lambda: lab.best_omega(lambda w: abs(w - 1.3) * 100 + 5, omegas))
     if best is not None and not math.isclose(best, 1.3, abs_tol=1e-9):
-        failures.append(f"best_omega: for sweeps = 100 |omega - 1.3| + 5 it returned {best}, not "
-                        "1.3: return the omega with the FEWEST sweeps.")
+        failures.append(f"Task 4, best_omega: for sweeps = 100 |omega - 1.3| + 5 it returned "
+                        f"{best}, not 1.3: return the omega with the FEWEST sweeps.")
     elif best is not None:
         system = two_patch(rk, 0.95)
 
@@ -114,14 +117,15 @@ def check(student_dir, radkit_binary=None):
         best = lab.best_omega(sor_sweeps, omegas)
         young = 2 / (1 + math.sqrt(1 - 0.95 ** 2))
         if abs(best - young) > 0.04:
-            failures.append(f"best_omega: SOR on the two-patch system (rho_J = 0.95) is fastest at "
-                            f"omega = {best}, Young predicts {young:.4f}.")
+            failures.append(f"Task 4, best_omega: SOR on the two-patch system (rho_J = 0.95) is "
+                            f"fastest at omega = {best}, Young predicts {young:.4f}.")
         gs = rk.solve(system, "gauss-seidel", tolerance=1e-12)
-        factor = lab.convergence_factor(gs["history"])
-        if not math.isclose(factor, 0.95 ** 2, rel_tol=1e-3):
-            failures.append(f"Gauss-Seidel on the two-patch system converges at {factor:.6g} per "
-                            f"sweep by your convergence_factor; Young's theory says rho_J^2 = "
-                            f"{0.95 ** 2:.4f}.")
+        # Task 1's function on a Task 4 system: not written yet is its "not done yet" line.
+        factor = task("1", lambda: lab.convergence_factor(gs["history"]))
+        if factor is not None and not math.isclose(factor, 0.95 ** 2, rel_tol=1e-3):
+            failures.append(f"Task 1, convergence_factor: Gauss-Seidel on the two-patch system "
+                            f"converges at {factor:.6g} per sweep by it; Young's theory says "
+                            f"rho_J^2 = {0.95 ** 2:.4f}.")
         if not failures:
             print(f"lab 4: furnace Jacobi factor {lab.convergence_factor(jacobi['history']):.6f} "
                   f"(rho 0.5); Cornell box spectral radius {radius:.5f}, Jacobi measured "

@@ -49,7 +49,7 @@ def check(student_dir, radkit_binary=None):
         hint = next((text for text, wrong in mistakes.items()
                      if got.shape == wrong.shape and np.allclose(got, wrong, rtol=1e-9)),
                     "compare with the definition in README.md")
-        failures.append(f"surface_factors on the three-patch example gave {got.tolist()}, "
+        failures.append(f"Task 1, surface_factors on the three-patch example gave {got.tolist()}, "
                         f"expected {exact.tolist()}: {hint}.")
         got = None
 
@@ -66,12 +66,12 @@ def check(student_dir, radkit_binary=None):
                           for s in range(6)])
         worst = np.abs(S - exact).max()
         if worst > FACE_TOLERANCE:
-            failures.append(f"surface_factors on the closed unit cube is {worst:.3g} from Howell's "
-                            "C-11 (opposite faces) and C-14 (adjacent faces).")
+            failures.append(f"Task 1, surface_factors on the closed unit cube is {worst:.3g} "
+                            "from Howell's C-11 (opposite faces) and C-14 (adjacent faces).")
     deficit = task(lambda: np.asarray(lab.row_deficit(F), dtype=float))
     d = ff.diagnostics["row_sum"]["max_abs_deviation_from_one"]
     if deficit is not None and np.abs(deficit).max() > d * (1 + 1e-9) + 1e-15:
-        failures.append("row_deficit on the closed cube should be 0 up to F's accuracy "
+        failures.append("Task 2, row_deficit on the closed cube should be 0 up to F's accuracy "
                         f"({d:.1e}); it gave up to {np.abs(deficit).max():.3g}.")
         deficit = None
 
@@ -94,8 +94,9 @@ def check(student_dir, radkit_binary=None):
             if abs(mean - exact) > 5 * FACE_TOLERANCE:
                 hint = (" (the sign: the deficit is 1 minus the row sum)"
                         if math.isclose(mean, -exact, rel_tol=1e-3) else "")
-                failures.append(f"row_deficit on the cube open at the front: the {name} face "
-                                f"loses {mean:.6f} of its light, Howell gives {exact:.6f}{hint}.")
+                failures.append(f"Task 2, row_deficit on the cube open at the front: the {name} "
+                                f"face loses {mean:.6f} of its light, Howell gives "
+                                f"{exact:.6f}{hint}.")
                 break
 
     # Task 3: zero where F_ji is set by reciprocity (point-polygon), and radkit's own figures on
@@ -104,7 +105,7 @@ def check(student_dir, radkit_binary=None):
     if result is not None:
         largest, mean = result
         if largest > 1e-12 or mean > 1e-12:
-            failures.append(f"reciprocity_error of the point-polygon F is ({largest:.3g}, "
+            failures.append(f"Task 3, reciprocity_error of the point-polygon F is ({largest:.3g}, "
                             f"{mean:.3g}); that F is reciprocal by construction, so both are 0 "
                             "up to rounding. Compare A_i F_ij with A_j F_ji, not F_ij with F_ji.")
         else:
@@ -115,8 +116,8 @@ def check(student_dir, radkit_binary=None):
             if not (math.isclose(largest, report["max_relative_error"], rel_tol=1e-9) and
                     math.isclose(mean, report["mean_relative_error"], rel_tol=1e-9)):
                 failures.append(
-                    f"reciprocity_error of a hemisphere run gave ({largest:.6g}, {mean:.6g}); "
-                    f"radkit reports ({report['max_relative_error']:.6g}, "
+                    f"Task 3, reciprocity_error of a hemisphere run gave ({largest:.6g}, "
+                    f"{mean:.6g}); radkit reports ({report['max_relative_error']:.6g}, "
                     f"{report['mean_relative_error']:.6g}). Each unordered pair counts once; "
                     "the relative error divides by the larger of A_i F_ij and A_j F_ji, the mean "
                     "is sum |difference| / sum (A_i F_ij + A_j F_ji).")

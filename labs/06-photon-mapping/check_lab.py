@@ -60,7 +60,7 @@ def check_task1(lab, task, rk, failures):
         E, r = (np.asarray(a, dtype=float) for a in got)
         ref = pm.irradiance(points, [0, 0, 1], k=k)
         if E.shape != (len(points), 3) or r.shape != (len(points),):
-            failures.append(f"irradiance_estimate returned shapes {E.shape} and {r.shape}; "
+            failures.append(f"Task 1, irradiance_estimate returned shapes {E.shape} and {r.shape}; "
                             f"expected ({len(points)}, 3) and ({len(points)},).")
             return False
         # radkit computes squared distances in float (~1e-5 of d^2 at these scales), and the
@@ -69,8 +69,8 @@ def check_task1(lab, task, rk, failures):
                 and np.allclose(r, ref["radius"], rtol=1e-5)):
             continue
         if not np.allclose(r, ref["radius"], rtol=1e-5):
-            failures.append(f"irradiance_estimate at k = {k}: r differs from radkit's distance to "
-                            "the k-th nearest photon (largest relative difference "
+            failures.append(f"Task 1, irradiance_estimate at k = {k}: r differs from radkit's "
+                            "distance to the k-th nearest photon (largest relative difference "
                             f"{np.max(np.abs(r / ref['radius'] - 1)):.3g}). r is the last of "
                             "the k distances cKDTree.query returns, not the square or the mean.")
             return False
@@ -90,8 +90,8 @@ def check_task1(lab, task, rk, failures):
         hint = next((text for text, wrong in variants.items() if np.allclose(E, wrong, rtol=1e-3)),
                     "compare with the formula in the docstring")
         ratio = np.median(E[:, 0] / ref["irradiance"][:, 0])
-        failures.append(f"irradiance_estimate at k = {k} differs from radkit's estimate on the "
-                        f"same photons (median ratio {ratio:.4f}): {hint}.")
+        failures.append(f"Task 1, irradiance_estimate at k = {k} differs from radkit's "
+                        f"estimate on the same photons (median ratio {ratio:.4f}): {hint}.")
         return False
     return True
 
@@ -107,14 +107,15 @@ def check_task2(lab, task, rk, failures):
         return
     H, se = (np.asarray(a, dtype=float) for a in got)
     if H.shape != (len(mesh), 3) or se.shape != (len(mesh), 3):
-        failures.append(f"patch_tally returned shapes {H.shape} and {se.shape}; expected "
+        failures.append(f"Task 2, patch_tally returned shapes {H.shape} and {se.shape}; "
+                        "expected "
                         f"({len(mesh)}, 3) twice, one row per patch.")
         return
     if not np.allclose(H, tally["irradiance"], rtol=1e-9, atol=0):
         hint = ("divide each patch's sum by its area A_i" if
                 np.allclose(H, tally["irradiance"] * mesh.area[:, None], rtol=1e-9) else
                 "H_i is the power of the photons on patch i over A_i")
-        failures.append("patch_tally's H differs from radkit's tally of the same photons "
+        failures.append("Task 2, patch_tally's H differs from radkit's tally of the same photons "
                         f"(largest relative difference "
                         f"{np.nanmax(np.abs(H / tally['irradiance'] - 1)):.3g}): {hint}.")
         return
@@ -138,7 +139,8 @@ def check_task2(lab, task, rk, failures):
         hint = "that is the variance; the standard error is its square root over A_i"
     else:
         hint = "compare with the formula in the docstring"
-    failures.append("patch_tally's standard error differs from radkit's on the same photons "
+    failures.append("Task 2, patch_tally's standard error differs from radkit's on the same "
+                    "photons "
                     f"(median ratio {np.median(se[ok] / expected[ok]):.4f}): {hint}.")
 
 
@@ -173,8 +175,8 @@ def check_task3(lab, task, failures):
                         "expand E to second order and integrate against K")
             if math.isclose(got, -exact, rel_tol=1e-8):
                 hint = "the sign: where E curves down (negative Laplacian) the estimate is low"
-            failures.append(f"knn_bias({lap:g}, {r * r:g}) = {got:.6g}; the kernel integral of "
-                            f"that quadratic field gives {exact:.6g}: {hint}.")
+            failures.append(f"Task 3a, knn_bias({lap:g}, {r * r:g}) = {got:.6g}; the kernel "
+                            f"integral of that quadratic field gives {exact:.6g}: {hint}.")
             passed = False
             break
     # 3b: estimate / E = sum_{j<k} 2 (1 - G_j/G_k) / G_k, with G_1 < ... < G_k the arrival
@@ -193,7 +195,8 @@ def check_task3(lab, task, failures):
             named = next((f" (that is {m}; E[1/G^2] = 1/((k-1)(k-2)) for G ~ Gamma(k), and "
                           "S has variance (k-1)/3 besides its mean k-1)"
                           for m, v in mistakes.items() if math.isclose(got, v, rel_tol=1e-9)), "")
-            failures.append(f"knn_relative_variance({k}) = {got:.5g}{named}; 200 000 simulated "
+            failures.append(f"Task 3b, knn_relative_variance({k}) = {got:.5g}{named}; 200 000 "
+                            "simulated "
                             f"Poisson estimates give {var:.5f} +- {err:.5f}.")
             return False
     return passed
@@ -217,10 +220,10 @@ def check_task4(lab, task, failures):
                     "zero at k^3 = 2/(3a^2))" if is_minimum(got ** (2 / 3))
                     else " (pi r^2 holds k photons: pi r^2 * N E / total_power = k)")
             side = got * 1.01 if got > 2 and mse(got * 1.01) < mse(got / 1.01) else got / 1.01
-            failures.append(f"optimal_k(N = {N:g}, Laplacian {lap:g}, E {E:g}, 1 W) = {got:.1f} "
-                            f"is not where your own bias and variance balance: the relative "
-                            f"mean squared error is {mse(got):.4g} there and {mse(side):.4g} at "
-                            f"k = {side:.1f}{hint}.")
+            failures.append(f"Task 4, optimal_k(N = {N:g}, Laplacian {lap:g}, E {E:g}, 1 W) = "
+                            f"{got:.1f} is not where your own bias and variance balance: the "
+                            f"relative mean squared error is {mse(got):.4g} there and "
+                            f"{mse(side):.4g} at k = {side:.1f}{hint}.")
             return
 
 
@@ -243,15 +246,17 @@ def check_lamp_runs(lab, rk, failures):
     predicted = 1 + float(lab.knn_bias(lap, np.mean(radius2[300]))) / E0
     err = x.std(ddof=1) / math.sqrt(runs)
     if abs(x.mean() - predicted) > Z * err:
-        failures.append(f"at the lamp's centre, k = 300 of {N} photons: 512 runs give "
-                        f"E/E_exact = {x.mean():.4f} +- {err:.4f}, your knn_bias predicts "
-                        f"{predicted:.4f} (E_exact = {E0:.6f} W/m^2, Howell B-3).")
+        failures.append(f"Task 3a, knn_bias in use: at the lamp's centre, k = 300 of {N} "
+                        f"photons: 512 runs give E/E_exact = {x.mean():.4f} +- {err:.4f}, your "
+                        f"knn_bias predicts {predicted:.4f} (E_exact = {E0:.6f} W/m^2, Howell "
+                        "B-3).")
     # Variance at k = 20 (r ~ 0.05 m, where E is nearly uniform).
     var, verr = variance_and_error(np.array(est[20]) / E0)
     predicted = float(lab.knn_relative_variance(20))
     if abs(var - predicted) > Z * verr:
-        failures.append(f"at the lamp's centre, k = 20: the relative variance over 512 runs is "
-                        f"{var:.4f} +- {verr:.4f}, your knn_relative_variance(20) = "
+        failures.append(f"Task 3b, knn_relative_variance in use: at the lamp's centre, k = 20: "
+                        f"the relative variance over 512 runs is {var:.4f} +- {verr:.4f}, your "
+                        "knn_relative_variance(20) = "
                         f"{predicted:.4f}.")
 
 
