@@ -1,5 +1,6 @@
 #include "apps/hierarchical_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -12,6 +13,7 @@
 #include "output/run_files.h"
 #include "render/radiosity_image.h"
 #include "util/output_folder.h"
+#include "util/process_memory.h"
 
 namespace radkit::app {
 
@@ -84,6 +86,18 @@ nlohmann::json hierarchyJson(const Scene& scene, const HierarchicalResult& r,
           {"hierarchy_bytes", r.hierarchyBytes},
           {"link_bytes", r.linkBytes},
           {"rounds", rounds}};
+}
+
+/// report.json's "memory": per stage what the process held after it and the peak so far, and
+/// the run's peak per input face (the figure that decides how large a scene fits a machine).
+nlohmann::json memoryJson(const std::vector<StageMemory>& stages, std::size_t inputFaces) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const StageMemory& m : stages)
+    list.push_back({{"stage", m.stage}, {"resident_bytes", m.resident}, {"peak_bytes", m.peak}});
+  const std::size_t peak = stages.empty() ? 0 : stages.back().peak;
+  return {{"stages", list},
+          {"input_faces", inputFaces},
+          {"peak_bytes_per_input_face", double(peak) / double(std::max<std::size_t>(1, inputFaces))}};
 }
 
 void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalResult& r,
@@ -226,7 +240,10 @@ void runHierarchicalJob(HierarchicalJob job) {
     progress.finish();
     printLogLine(line);
   };
+  std::vector<StageMemory> loadMemory;
+  markStageMemory(loadMemory, "load");  // the scene read and checked
   HierarchicalResult r = solveHierarchical(scene, job.settings, log);
+  r.memory.insert(r.memory.begin(), loadMemory.begin(), loadMemory.end());
   progress.finish();
   for (const std::string& w : hierarchicalWarnings(scene, r))
     std::fprintf(stderr, "radkit: warning: %s\n", w.c_str());
@@ -320,6 +337,8 @@ void runHierarchicalJob(HierarchicalJob job) {
                        {"results", r.seconds.results},
                        {"total", total}};
   report["peak_memory_bytes"] = peakMemoryBytes();
+  markStageMemory(r.memory, "outputs");
+  report["memory"] = memoryJson(r.memory, r.hierarchy->base().size());
   writeJson(folder.path("report.json"), report);
   folder.commit();
   printSummary(scene, r, job, total);

@@ -222,6 +222,8 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
   Clock::time_point start = Clock::now();
   PatchMesh base = subdivide(scene, SubdivisionSettings{});
   double meshSeconds = since(start);
+  std::vector<StageMemory> memory;
+  markStageMemory(memory, "input faces");
   // Daylight is computed per input face (constant over the face's elements): refinement then
   // follows the light it makes, not the sun's shadow edges inside a face, so a sunlit scene
   // wants faces no larger than the shadow detail it should show (docs/daylight.md).
@@ -237,9 +239,11 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
     for (int f = 0; f < base.size(); ++f) faceDaylight.push_back(daylight->total(f));
     daylightSeconds = since(start);
     if (log.progress) log.progress("daylight", 1.0);
+    markStageMemory(memory, "daylight");
   }
   HierarchicalResult r = solveHierarchical(base, std::move(radiometry), settings, log,
                                            scene.sky ? &faceDaylight : nullptr);
+  r.memory.insert(r.memory.begin(), memory.begin(), memory.end());
   r.seconds.hierarchy += meshSeconds;
   r.seconds.daylight = daylightSeconds;
   start = Clock::now();
@@ -332,11 +336,13 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   r.hierarchy = std::make_unique<Hierarchy>(base, std::move(surfaces), byFace);
   Hierarchy& h = *r.hierarchy;
   r.seconds.hierarchy = since(t);
+  markStageMemory(r.memory, "hierarchy");
   say("hierarchy: " + std::to_string(base.size()) + " input faces, " + std::to_string(h.size()) +
       " nodes, " + num(r.seconds.hierarchy) + " s");
   t = Clock::now();
   r.rays = std::make_unique<RayScene>(base);
   r.seconds.rayScene = since(t);
+  markStageMemory(r.memory, "ray scene");
 
   // Start from B = E at the input faces.
   SourceState& state = r.state;
@@ -504,6 +510,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   r.solve.residual = r.solve.history.empty() ? 0 : r.solve.history.back().residual;
   r.solve.checkedResidual = r.solve.residual;
   r.solve.spectralRadius = monitor.rate;
+  markStageMemory(r.memory, "links and solve");
 
   t = Clock::now();
   std::vector<Vec3> nodeH = r.system->leafIrradiance(state);
@@ -526,6 +533,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
       r.solve.radiosity[c][i] = r.radiosity[i][c];
   }
   r.seconds.results = since(t);
+  markStageMemory(r.memory, "results");
   return r;
 }
 

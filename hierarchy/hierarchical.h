@@ -13,6 +13,7 @@
 
 #include "hierarchy/gather.h"
 #include "radiosity/radiosity_pipeline.h"
+#include "util/process_memory.h"
 
 namespace radkit {
 
@@ -81,6 +82,9 @@ struct HierarchicalResult {
   double minArea = 0;    ///< used (scene units²)
   double threshold = 0;  ///< τ = ε · emitted power of the last round
   std::size_t hierarchyBytes = 0, linkBytes = 0;
+  /// Memory after each stage: "input faces", "daylight" (with a sky), "hierarchy",
+  /// "ray scene", "links and solve" (the rounds interleave them), "results".
+  std::vector<StageMemory> memory;
   struct Seconds {
     double hierarchy = 0, rayScene = 0, daylight = 0, refine = 0, solve = 0, results = 0;
   } seconds;

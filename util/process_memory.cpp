@@ -9,12 +9,23 @@ namespace radkit {
 
 void resetPeakMemory() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
-std::size_t peakMemory() {
+namespace {
+/// A "Key:   N kB" line of /proc/self/status in bytes.
+std::size_t statusBytes(const std::string& key) {
   std::ifstream status("/proc/self/status");
   std::string line;
   while (std::getline(status, line))
-    if (line.rfind("VmHWM:", 0) == 0) return std::size_t(std::stoll(line.substr(6))) * 1024;
+    if (line.rfind(key, 0) == 0) return std::size_t(std::stoll(line.substr(key.size()))) * 1024;
   return 0;
+}
+}  // namespace
+
+std::size_t peakMemory() { return statusBytes("VmHWM:"); }
+
+std::size_t residentMemory() { return statusBytes("VmRSS:"); }
+
+void markStageMemory(std::vector<StageMemory>& stages, const std::string& stage) {
+  stages.push_back({stage, residentMemory(), lifetimePeakMemory()});
 }
 
 std::size_t lifetimePeakMemory() {

@@ -9,6 +9,9 @@
 #include <tuple>
 #include <nlohmann/json.hpp>
 
+#include <string>
+#include <vector>
+
 #include "tests/common/test_util.h"
 
 namespace radkit::test {
@@ -42,6 +45,20 @@ TEST(HierarchicalCli, CornellBoxWritesEveryOutput) {
          absorbed = report["energy_balance"]["absorbed_W"][1],
          escaped = report["energy_balance"]["escaped_W"][1];
   EXPECT_LT(std::fabs(emitted - absorbed - escaped), 4 * se + 0.01 * emitted);
+  // Memory per stage, in run order: what the process held after each and the peak so far.
+  const auto& memory = report["memory"];
+  std::vector<std::string> stages;
+  double previousPeak = 0;
+  for (const auto& m : memory["stages"]) {
+    stages.push_back(m["stage"]);
+    EXPECT_GT(m["resident_bytes"].get<double>(), 0) << m["stage"];
+    EXPECT_GE(m["peak_bytes"].get<double>(), previousPeak) << m["stage"];
+    previousPeak = m["peak_bytes"];
+  }
+  EXPECT_EQ(stages, (std::vector<std::string>{"load", "input faces", "hierarchy", "ray scene",
+                                              "links and solve", "results", "outputs"}));
+  EXPECT_EQ(memory["input_faces"], h["input_faces"]);
+  EXPECT_DOUBLE_EQ(memory["peak_bytes_per_input_face"].get<double>(), previousPeak / 24);
 }
 
 TEST(HierarchicalCli, DenseOnlyOptionsAndBadValuesAreRefused) {
