@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -79,68 +78,19 @@ void restoreFileVertices(RawMesh& raw, const std::vector<std::size_t>& refused) 
     for (int& v : face.vertices) v = renumber[v];
 }
 
-/// An ASCII OFF file as OpenMesh reads it right: without comments, blank lines and per-face
-/// colours, or nullopt when it has none of them (or is binary). OFF allows '#' comments
-/// anywhere; OpenMesh's reader takes a comment after the header for the counts and then reads
-/// for tens of seconds, or asks for gigabytes.
-std::optional<std::string> offForOpenMesh(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::istringstream firstLine(text.substr(0, text.find('\n')));
-  std::string key, second;
-  firstLine >> key >> second;
-  for (char& c : second) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (second == "binary") return std::nullopt;
-  std::vector<std::string> lines;
-  std::istringstream stream(text);
-  for (std::string line; std::getline(stream, line);) {
-    line = structure::uncommented(line);
-    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
-  }
-  // Per-face colours after a face's indices are legal OFF, but OpenMesh then stops reading
-  // faces: each face line is cut to its count and indices. Laid out one element per line (as
-  // every exporter writes OFF); another layout is left to OpenMesh as it is.
-  bool cut = false;
-  std::istringstream header(lines.empty() ? std::string() : lines[0]);
-  std::vector<long long> counts;
-  for (std::string t; header >> t;)
-    if (std::isdigit(static_cast<unsigned char>(t[0]))) counts.push_back(std::atoll(t.c_str()));
-  std::size_t at = 1;
-  if (counts.empty() && lines.size() > 1) {
-    std::istringstream c(lines[1]);
-    for (long long v; c >> v;) counts.push_back(v);
-    at = 2;
-  }
-  if (counts.size() >= 2 && counts[0] >= 0 && counts[1] >= 0 &&
-      at + std::size_t(counts[0]) + std::size_t(counts[1]) == lines.size())
-    for (std::size_t f = at + std::size_t(counts[0]); f < lines.size(); ++f) {
-      std::istringstream face(lines[f]);
-      long long n = 0;
-      if (!(face >> n) || n < 0) break;
-      std::string kept = std::to_string(n), token;
-      for (long long k = 0; k < n && face >> token; ++k) kept += ' ' + token;
-      if (face >> token) lines[f] = kept, cut = true;
-    }
-  if (!cut && text.find('#') == std::string::npos) return std::nullopt;
-  std::string clean;
-  clean.reserve(text.size());
-  for (const std::string& line : lines) clean += line + '\n';
-  return clean;
-}
-
 /// `declaredFaces`: the count the file's header declares, or -1 when it does not say.
-RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool repair) {
+/// `offText`: checkMeshStructure's rewrite of an OFF file, read in its place when not empty.
+RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool repair,
+                         const std::string& offText) {
   PolyMesh mesh;
   mesh.request_face_status();
   mesh.request_edge_status();
   mesh.request_vertex_status();
   CapturedOpenMeshErrors errors;
   OpenMesh::IO::Options options;
-  const std::optional<std::string> off =
-      lowerExtension(path) == ".off" ? offForOpenMesh(path) : std::nullopt;
-  std::istringstream offStream(off ? *off : std::string());
-  if (!(off ? OpenMesh::IO::read_mesh(mesh, offStream, ".off", options)
-            : OpenMesh::IO::read_mesh(mesh, path, options))) {
+  std::istringstream offStream(offText);
+  if (!(!offText.empty() ? OpenMesh::IO::read_mesh(mesh, offStream, ".off", options)
+                         : OpenMesh::IO::read_mesh(mesh, path, options))) {
     throw InputError(path + ": the mesh reader could not parse this file" +
                      (errors.text().empty() ? "" : " (" + errors.text() + ")") +
                      ". Fix: check that it is a valid PLY, OFF or STL file.");
@@ -273,11 +223,12 @@ RawMesh readMeshFile(const std::string& path, bool repair) {
     throw InputError(path +
                      ": mesh file not found. Fix: give a path relative to the scene "
                      "file, or an absolute path.");
-  const long long declaredFaces = checkMeshStructure(path);
+  std::string offText;
+  const long long declaredFaces = checkMeshStructure(path, &offText);
   checkTextMeshNumbers(path);
   std::string ext = lowerExtension(path);
   if (ext == ".ply" || ext == ".off" || ext == ".stl")
-    return readWithOpenMesh(path, declaredFaces, repair);
+    return readWithOpenMesh(path, declaredFaces, repair, offText);
   if (ext == ".obj") {
     tinyobj::ObjReader reader = parseObj(path);
     RawMesh raw;

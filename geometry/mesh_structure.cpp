@@ -55,15 +55,29 @@ long long checkBinaryOff(const Fail& fail, const std::string& text, const Lines&
        " bytes can hold." + kTruncated);
 }
 
-long long checkOff(const Fail& fail, const std::string& text) {
-  Lines lines(text);
+/// An ASCII OFF's header: its key line ("OFF", "COFF", ...; absent in some files) and counts.
+struct OffHeader {
+  std::string key;                  ///< empty when the file starts with its counts
+  std::vector<std::string> counts;  ///< "vertices faces [edges]" as written
+  long long vertices = 0, faces = 0;
+  long line = 0;                    ///< the counts' line
+  bool binary = false;              ///< "OFF BINARY": nothing after the key line was read
+};
+
+/// Reads the header from `lines`, leaving them after the counts.
+OffHeader readOffHeader(const Fail& fail, Lines& lines) {
+  OffHeader h;
   std::vector<std::string> t;
   if (!lines.nextTokens(t))
     fail("the file is empty. Fix: an OFF file starts with 'OFF' and its counts.");
   std::size_t first = 0;
   const std::string key = lower(t[0]);
   if (key.size() >= 3 && key.compare(key.size() - 3, 3, "off") == 0) {
-    if (t.size() > 1 && lower(t[1]) == "binary") return checkBinaryOff(fail, text, lines);
+    h.key = t[0];
+    if (t.size() > 1 && lower(t[1]) == "binary") {
+      h.binary = true;
+      return h;
+    }
     first = 1;
     if (t.size() == 1) {
       if (!lines.nextTokens(t))
@@ -73,12 +87,25 @@ long long checkOff(const Fail& fail, const std::string& text) {
       first = 0;
     }
   }
-  const long header = lines.number();
+  h.line = lines.number();
   if (t.size() < first + 2)
-    fail.at(header,
+    fail.at(h.line,
             "the header needs the vertex and face counts. Fix: write 'vertices faces edges'.");
-  const long long nv = headerCount(fail, header, t[first], "vertex");
-  const long long nf = headerCount(fail, header, t[first + 1], "face");
+  h.counts.assign(t.begin() + std::ptrdiff_t(first), t.end());
+  h.vertices = headerCount(fail, h.line, t[first], "vertex");
+  h.faces = headerCount(fail, h.line, t[first + 1], "face");
+  return h;
+}
+
+/// `faceExtras`, when given, is set when a face line holds values after its indices (per-face
+/// colours), which OpenMesh's reader stops at.
+long long checkOff(const Fail& fail, const std::string& text, bool* faceExtras = nullptr) {
+  Lines lines(text);
+  const OffHeader h = readOffHeader(fail, lines);
+  if (h.binary) return checkBinaryOff(fail, text, lines);
+  std::vector<std::string> t;
+  const long header = h.line;
+  const long long nv = h.vertices, nf = h.faces;
   // At least "0 0 0\n" per vertex and "n\n" per face (a short face is named below); the last
   // line may lack its '\n'.
   const std::size_t rest = text.size() - lines.pos() + 1;
@@ -113,8 +140,28 @@ long long checkOff(const Fail& fail, const std::string& text) {
       if (!parseInteger(t[k], index)) fail.at(line, "'" + t[k] + "' is not a vertex index.");
       checkIndex(fail, line, f, index, nv);
     }
+    if (faceExtras && (long long)t.size() > n + 1) *faceExtras = true;
   }
   return nf;
+}
+
+/// A checked ASCII OFF as OpenMesh reads it right: the header, then one vertex or face per
+/// line, without comments and blank lines, each face cut to its count and indices.
+std::string offForOpenMesh(const Fail& fail, const std::string& text) {
+  Lines lines(text);
+  const OffHeader h = readOffHeader(fail, lines);
+  auto joined = [](const std::vector<std::string>& t, std::size_t count) {
+    std::string line;
+    for (std::size_t k = 0; k < count; ++k) line += (k ? " " : "") + t[k];
+    return line + '\n';
+  };
+  std::string out = h.key.empty() ? "" : h.key + '\n';
+  out += joined(h.counts, h.counts.size());
+  std::vector<std::string> t;
+  for (long long v = 0; v < h.vertices && lines.nextTokens(t); ++v) out += joined(t, t.size());
+  for (long long f = 0; f < h.faces && lines.nextTokens(t); ++f)
+    out += joined(t, std::size_t(std::stoll(t[0])) + 1);  // checkOff vetted the count
+  return out;
 }
 
 // ---------------------------------------------------------------------------------------- STL
@@ -271,13 +318,24 @@ std::vector<std::vector<int>> plyStripTriangles(const std::string& path) {
   return triangles;
 }
 
-long long checkMeshStructure(const std::string& path) {
+long long checkMeshStructure(const std::string& path, std::string* offText) {
   requireRegularFile(path, "mesh file");
   const std::string ext = lower(fs::path(path).extension().string());
   const std::string text = readAll(path);
   const Fail fail(path);
   if (ext == ".obj") return checkObj(path, fail, text);
-  if (ext == ".off") return checkOff(fail, text);
+  if (ext == ".off") {
+    bool faceExtras = false;
+    const long long faces = checkOff(fail, text, &faceExtras);
+    // OpenMesh takes a comment after the header for the counts and then reads for tens of
+    // seconds or asks for gigabytes, and stops at per-face colours: such files are rewritten.
+    // A binary OFF's bytes may hold '#': it is read as it is.
+    Lines first(text);
+    if (offText && (faceExtras || text.find('#') != std::string::npos) &&
+        !readOffHeader(fail, first).binary)
+      *offText = offForOpenMesh(fail, text);
+    return faces;
+  }
   if (ext == ".ply") return checkPly(fail, text);
   if (ext == ".stl") return checkStl(fail, text);
   return -1;

@@ -28,6 +28,9 @@ std::vector<std::vector<int>> plyStripTriangles(const std::string& path);
 /// \brief Throws InputError naming path, the line or element, and the fix when an OBJ (and the
 ///        MTL files it names), OFF, PLY or STL file is malformed. Returns the number of faces
 ///        the file declares (OFF, PLY, STL), or -1 where it declares none (OBJ).
-long long checkMeshStructure(const std::string& path);
+/// \param offText for an ASCII OFF with comments or per-face colours, which OpenMesh's reader
+///        misreads: set to the file as it reads it right (one element per line, without
+///        comments, each face cut to its indices). Left as it is for any other file.
+long long checkMeshStructure(const std::string& path, std::string* offText = nullptr);
 
 }  // namespace radkit
