@@ -140,9 +140,7 @@ TEST(HostileInputs, AnOffCommentAfterTheHeaderIsRead) {
   dir.file("quad.off",
            "OFF\n# written by a CAD exporter\n4 1 0\n# the corners\n0 0 0\n1 0 0 # first edge\n"
            "1 1 0\n0 1 0\n\n4 0 1 2 3\n");
-  const std::string scene = dir.file(
-      "s.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
-        "surfaces": [{"name": "m", "material": "lamp", "mesh": "quad.off"}]})");
+  const std::string scene = test::lampMeshScene(dir, "quad.off");
   const auto r = runRadkitWithin(120, "mesh '" + scene + "' --out '" + dir.path("o") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("surfaces: 1"), std::string::npos) << r.output;
@@ -151,9 +149,7 @@ TEST(HostileInputs, AnOffCommentAfterTheHeaderIsRead) {
 TEST(HostileInputs, MsvcNanTextIsNotReadAsOne) {
   test::TempDir dir;
   dir.file("t.obj", "v 0 0 0\nv 1.#QNAN 0 0\nv 0 1 0\nf 1 2 3\n");
-  const std::string scene = dir.file(
-      "s.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
-        "surfaces": [{"name": "m", "material": "lamp", "mesh": "t.obj"}]})");
+  const std::string scene = test::lampMeshScene(dir, "t.obj");
   const auto r = runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("1.#QNAN"), std::string::npos) << r.output;
@@ -164,9 +160,7 @@ TEST(HostileInputs, AnUnreadableMeshIsNotCalledEmpty) {
   test::TempDir dir;
   dir.file("t.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   ASSERT_EQ(::chmod(dir.path("t.off").c_str(), 0), 0);
-  const std::string scene = dir.file(
-      "s.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
-        "surfaces": [{"name": "m", "material": "lamp", "mesh": "t.off"}]})");
+  const std::string scene = test::lampMeshScene(dir, "t.off");
   const auto r = runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("cannot be read"), std::string::npos) << r.output;

@@ -177,9 +177,7 @@ TEST(OwnModel, ACadStlInMillimetresIsNamedWhenReadAsMetres) {
   r = runRadkit("mesh '" + fixedRoom + "' --out '" + dir.path("b") + "'");
   EXPECT_EQ(r.output.find("carry no unit"), std::string::npos) << r.output;
   // Alone in its scene, the fix is --units mm.
-  const std::string lone = dir.file(
-      "lone.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
-        "surfaces": [{"name": "bolt", "material": "lamp", "mesh": "bolt.stl"}]})");
+  const std::string lone = test::lampMeshScene(dir, "bolt.stl", "", "lone.json");
   r = runRadkit("mesh '" + lone + "' --out '" + dir.path("c") + "'");
   EXPECT_NE(r.output.find("--units mm"), std::string::npos) << r.output;
   // A 310 mm part read as 310 m is also beyond the scene-wide check's 200 m: one warning,
@@ -279,9 +277,7 @@ TEST(OwnModel, TriangleStripsOfAPlyAreRead) {
     SCOPED_TRACE(binary ? "binary" : "ascii");
     test::TempDir dir;
     dir.file("strip.ply", stripPly(binary));
-    const std::string scene = dir.file(
-        "s.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
-          "surfaces": [{"name": "m", "material": "lamp", "mesh": "strip.ply"}]})");
+    const std::string scene = test::lampMeshScene(dir, "strip.ply");
     const auto r = runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     // Four triangles of 0.5 m² from the first strip, one of 1 m² from the second, one winding.
@@ -304,10 +300,7 @@ TEST(OwnModel, TransformTurnsAZUpModelAndRotates) {
       {R"({"up": "z", "scale": [1, -1, 1]})", {0, -1, 0}}};  // the front side is mirrored too
   for (const auto& [transform, normal] : cases) {
     SCOPED_TRACE(transform);
-    const std::string scene = dir.file(
-        "s.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
-          "surfaces": [{"name": "m", "material": "lamp", "mesh": "floor.obj", "transform": )" +
-                      transform + "}]}");
+    const std::string scene = test::lampMeshScene(dir, "floor.obj", transform);
     fs::remove_all(dir.path("o"));
     const auto r = runRadkit("mesh '" + scene + "' --out '" + dir.path("o") + "'");
     ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -317,9 +310,7 @@ TEST(OwnModel, TransformTurnsAZUpModelAndRotates) {
       EXPECT_NEAR(std::stod(row["nz"]), normal[2], 1e-12);
     }
   }
-  const std::string bad = dir.file(
-      "bad.json", R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
-        "surfaces": [{"name": "m", "material": "lamp", "mesh": "floor.obj", "transform": {"up": "w"}}]})");
+  const std::string bad = test::lampMeshScene(dir, "floor.obj", R"({"up": "w"})", "bad.json");
   const auto r = runRadkit("mesh '" + bad + "' --out '" + dir.path("b") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("z-up model"), std::string::npos) << r.output;

@@ -39,6 +39,17 @@ class TempDir {
   std::filesystem::path m_path;
 };
 
+/// The smallest scene that loads a mesh: `name` in `dir`, one surface "m" of a lamp material
+/// (ρ 0.5, emission 1) from `mesh` (a file beside it), with `transform` (JSON object text) when
+/// given. Returns its path.
+inline std::string lampMeshScene(const TempDir& dir, const std::string& mesh,
+                                 const std::string& transform = "",
+                                 const std::string& name = "s.json") {
+  return dir.file(name, R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
+      "surfaces": [{"name": "m", "material": "lamp", "mesh": ")" + mesh + "\"" +
+                            (transform.empty() ? "" : ", \"transform\": " + transform) + "}]}");
+}
+
 struct RunResult {
   int exitCode = -1;
   std::string output;  ///< stdout and stderr together
