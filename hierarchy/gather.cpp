@@ -38,8 +38,8 @@ constexpr double kFacingSlack = 1e-9;
 /// The nodes below n that face unit direction w as a whole, down to input faces: (node, n·w)
 /// for elements, (node, -1) for clusters whose whole normal cone faces w, (node, -2) for
 /// clusters left straddling after kMaxExpansions splits. Nodes facing away are left out.
-void facingNodes(const Hierarchy& h, int n, const Vec3& w,
-                 std::vector<std::pair<int, float>>& out, long long& approximate) {
+void facingNodes(const Hierarchy& h, int n, const Vec3& w, std::vector<std::pair<int, float>>& out,
+                 long long& approximate) {
   out.clear();
   std::vector<int> queue{n};
   int expansions = 0;
@@ -47,7 +47,7 @@ void facingNodes(const Hierarchy& h, int n, const Vec3& w,
     const int k = queue[i];
     const HNode& node = h[k];
     if (node.element) {
-      const double c = dot(h.polygon(k).normal, w);
+      const double c = dot(h.normal(k), w);
       if (c > 0) out.push_back({k, float(c)});
       continue;
     }
@@ -71,19 +71,19 @@ void facingNodes(const Hierarchy& h, int n, const Vec3& w,
 
 HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links,
                                        GatherOrder order, const std::vector<float>& rowTarget,
-                                       const std::vector<char>& hidden)
+                                       const std::vector<char>& hidden, SourceState* scratch)
     : m_h(h), m_links(std::move(links)) {
+  m_links.shrink_to_fit();  // refinement grew it by doubling
   tbb::parallel_sort(m_links.begin(), m_links.end(), [](const HLink& a, const HLink& b) {
     return a.receiver < b.receiver || (a.receiver == b.receiver && a.source < b.source);
   });
   m_begin.assign(std::size_t(h.size()) + 1, 0);
   for (const HLink& l : m_links) ++m_begin[l.receiver + 1];
   for (int n = 0; n < h.size(); ++n) m_begin[n + 1] += m_begin[n];
-  m_acc.assign(h.size(), Accumulator{});
+  m_gathered.assign(h.size(), Vec3{});
   buildLandings(hidden);
-  m_leafIrradiance.assign(h.size(), Vec3{});
-  m_leafRaw.assign(h.size(), Vec3{});
-  m_fromParent.assign(h.size(), Vec3{});
+  m_firstSplit = h.firstSplitNode();
+  m_fromParent.assign(std::size_t(h.size() - m_firstSplit), Vec3{});
 
   // Blocks in tree order; everything above them is gathered first in each sweep.
   const int blockLevel = order == GatherOrder::Jacobi ? 0 : kBlockLevel;
@@ -116,7 +116,21 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
   m_rowSum.assign(h.size(), 0.0);
   m_fillSurfaces = static_cast<int>(h.base().surfaceBegin.size()) - 1;
   m_meanIncoming.assign(m_fillSurfaces, Vec3{});
-  std::vector<Vec3> rows = leafIrradiance(unitState());
+  std::vector<Vec3> rows;
+  if (scratch) {
+    // B = 1 on the leaves, pulled up: the same state unitState() makes.
+    std::vector<Vec3> kept;
+    for (int n = 0; n < h.size(); ++n)
+      if (h[n].isLeaf()) kept.push_back(scratch->radiosity[n]), scratch->radiosity[n] = {1, 1, 1};
+    setVisibleArea(*scratch);
+    pull(h, *scratch);
+    rows = leafIrradiance(*scratch);
+    std::size_t k = 0;
+    for (int n = 0; n < h.size(); ++n)
+      if (h[n].isLeaf()) scratch->radiosity[n] = kept[k++];
+  } else {
+    rows = leafIrradiance(unitState());
+  }
   m_deficit.assign(h.size(), 0.0);
   for (int n = 0; n < h.size(); ++n) {
     if (!h[n].isLeaf() || !h[n].element || !(rows[n].x > 0)) continue;
@@ -149,6 +163,11 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
     const double rho = h[n].reflectanceMax, cap = rho > 0 ? (1 + rho) / (2 * rho) : INFINITY;
     if (rows[n].x > cap) m_rowScale[n] = cap / rows[n].x, m_rowSum[n] = cap, ++m_clamped;
   }
+  // Without a leaf to fill, the fill's per-leaf arrays are not kept.
+  if (std::all_of(m_deficit.begin(), m_deficit.end(), [](double d) { return d == 0; }))
+    std::vector<double>().swap(m_deficit);
+  else
+    m_leafRaw.assign(h.size(), Vec3{});
   m_blockReceivers.resize(m_blocks.size());
   for (std::size_t b = 0; b < m_blocks.size(); ++b) {
     stack.assign(1, m_blocks[b]);
@@ -171,8 +190,8 @@ void HierarchicalSystem::buildLandings(const std::vector<char>& hidden) {
   struct Part {
     std::vector<SourceLanding> sources;
     std::vector<std::tuple<int, float, float>> receivers;  // (target, factor, scale) per landing
-    std::vector<int> sourceCount, receiverCount;   // per link of this receiver
-    std::vector<int> targets;                      // slot targets, in first-use order
+    std::vector<int> sourceCount, receiverCount;           // per link of this receiver
+    std::vector<int> targets;                              // slot targets, in first-use order
     long long approximate = 0;
   };
   std::vector<int> receivers;
@@ -202,9 +221,9 @@ void HierarchicalSystem::buildLandings(const std::vector<char>& hidden) {
                                       kMaxLandingScale));
             };
             for (auto [node, c] : found)
-              part.sources.push_back({node, c < 0 ? (c < -1.5f ? kApproximate : kVector) : c,
-                                      scale(h[node].centre, h[r].centre,
-                                            projectedArea(h, node, -t.w) / kPi)});
+              part.sources.push_back(
+                  {node, c < 0 ? (c < -1.5f ? kApproximate : kVector) : c,
+                   scale(h[node].centre, h[r].centre, projectedArea(h, node, -t.w) / kPi)});
             part.sourceCount.push_back(static_cast<int>(found.size()));
             facingNodes(h, r, t.w, found, part.approximate);
             const Vec3 between = h[l.source].centre - h[r].centre;
@@ -215,8 +234,10 @@ void HierarchicalSystem::buildLandings(const std::vector<char>& hidden) {
               if (node < static_cast<int>(hidden.size()) && hidden[node] && h[node].isLeaf())
                 continue;
               float factor = c;
-              if (c < -1.5f) factor = float(projectedArea(h, node, t.w) / h[node].area);
-              else if (c < 0) factor = kVector;
+              if (c < -1.5f)
+                factor = float(projectedArea(h, node, t.w) / h[node].area);
+              else if (c < 0)
+                factor = kVector;
               part.receivers.push_back(
                   {node, factor, scale(h[node].centre, h[l.source].centre, soft)});
               ++kept;
@@ -227,12 +248,18 @@ void HierarchicalSystem::buildLandings(const std::vector<char>& hidden) {
       });
   m_sourceBegin.assign(L + 1, 0);
   m_receiverBegin.assign(L + 1, 0);
-  m_slotBegin.assign(std::size_t(h.size()) + 1, 0);
   std::vector<int> slotOf(h.size(), -1);
   std::size_t li = 0;
+  {
+    // Exact sizes first: grown by doubling, these arrays held up to twice their size.
+    std::size_t sources = 0, landings = 0;
+    for (const Part& part : parts)
+      sources += part.sources.size(), landings += part.receivers.size();
+    m_sourceLandings.reserve(sources);
+    m_receiverLandings.reserve(landings);
+  }
   for (std::size_t i = 0; i < receivers.size(); ++i) {
     Part& part = parts[i];
-    const int r = receivers[i];
     m_approximateLandings += part.approximate;
     m_sourceLandings.insert(m_sourceLandings.end(), part.sources.begin(), part.sources.end());
     std::size_t next = 0;
@@ -251,12 +278,24 @@ void HierarchicalSystem::buildLandings(const std::vector<char>& hidden) {
       m_receiverBegin[li + 1] = static_cast<int>(m_receiverLandings.size());
     }
     for (int node : mine) slotOf[node] = -1;
-    m_slotBegin[r + 1] = static_cast<int>(m_slotTarget.size());
+    part = Part{};  // copied: its memory goes now, not after the last receiver
   }
-  // Nodes without links own no slots: carry the running count over.
-  for (int n = 0; n < h.size(); ++n)
-    m_slotBegin[n + 1] = std::max(m_slotBegin[n + 1], m_slotBegin[n]);
-  m_slots.assign(m_slotTarget.size(), Accumulator{});
+  // Each slot's landings, in the order the links make them (a stable counting sort): the
+  // gathered light of a node is summed from them when it is pushed down, so no accumulator
+  // per slot is kept (96 bytes each, millions of slots at a million faces).
+  m_slotLandingBegin.assign(m_slotTarget.size() + 1, 0);
+  for (const ReceiverLanding& t : m_receiverLandings) ++m_slotLandingBegin[t.slot + 1];
+  for (std::size_t k = 0; k < m_slotTarget.size(); ++k)
+    m_slotLandingBegin[k + 1] += m_slotLandingBegin[k];
+  m_slotLandings.resize(m_receiverLandings.size());
+  {
+    std::vector<int> at(m_slotLandingBegin.begin(), m_slotLandingBegin.end() - 1);
+    for (std::size_t link = 0; link < L; ++link)
+      for (int k = m_receiverBegin[link]; k < m_receiverBegin[link + 1]; ++k)
+        m_slotLandings[at[m_receiverLandings[k].slot]++] = {static_cast<int>(link), k};
+  }
+  m_linkIrradiance.assign(L, Vec3{});
+  m_slotTarget.shrink_to_fit();  // grown by doubling above
   m_incomingBegin.assign(std::size_t(h.size()) + 1, 0);
   for (int q : m_slotTarget) ++m_incomingBegin[q + 1];
   for (int n = 0; n < h.size(); ++n) m_incomingBegin[n + 1] += m_incomingBegin[n];
@@ -268,46 +307,39 @@ void HierarchicalSystem::buildLandings(const std::vector<char>& hidden) {
 
 void HierarchicalSystem::gather(int r, const SourceState& state) {
   const HNode& R = m_h[r];
-  Accumulator acc;
-  for (int k = m_slotBegin[r]; k < m_slotBegin[r + 1]; ++k) m_slots[k] = Accumulator{};
+  Vec3 sum;
   const bool quarters = R.element && R.childCount == 4;
   const bool seenOnly = !state.visibleArea.empty();
   Vec3 toQuarter[4];
   for (int i = m_begin[r]; i < m_begin[r + 1]; ++i) {
     const HLink& l = m_links[i];
     // A source nothing sees sends nothing (its rays' noise may still give a link V > 0).
-    if (seenOnly && !(state.visibleArea[l.source] > 0)) continue;
+    if (seenOnly && !(state.visibleArea[l.source] > 0)) {
+      m_linkIrradiance[i] = Vec3{};
+      continue;
+    }
     if (R.element && m_h[l.source].element) {
       Vec3 e = linkSourceRadiosity(m_h, state.radiosity, l) * (l.formFactor * l.visibility);
       if (quarters && l.receiverShare[0] >= 0) {
         for (int k = 0; k < 4; ++k) toQuarter[k] += e * double(l.receiverShare[k]);
       } else {
-        acc.sum += e;
+        sum += e;
       }
       continue;
     }
-    // Irradiance e = I_s(−ω) V / (d² + P_s/π) on a surface facing the source.
-    const Vec3& w = m_linkDirection[i];
-    const Vec3 e = sourceIntensity(i, state) * m_linkGeometry[i];
-    for (int k = m_receiverBegin[i]; k < m_receiverBegin[i + 1]; ++k) {
-      const ReceiverLanding& t = m_receiverLandings[k];
-      Accumulator& a = m_slots[t.slot];
-      const Vec3 el = e * double(t.scale);
-      if (t.factor == kVector) {
-        a.vec[0] += w * el.x, a.vec[1] += w * el.y, a.vec[2] += w * el.z;
-      } else {
-        a.sum += el * double(t.factor);
-      }
-    }
+    // Irradiance e = I_s(−ω) V / (d² + P_s/π) on a surface facing the source; its landings
+    // take it when they are pushed down (gathered()).
+    m_linkIrradiance[i] = sourceIntensity(i, state) * m_linkGeometry[i];
   }
-  m_acc[r] = acc;
+  m_gathered[r] = sum;
   if (quarters)
-    for (int k = 0; k < 4; ++k) m_fromParent[R.firstChild + k] = toQuarter[k];
+    for (int k = 0; k < 4; ++k) m_fromParent[R.firstChild + k - m_firstSplit] = toQuarter[k];
 }
 
 void HierarchicalSystem::updateMeanIncoming() {
   // Per surface, over its leaves with a row-sum target: Σ A H / Σ A row, from this sweep's
   // links alone (the next sweep fills with it: at convergence the two agree).
+  if (m_deficit.empty()) return;  // no leaf is filled
   std::vector<Vec3> light(m_fillSurfaces);
   std::vector<double> rows(m_fillSurfaces, 0.0);
   for (int n = 0; n < m_h.size(); ++n) {
@@ -362,8 +394,26 @@ double HierarchicalSystem::linkPower(int i, const SourceState& unit) const {
 }
 
 HierarchicalSystem::Accumulator HierarchicalSystem::gathered(int n) const {
-  Accumulator a = m_acc[n];
-  for (int k = m_incomingBegin[n]; k < m_incomingBegin[n + 1]; ++k) a.add(m_slots[m_incoming[k]]);
+  Accumulator a;
+  a.sum = m_gathered[n];
+  for (int k = m_incomingBegin[n]; k < m_incomingBegin[n + 1]; ++k) {
+    // One slot: what one receiver's links bring to n, summed as one accumulator first (the
+    // order the sums have always been taken in).
+    const int slot = m_incoming[k];
+    Accumulator s;
+    for (int j = m_slotLandingBegin[slot]; j < m_slotLandingBegin[slot + 1]; ++j) {
+      const SlotLanding& sl = m_slotLandings[j];
+      const ReceiverLanding& t = m_receiverLandings[sl.landing];
+      const Vec3 el = m_linkIrradiance[sl.link] * double(t.scale);
+      if (t.factor == kVector) {
+        const Vec3& w = m_linkDirection[sl.link];
+        s.vec[0] += w * el.x, s.vec[1] += w * el.y, s.vec[2] += w * el.z;
+      } else {
+        s.sum += el * double(t.factor);
+      }
+    }
+    a.add(s);
+  }
   return a;
 }
 
@@ -395,7 +445,7 @@ void pullNode(const Hierarchy& h, int n, SourceState& state) {
     if (a > 0) lo = std::min(lo, state.radiosityMin[c]), hi = std::max(hi, state.radiosityMax[c]);
     if (node.element) continue;
     if (child.element) {
-      const Vec3& nrm = h.polygon(c).normal;
+      const Vec3& nrm = h.normal(c);
       vec[0] += nrm * w.x, vec[1] += nrm * w.y, vec[2] += nrm * w.z;
     } else {
       for (int ch = 0; ch < 3; ++ch) vec[ch] += state.powerVector[c][ch];
@@ -444,24 +494,27 @@ HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator
     Vec3 h = inherited.sum;  // per unit of seen area
     if (node.level == 0) {
       // Every vector term came from a source this face's cone faces: n·(e ω) >= 0 each.
-      const Vec3& nrm = m_h.polygon(n).normal;
+      const Vec3& nrm = m_h.normal(n);
       h = Vec3{std::max(0.0, dot(nrm, inherited.vec[0])), std::max(0.0, dot(nrm, inherited.vec[1])),
                std::max(0.0, dot(nrm, inherited.vec[2]))} +
           inherited.sum;
       h = seen > 0 ? h / seen : Vec3{};
     }
-    if (seen > 0) h += (gathered(n).sum + m_fromParent[n]) / seen;
+    if (seen > 0)
+      h += (gathered(n).sum + (n >= m_firstSplit ? m_fromParent[n - m_firstSplit] : Vec3{})) / seen;
     if (node.isLeaf()) {
       h *= seen;
-      m_leafRaw[n] = h;
+      if (!m_leafRaw.empty()) m_leafRaw[n] = h;
       if (!m_deficit.empty() && m_deficit[n] != 0) {
         const Vec3 fill = m_meanIncoming[m_h.surfaceOf(n)] * m_deficit[n];
         h = {std::max(0.0, h.x + fill.x), std::max(0.0, h.y + fill.y), std::max(0.0, h.z + fill.z)};
       } else {
         h *= m_rowScale[n];
       }
-      m_leafIrradiance[n] = h;
-      if (!state) return change;
+      if (!state) {
+        m_leafIrradiance[n] = h;
+        return change;
+      }
       const SurfaceRadiometry& rad = m_h.radiometry(n);
       Vec3 b = rad.emission + mul(rad.reflectance, h);
       Vec3 diff = absDiff(b, state->radiosity[n]);
@@ -512,8 +565,9 @@ std::vector<Vec3> HierarchicalSystem::leafIrradiance(const SourceState& state) {
   for (int n = 0; n < m_h.size(); ++n)
     if (linkCount(n) > 0) all.push_back(n);
   gatherList(all, state);
+  m_leafIrradiance.assign(m_h.size(), Vec3{});
   pushPull(m_h.root(), Accumulator{}, nullptr);
-  return m_leafIrradiance;
+  return std::move(m_leafIrradiance);
 }
 
 void HierarchicalSystem::setVisibleArea(SourceState& state) const {
@@ -530,6 +584,30 @@ SourceState HierarchicalSystem::unitState() const {
   setVisibleArea(s);
   pull(m_h, s);  // power vectors over the seen area, as the solve's pull makes them
   return s;
+}
+
+namespace {
+template <class T>
+std::size_t capacityBytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+}  // namespace
+
+std::size_t HierarchicalSystem::bytes() const {
+  std::size_t b = capacityBytes(m_links) + capacityBytes(m_begin) + capacityBytes(m_gathered) +
+                  capacityBytes(m_linkDirection) + capacityBytes(m_linkGeometry) +
+                  capacityBytes(m_sourceBegin) + capacityBytes(m_receiverBegin) +
+                  capacityBytes(m_sourceLandings) + capacityBytes(m_receiverLandings) +
+                  capacityBytes(m_slotLandingBegin) + capacityBytes(m_slotTarget) +
+                  capacityBytes(m_slotLandings) + capacityBytes(m_linkIrradiance) +
+                  capacityBytes(m_incomingBegin) + capacityBytes(m_incoming) +
+                  capacityBytes(m_leafIrradiance) + capacityBytes(m_fromParent) +
+                  capacityBytes(m_visibleFraction) + capacityBytes(m_rowScale) +
+                  capacityBytes(m_deficit) + capacityBytes(m_rowSum) + capacityBytes(m_leafRaw) +
+                  capacityBytes(m_meanIncoming) + capacityBytes(m_blocks) +
+                  capacityBytes(m_aboveReceivers) + capacityBytes(m_aboveClusters);
+  for (const std::vector<int>& v : m_blockReceivers) b += capacityBytes(v);
+  return b;
 }
 
 }  // namespace radkit

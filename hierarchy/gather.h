@@ -29,11 +29,16 @@ class HierarchicalSystem {
   /// Howell), or a ray estimate below 1 where a little of it is not. The leaf's irradiance is
   /// scaled so its links add up to that, which removes the error of gathering at coarser
   /// nodes from the leaf's total. Empty or 0: not known, not scaled (only capped).
+  /// `scratch`, when given, is the solve's state: the row sums are taken in it (its leaves'
+  /// radiosity is kept, everything pulled from them is not: pull it again after) instead of
+  /// in a state of its own, which at a million faces is a few hundred MiB more at the peak.
   HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links, GatherOrder order,
-                     const std::vector<float>& rowTarget = {},
-                     const std::vector<char>& hidden = {});
+                     const std::vector<float>& rowTarget = {}, const std::vector<char>& hidden = {},
+                     SourceState* scratch = nullptr);
 
   const std::vector<HLink>& links() const { return m_links; }
+  /// Hands the links over (for the next round's refinement); the system is unusable after.
+  std::vector<HLink> releaseLinks() { return std::move(m_links); }
   /// Links gathered by node n.
   int linkCount(int n) const { return m_begin[n + 1] - m_begin[n]; }
 
@@ -55,6 +60,8 @@ class HierarchicalSystem {
   Vec3 sourceIntensity(int i, const SourceState& state) const;
   /// Row sum of leaf n as the solve uses it: its target where it has one, else capped.
   double rowSum(int n) const { return m_rowSum[n]; }
+  /// Bytes held by the system's arrays (links, landings, per-node sums).
+  std::size_t bytes() const;
   /// \brief A state with B = 1 on every node (for row sums).
   SourceState unitState() const;
   /// \brief Sets state.visibleArea (hidden leaves count 0) for pull().
@@ -96,7 +103,8 @@ class HierarchicalSystem {
   const Hierarchy& m_h;
   std::vector<HLink> m_links;
   std::vector<int> m_begin;
-  std::vector<Accumulator> m_acc;
+  /// Per node: the irradiance its own element links gathered (cluster links land in slots).
+  std::vector<Vec3> m_gathered;
   /// Links with a cluster at either end carry the transfer between the nodes' centres along
   /// ω (receiver to source). Each end is resolved, once per system, into the nodes below it
   /// that face ω as a whole (every normal of their cone within 90° of it), skipping those
@@ -126,16 +134,24 @@ class HierarchicalSystem {
   std::vector<SourceLanding> m_sourceLandings;
   std::vector<ReceiverLanding> m_receiverLandings;
   long long m_approximateLandings = 0;
-  /// Receiver r's landings accumulate into slots [m_slotBegin[r], m_slotBegin[r + 1]), slot k
-  /// for node m_slotTarget[k]; m_incoming lists, per node, the slots meant for it.
-  std::vector<int> m_slotBegin, m_slotTarget, m_incomingBegin, m_incoming;
-  std::vector<Accumulator> m_slots;
+  /// A slot is one receiver's landings on one node: slot k is for node m_slotTarget[k], its
+  /// landings are m_slotLandings[m_slotLandingBegin[k] ...] (link and index into
+  /// m_receiverLandings, in link order); m_incoming lists, per node, the slots meant for it.
+  struct SlotLanding {
+    int link, landing;
+  };
+  std::vector<int> m_slotTarget, m_slotLandingBegin, m_incomingBegin, m_incoming;
+  std::vector<SlotLanding> m_slotLandings;
+  /// Per link, from the last gather: the irradiance e its cluster end delivers (cluster links).
+  std::vector<Vec3> m_linkIrradiance;
   std::vector<Vec3> m_leafIrradiance;
-  /// Per quarter of a split element: its share of its parent's links' irradiance beyond the
+  /// Per quarter of a split element (node n at n − m_firstSplit, split nodes being numbered
+  /// after the input faces' tree): its share of its parent's links' irradiance beyond the
   /// parent's mean (HLink::receiverShare); written only by the parent's gather.
   std::vector<Vec3> m_fromParent;
+  int m_firstSplit = 0;
   std::vector<double> m_visibleFraction;  ///< per node: share of its area on leaves not hidden
-  std::vector<double> m_rowScale;  ///< per leaf: caps an open leaf's row sum
+  std::vector<double> m_rowScale;         ///< per leaf: caps an open leaf's row sum
   /// Per leaf with a row-sum target: target − row sum, filled each sweep with its surface's
   /// light per unit of row sum (m_meanIncoming, from the last sweep). m_leafRaw: H before.
   std::vector<double> m_deficit, m_rowSum;

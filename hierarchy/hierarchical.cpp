@@ -67,7 +67,7 @@ PatchMesh leafMesh(const Hierarchy& h, const std::vector<int>& leaves) {
   for (int n : leaves) {
     int s = h.surfaceOf(n);
     if (s != current) index.clear(), current = s;
-    const HPolygon& poly = h.polygon(n);
+    const HPolygon poly = h.polygon(n);
     Patch p;
     p.vertexCount = poly.count;
     p.surface = s;
@@ -121,9 +121,9 @@ int closureRays(const Hierarchy& h, int n, double emitted) {
 /// The same rays estimate each leaf's escape fraction 1 − Σ_j F_ij (the share that misses
 /// every face's front), for an energy balance that does not rely on the links.
 std::vector<float> closedLeaves(const Hierarchy& h, const RayScene& rays, std::uint64_t seed,
-                               std::vector<char>& leafClosed, std::vector<char>& tested,
-                               std::vector<float>& escape, std::vector<char>& hidden,
-                               std::vector<int>& raysCast, double emitted) {
+                                std::vector<char>& leafClosed, std::vector<char>& tested,
+                                std::vector<float>& escape, std::vector<char>& hidden,
+                                std::vector<int>& raysCast, double emitted) {
   leafClosed.resize(h.size(), 0);
   hidden.resize(h.size(), 0);
   tested.resize(h.size(), 0);
@@ -140,7 +140,7 @@ std::vector<float> closedLeaves(const Hierarchy& h, const RayScene& rays, std::u
         std::vector<int> scratch;
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
           const int n = todo[i];
-          const HPolygon& p = h.polygon(n);
+          const HPolygon p = h.polygon(n);
           Rng rng(seed, h[n].key, 0x636c6f736564ULL);
           const int K = closureRays(h, n, emitted);
           raysCast[n] = K;
@@ -241,7 +241,7 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
     if (log.progress) log.progress("daylight", 1.0);
     markStageMemory(memory, "daylight");
   }
-  HierarchicalResult r = solveHierarchical(base, std::move(radiometry), settings, log,
+  HierarchicalResult r = solveHierarchical(std::move(base), std::move(radiometry), settings, log,
                                            scene.sky ? &faceDaylight : nullptr);
   r.memory.insert(r.memory.begin(), memory.begin(), memory.end());
   r.seconds.hierarchy += meshSeconds;
@@ -294,7 +294,7 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
   return r;
 }
 
-HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces,
+HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiometry> surfaces,
                                      const HierarchicalSettings& settings, const PipelineLog& log,
                                      const std::vector<Vec3>* daylight) {
   validateHierarchicalSettings(settings);
@@ -333,14 +333,15 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
         num(kDefaultMinAreaFraction) + " of the scene's area)");
 
   Clock::time_point t = Clock::now();
-  r.hierarchy = std::make_unique<Hierarchy>(base, std::move(surfaces), byFace);
+  const int faces = base.size();
+  r.hierarchy = std::make_unique<Hierarchy>(std::move(base), std::move(surfaces), byFace);
   Hierarchy& h = *r.hierarchy;
   r.seconds.hierarchy = since(t);
   markStageMemory(r.memory, "hierarchy");
-  say("hierarchy: " + std::to_string(base.size()) + " input faces, " + std::to_string(h.size()) +
+  say("hierarchy: " + std::to_string(faces) + " input faces, " + std::to_string(h.size()) +
       " nodes, " + num(r.seconds.hierarchy) + " s");
   t = Clock::now();
-  r.rays = std::make_unique<RayScene>(base);
+  r.rays = std::make_unique<RayScene>(h.base());
   r.seconds.rayScene = since(t);
   markStageMemory(r.memory, "ray scene");
 
@@ -359,7 +360,7 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
   rs.seed = settings.seed;
   rs.memoryBudget = settings.memoryBudget;
   // The input mesh (twice: ours and Embree's, ~ 64 B per triangle in its BVH) stays resident.
-  rs.fixedBytes = std::size_t(base.size()) * (sizeof(Patch) + 3 * sizeof(Vec3) + 64);
+  rs.fixedBytes = std::size_t(faces) * (sizeof(Patch) + 3 * sizeof(Vec3) + 64);
   std::vector<HLink> links;
   std::vector<char> leafClosed, tested;
   std::vector<float> escape;
@@ -408,19 +409,21 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
         log.progress("links, epsilon " + num(info.epsilon),
                      double(settled) / double(settled + pending));
     });
+
     // After the last refinement every source's light is known: links still kept blocked for a
     // dark source carry nothing.
     if (round + 1 == settings.rounds)
       links.erase(std::remove_if(links.begin(), links.end(),
                                  [](const HLink& l) { return !(l.visibility > 0); }),
                   links.end());
-    std::vector<float> closed =
-        closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape, hidden, escapeRays,
-                     emitted);
+    std::vector<float> closed = closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape,
+                                             hidden, escapeRays, emitted);
+
     r.system.reset();
-    r.system =
-        std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed, hidden);
+    r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed,
+                                                    hidden, &state);
     links.clear();  // moved from; the next round starts from the system's links
+
     r.system->setVisibleArea(state);
     pull(h, state);
     info.refineSeconds = since(t);
@@ -487,9 +490,9 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
       if (done) break;
     }
     info.solveSeconds = since(t);
+
     r.seconds.refine += info.refineSeconds;
     r.seconds.solve += info.solveSeconds;
-    if (round + 1 < settings.rounds) links = r.system->links();
     {
       double leaving = 0;
       for (int n = 0; n < h.size(); ++n)
@@ -503,6 +506,11 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
         " s");
     if (r.solve.exit == "diverged" || r.solve.exit == "stagnated" || r.solve.exit == "time_limit")
       break;
+    if (round + 1 < settings.rounds) {
+      // The next round refines these links; the system's per-node arrays go before it does.
+      links = r.system->releaseLinks();
+      r.system.reset();
+    }
   }
   r.threshold = rs.threshold;  // the last round's
   r.solve.iterations = iteration;
@@ -525,8 +533,12 @@ HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceR
     r.escapeRays.push_back(escapeRays[n]);
   }
   for (const HLink& l : r.system->links()) ++r.linksByKind[static_cast<int>(linkKind(h, l))];
-  r.hierarchyBytes = h.bytes() + state.radiosity.capacity() * sizeof(Vec3) * 4;
-  r.linkBytes = r.system->links().capacity() * sizeof(HLink);
+  r.hierarchyBytes = h.bytes() + state.radiosity.capacity() * sizeof(Vec3) +
+                     state.powerVector.capacity() * sizeof(state.powerVector[0]) +
+                     (state.radiosityMin.capacity() + state.radiosityMax.capacity() +
+                      state.visibleArea.capacity()) *
+                         sizeof(double);
+  r.linkBytes = r.system->bytes();
   for (int c = 0; c < 3; ++c) {
     r.solve.radiosity[c].resize(r.radiosity.size());
     for (std::size_t i = 0; i < r.radiosity.size(); ++i)

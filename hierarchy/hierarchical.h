@@ -74,13 +74,15 @@ struct HierarchicalResult {
   std::vector<int> escapeRays;  ///< the rays behind each leaf's escape fraction
   /// Per surface: the share of its area whose leaves received no light at all.
   std::vector<double> zeroIrradianceShare;
-  Vec3 escapedStandardError;    ///< of energy.escaped, W
+  Vec3 escapedStandardError;  ///< of energy.escaped, W
   SolveResult solve;          ///< convergence of every round, one history
   std::vector<HierarchicalRound> rounds;
   std::array<long long, 4> linksByKind{};  ///< LinkKind order
   long long raysCast = 0;
   double minArea = 0;    ///< used (scene units²)
   double threshold = 0;  ///< τ = ε · emitted power of the last round
+  /// The tree with every node's solve state; the links with the solver's arrays (landings,
+  /// per-node sums).
   std::size_t hierarchyBytes = 0, linkBytes = 0;
   /// Memory after each stage: "input faces", "daylight" (with a sky), "hierarchy",
   /// "ray scene", "links and solve" (the rounds interleave them), "results".
@@ -104,7 +106,7 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
 /// `surfaces` one entry per surface index.
 /// `daylight`, when given, is each input face's daylight (W/m²): its ρ-fold is added to the
 /// face's emission, so every face has radiometry of its own.
-HierarchicalResult solveHierarchical(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces,
+HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiometry> surfaces,
                                      const HierarchicalSettings& settings,
                                      const PipelineLog& log = {},
                                      const std::vector<Vec3>* daylight = nullptr);

@@ -23,12 +23,31 @@ std::uint64_t childKey(std::uint64_t parent, int k) {
   return splitMix64(parent * 4 + std::uint64_t(k) + 0x9e3779b97f4a7c15ULL);
 }
 
-Hierarchy::Hierarchy(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces, bool byFace)
-    : m_base(base), m_surfaces(std::move(surfaces)), m_byFace(byFace) {
+namespace {
+
+/// Grows a vector's capacity by an eighth at a time instead of doubling it: the node arrays
+/// of a million-face hierarchy hold hundreds of MiB, and refinement adds only a few per cent.
+template <class T>
+void reserveFor(std::vector<T>& v, std::size_t n) {
+  if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 8 + 16));
+}
+
+}  // namespace
+
+template <class T>
+void growVector(std::vector<T>& v, std::size_t n) {
+  reserveFor(v, n);
+  v.resize(n);
+}
+template void growVector(std::vector<Vec3>&, std::size_t);
+template void growVector(std::vector<double>&, std::size_t);
+template void growVector(std::vector<std::array<Vec3, 3>>&, std::size_t);
+
+Hierarchy::Hierarchy(PatchMesh base, std::vector<SurfaceRadiometry> surfaces, bool byFace)
+    : m_base(std::move(base)), m_surfaces(std::move(surfaces)), m_byFace(byFace) {
   const int n = m_base.size();
   if (n == 0) throw std::invalid_argument("hierarchy: the scene has no faces");
   m_nodes.resize(std::size_t(2) * n - 1);
-  m_polygons.resize(n);
   m_faceNode.resize(n);
   std::vector<int> faces(n);
   for (int f = 0; f < n; ++f) faces[f] = f;
@@ -45,21 +64,16 @@ int Hierarchy::buildClusters(std::vector<int>& faces, int begin, int end, int pa
     // An input face: the element at the top of its quadtree.
     const int f = faces[begin];
     const Patch& p = m_base.patches[f];
-    HPolygon& poly = m_polygons[f];
-    poly.count = p.vertexCount;
-    for (int k = 0; k < p.vertexCount; ++k) poly.v[k] = m_base.vertex(p, k);
-    poly.normal = p.normal;
     node.element = true;
     node.level = 0;
     node.face = f;
-    node.polygon = f;
     node.centre = p.centroid;
     node.area = p.area;
     node.areaNormal = p.normal * p.area;
     node.coneAxis = p.normal;
     node.coneAngle = 0;
     for (int k = 0; k < p.vertexCount; ++k)
-      node.radius = std::max(node.radius, length(poly.v[k] - p.centroid));
+      node.radius = std::max(node.radius, length(m_base.vertex(p, k) - p.centroid));
     node.reflectanceMax = maxComponent(m_surfaces[p.surface].reflectance);
     m_faceNode[f] = at;
     return at;
@@ -172,7 +186,9 @@ void Hierarchy::split(int node) {
   if (m_nodes[node].childCount > 0) return;
   HPolygon kids[4];
   double areas[4];
-  quarterPolygons(m_polygons[m_nodes[node].polygon], kids, areas);
+  quarterPolygons(polygon(node), kids, areas);
+  reserveFor(m_nodes, m_nodes.size() + 4);
+  reserveFor(m_polygons, m_polygons.size() + 4);
   const int first = size();
   const HNode up = m_nodes[node];
   for (int k = 0; k < 4; ++k) {
@@ -252,6 +268,18 @@ std::vector<int> Hierarchy::leavesInTreeOrder(std::vector<std::pair<int, int>>* 
   return out;
 }
 
+HPolygon Hierarchy::polygon(int node) const {
+  const HNode& n = m_nodes[node];
+  RADKIT_DCHECK(n.element);
+  if (n.polygon >= 0) return m_polygons[n.polygon];
+  const Patch& p = m_base.patches[n.face];
+  HPolygon poly;
+  poly.count = p.vertexCount;
+  for (int k = 0; k < p.vertexCount; ++k) poly.v[k] = m_base.vertex(p, k);
+  poly.normal = p.normal;
+  return poly;
+}
+
 Vec3 Hierarchy::samplePoint(int n, double u0, double u1, double u2, Vec3& normal) const {
   // Descend by area, reusing u0 rescaled at each choice (it stays uniform).
   while (!m_nodes[n].element) {
@@ -267,7 +295,7 @@ Vec3 Hierarchy::samplePoint(int n, double u0, double u1, double u2, Vec3& normal
     }
     u0 = std::min(u0, 0x1.fffffffffffffp-1);
   }
-  const HPolygon& p = polygon(n);
+  const HPolygon p = polygon(n);
   normal = p.normal;
   return samplePatchUniform(p.v, p.count, u1, u2);
 }

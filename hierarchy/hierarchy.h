@@ -3,6 +3,7 @@
 // Salzman & Aupperle 1991; clusters after Smits, Arvo & Greenberg 1994 and Sillion 1995).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -29,7 +30,7 @@ struct HNode {
   int childCount = 0;     ///< 2 for clusters, 4 for split elements, 0 for leaves
   int level = 0;          ///< elements: splits below the input face; clusters: depth in the tree
   int face = -1;          ///< elements: the input face (patch of the base mesh); clusters: -1
-  int polygon = -1;       ///< elements: index into Hierarchy::polygons
+  int polygon = -1;       ///< split elements: index into the stored quarters (input faces: -1)
   std::uint64_t key = 0;  ///< stable identity, independent of creation order: seeds rays
   bool element = false;
 
@@ -62,7 +63,7 @@ class Hierarchy {
   /// Deterministic: the same input gives the same node numbering whatever the thread count.
   /// `byFace`: `surfaces` has one entry per face rather than per surface (daylight makes each
   /// face's emission its own).
-  Hierarchy(const PatchMesh& base, std::vector<SurfaceRadiometry> surfaces, bool byFace = false);
+  Hierarchy(PatchMesh base, std::vector<SurfaceRadiometry> surfaces, bool byFace = false);
 
   const PatchMesh& base() const { return m_base; }
   int root() const { return 0; }
@@ -71,7 +72,11 @@ class Hierarchy {
     RADKIT_DCHECK(i >= 0 && i < size());
     return m_nodes[i];
   }
-  const HPolygon& polygon(int node) const { return m_polygons[m_nodes[node].polygon]; }
+  /// An element's polygon: an input face's read from the base mesh (not stored twice), a
+  /// quarter's stored when it was split off.
+  HPolygon polygon(int node) const;
+  /// An element's unit front normal: its input face's (quarters are coplanar with it).
+  const Vec3& normal(int node) const { return m_base.patches[m_nodes[node].face].normal; }
   const SurfaceRadiometry& radiometry(int node) const {
     const int face = m_nodes[node].face;
     return m_surfaces[m_byFace ? face : m_base.patches[face].surface];
@@ -83,6 +88,9 @@ class Hierarchy {
     return n.element ? n.firstChild + k : (k == 0 ? n.firstChild : n.rightChild);
   }
   int surfaceOf(int node) const { return m_base.patches[m_nodes[node].face].surface; }
+  /// Nodes made by split() are numbered from here on (the tree over the input faces comes
+  /// first).
+  int firstSplitNode() const { return 2 * m_base.size() - 1; }
   /// Node of input face f.
   int faceNode(int f) const { return m_faceNode[f]; }
 
@@ -115,6 +123,11 @@ class Hierarchy {
   std::vector<HPolygon> m_polygons;
   std::vector<int> m_faceNode;
 };
+
+/// Resizes v to n, growing its capacity by an eighth at a time (not doubling): what refinement
+/// adds to per-node arrays of millions of nodes is a few per cent.
+template <class T>
+void growVector(std::vector<T>& v, std::size_t n);
 
 /// Stable key of child k of a node with key `parent`.
 std::uint64_t childKey(std::uint64_t parent, int k);

@@ -45,7 +45,7 @@ const char* linkKindName(LinkKind kind) {
 double projectedArea(const Hierarchy& h, int n, const Vec3& w) {
   return sumOverCoherent(h, n, kSplitLevels, [&](int k) {
     const HNode& node = h[k];
-    return node.element ? node.area * std::max(0.0, dot(h.polygon(k).normal, w))
+    return node.element ? node.area * std::max(0.0, dot(h.normal(k), w))
                         : projectedSum(node.area, node.areaNormal, w);
   });
 }
@@ -56,7 +56,7 @@ Vec3 intensityToward(const Hierarchy& h, const SourceState& state, int s, const 
     out[c] = sumOverCoherent(h, s, kSplitLevels, [&](int k) {
       const HNode& node = h[k];
       const double power = state.radiosity[k][c] * node.area;
-      return node.element ? power * std::max(0.0, dot(h.polygon(k).normal, w))
+      return node.element ? power * std::max(0.0, dot(h.normal(k), w))
                           : projectedSum(power, state.powerVector[k][c], w);
     });
   return out / kPi;

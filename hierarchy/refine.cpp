@@ -100,11 +100,11 @@ std::string gib(std::size_t bytes) {
 
 void growState(const Hierarchy& h, SourceState& state) {
   std::size_t old = state.radiosity.size();
-  state.radiosity.resize(h.size());
-  state.powerVector.resize(h.size());
-  state.radiosityMin.resize(h.size());
-  state.radiosityMax.resize(h.size());
-  if (!state.visibleArea.empty()) state.visibleArea.resize(h.size());
+  growVector(state.radiosity, h.size());
+  growVector(state.powerVector, h.size());
+  growVector(state.radiosityMin, h.size());
+  growVector(state.radiosityMax, h.size());
+  if (!state.visibleArea.empty()) growVector(state.visibleArea, h.size());
   for (std::size_t n = old; n < state.radiosity.size(); ++n) {
     int parent = h[int(n)].parent;
     state.radiosity[n] = parent >= 0 ? state.radiosity[parent] : Vec3{};
@@ -135,8 +135,8 @@ Refiner::Decision Refiner::splitLarger(int r, int s) const {
 }
 
 double Refiner::elementFormFactor(int r, int s, double estimate) const {
-  const HPolygon& pr = m_h.polygon(r);
-  const HPolygon& ps = m_h.polygon(s);
+  const HPolygon pr = m_h.polygon(r);
+  const HPolygon ps = m_h.polygon(s);
   // Only the part of r in front of s sees s's front: integrate over that part, so the
   // integrand has no kink inside the domain.
   Vec3 domain[kMaxPolygonVertices];
@@ -157,11 +157,11 @@ void Refiner::quarterShares(int r, int s, HLink& link) const {
   link.quarterShare[0] = -1;
   const HNode& S = m_h[s];
   if (S.childCount != 4) return;
-  const HPolygon& pr = m_h.polygon(r);
+  const HPolygon pr = m_h.polygon(r);
   PatchChart chart(pr.v, pr.count);
   double f[4] = {0, 0, 0, 0}, total = 0;
   for (int k = 0; k < 4; ++k) {
-    const HPolygon& q = m_h.polygon(S.firstChild + k);
+    const HPolygon q = m_h.polygon(S.firstChild + k);
     const PlaneToPolygon toQ(pr.v[0], pr.normal, q.v, q.count);  // q clipped to r's front once
     for (double a : kGauss2)
       for (double b : kGauss2) {
@@ -181,7 +181,7 @@ void Refiner::quarterShares(int r, int s, HLink& link) const {
 
 void Refiner::receiverShares(int r, int s, const VisibilityEstimate& v, HLink& link) const {
   link.receiverShare[0] = -1;
-  const HPolygon& ps = m_h.polygon(s);
+  const HPolygon ps = m_h.polygon(s);
   HPolygon kids[4];
   double areas[4], f[4], mean = 0, total = 0;
   quarterPolygons(m_h.polygon(r), kids, areas);
@@ -275,8 +275,8 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility,
   const bool overlapping = !(dist > R.radius + S.radius);
 
   if (R.element && S.element) {
-    const HPolygon& pr = m_h.polygon(r);
-    const HPolygon& ps = m_h.polygon(s);
+    const HPolygon pr = m_h.polygon(r);
+    const HPolygon ps = m_h.polygon(s);
     const double tol = 1e-3 * m_visibility.epsilon();
     bool sInFront = false, rInFront = false;
     for (int k = 0; k < ps.count; ++k) sInFront |= dot(ps.v[k] - R.centre, pr.normal) > tol;
@@ -448,61 +448,84 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility,
 RefineStats Refiner::refine(std::vector<HLink>& links, SourceState& state,
                             const std::function<void(long long, long long)>& progress) {
   RefineStats stats;
-  std::vector<HLink> frontier;
-  frontier.swap(links);
-  bool known = !(frontier.size() == 1 && frontier[0].receiver == frontier[0].source);
+  // The first level is the links given (with what their rays found); later levels are bare
+  // (receiver, source) pairs: 8 bytes a candidate instead of a whole link.
+  std::vector<HLink> given;
+  given.swap(links);
+  bool known = !(given.size() == 1 && given[0].receiver == given[0].source);
+  // About as many links are kept as were given: growing by doubling from a few would hold up
+  // to twice the links at the end (and three times while the last copy is made).
+  links.reserve(given.size() + given.size() / 8);
+  std::vector<std::pair<int, int>> frontier, next;
+  // Candidates are evaluated in chunks, so the outcomes held at once stay bounded whatever the
+  // level's size; the splits they ask for are applied after the whole level, in candidate
+  // order, so every candidate of a level sees the same hierarchy (and the node numbering is
+  // the same whatever the thread count).
+  constexpr std::size_t kChunk = std::size_t(1) << 16;
   std::vector<Outcome> outcomes;
-  std::vector<HLink> next;
-  auto candidate = [](int r, int s) {
-    HLink l;
-    l.receiver = r, l.source = s;
-    return l;
+  struct Split {
+    Decision decision;
+    int receiver, source;
   };
-  while (!frontier.empty()) {
-    outcomes.assign(frontier.size(), Outcome{});
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, frontier.size(), 64),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t i = range.begin(); i < range.end(); ++i)
-                          outcomes[i] = evaluate(frontier[i], known, state);
-                      });
-    // Apply the decisions serially in candidate order: new nodes get the same numbers
-    // whatever the thread count.
-    next.clear();
-    for (const Outcome& o : outcomes) {
-      ++stats.evaluated;
-      stats.rays += o.rays;
-      const int r = o.link.receiver, s = o.link.source;
-      switch (o.decision) {
-        case Decision::Keep:
+  std::vector<Split> splits;
+  for (bool first = true; first || !frontier.empty(); first = false) {
+    const std::size_t count = first ? given.size() : frontier.size();
+    splits.clear();
+    for (std::size_t begin = 0; begin < count; begin += kChunk) {
+      const std::size_t end = std::min(count, begin + kChunk);
+      outcomes.assign(end - begin, Outcome{});
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 64),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                            if (first) {
+                              outcomes[i - begin] = evaluate(given[i], known, state);
+                            } else {
+                              HLink l;
+                              l.receiver = frontier[i].first, l.source = frontier[i].second;
+                              outcomes[i - begin] = evaluate(l, false, state);
+                            }
+                          }
+                        });
+      for (const Outcome& o : outcomes) {
+        ++stats.evaluated;
+        stats.rays += o.rays;
+        if (o.decision == Decision::Keep)
           links.push_back(o.link);
-          break;
-        case Decision::Drop:
+        else if (o.decision == Decision::Drop)
           ++stats.dropped;
-          break;
+        else
+          splits.push_back({o.decision, o.link.receiver, o.link.source});
+      }
+    }
+    if (first) std::vector<HLink>().swap(given);
+    next.clear();
+    for (const Split& o : splits) {
+      ++stats.splits;
+      const int r = o.receiver, s = o.source;
+      switch (o.decision) {
         case Decision::SplitReceiver:
-          ++stats.splits;
           if (m_h[r].element) m_h.split(r);
-          for (int k = 0; k < m_h[r].childCount; ++k) next.push_back(candidate(m_h.child(r, k), s));
+          for (int k = 0; k < m_h[r].childCount; ++k) next.push_back({m_h.child(r, k), s});
           break;
         case Decision::SplitSource:
-          ++stats.splits;
           if (m_h[s].element) m_h.split(s);
-          for (int k = 0; k < m_h[s].childCount; ++k) next.push_back(candidate(r, m_h.child(s, k)));
+          for (int k = 0; k < m_h[s].childCount; ++k) next.push_back({r, m_h.child(s, k)});
           break;
         case Decision::SplitBoth:
-          ++stats.splits;
           for (int a = 0; a < m_h[r].childCount; ++a)
             for (int b = 0; b < m_h[r].childCount; ++b)
-              next.push_back(candidate(m_h.child(r, a), m_h.child(r, b)));
+              next.push_back({m_h.child(r, a), m_h.child(r, b)});
+          break;
+        default:
           break;
       }
     }
     growState(m_h, state);
     frontier.swap(next);
     known = false;
-    std::size_t bytes = m_settings.fixedBytes + m_h.bytes() +
-                        (links.capacity() + frontier.capacity() + next.capacity()) * sizeof(HLink) +
-                        outcomes.capacity() * sizeof(Outcome) +
+    std::size_t bytes = m_settings.fixedBytes + m_h.bytes() + links.capacity() * sizeof(HLink) +
+                        (frontier.capacity() + next.capacity()) * sizeof(frontier[0]) +
+                        splits.capacity() * sizeof(Split) + outcomes.capacity() * sizeof(Outcome) +
                         state.radiosity.capacity() * (sizeof(Vec3) * 4);
     if (bytes > m_settings.memoryBudget)
       throw HierarchyMemoryError(

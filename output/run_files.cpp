@@ -81,21 +81,22 @@ std::vector<std::string> splitCsvLine(const std::string& text) {
 void writePatchesCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
                      const std::vector<Vec3>* radiosity) {
   const double m = scene.metresPerUnit();
-  std::ostringstream o;
-  o << std::setprecision(kDigits);
-  o << kPatchesCsvHeader << '\n';
-  for (int i = 0; i < mesh.size(); ++i) {
-    const Patch& p = mesh.patches[i];
-    const Material& mat = scene.materials[scene.surfaces[p.surface].material];
-    o << i << ',' << csvField(scene.surfaces[p.surface].name) << ',' << p.area * m * m;
-    writeTriple(o, p.centroid * m);
-    writeTriple(o, p.normal);
-    writeTriple(o, mat.diffuseAlbedo());
-    writeTriple(o, mat.emission);
-    writeTriple(o, radiosity ? (*radiosity)[i] : Vec3{});
-    o << '\n';
-  }
-  writeFileAtomically(path, o.str());
+  // Streamed to the file: at a million patches the text would be hundreds of MiB.
+  writeFileStreaming(path, [&](std::ostream& o) {
+    o << std::setprecision(kDigits);
+    o << kPatchesCsvHeader << '\n';
+    for (int i = 0; i < mesh.size(); ++i) {
+      const Patch& p = mesh.patches[i];
+      const Material& mat = scene.materials[scene.surfaces[p.surface].material];
+      o << i << ',' << csvField(scene.surfaces[p.surface].name) << ',' << p.area * m * m;
+      writeTriple(o, p.centroid * m);
+      writeTriple(o, p.normal);
+      writeTriple(o, mat.diffuseAlbedo());
+      writeTriple(o, mat.emission);
+      writeTriple(o, radiosity ? (*radiosity)[i] : Vec3{});
+      o << '\n';
+    }
+  });
 }
 
 void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMesh& mesh,
@@ -106,51 +107,51 @@ void writeSolutionCsv(const std::string& path, const Scene& scene, const PatchMe
 
 void writePatchesVtp(const std::string& path, const Scene& scene, const PatchMesh& mesh,
                      const std::vector<Vec3>* radiosity, const std::vector<CellArray>& extra) {
-  std::ostringstream o;
-  o << std::setprecision(kDigits);
-  o << "<?xml version=\"1.0\"?>\n"
-    << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n<PolyData>\n"
-    << "<Piece NumberOfPoints=\"" << mesh.vertices.size() << "\" NumberOfPolys=\"" << mesh.size()
-    << "\">\n"
-    << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const Vec3& v : mesh.vertices) o << v.x << ' ' << v.y << ' ' << v.z << '\n';
-  o << "</DataArray></Points>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
-       "format=\"ascii\">\n";
-  for (const Patch& p : mesh.patches) {
-    for (int k = 0; k < p.vertexCount; ++k) o << p.vertex[k] << ' ';
-    o << '\n';
-  }
-  o << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-  long long offset = 0;
-  for (const Patch& p : mesh.patches) o << (offset += p.vertexCount) << '\n';
-  o << "</DataArray>\n</Polys>\n<CellData Scalars=\"surface\">\n";
-  o << "<DataArray type=\"Int32\" Name=\"surface\" format=\"ascii\">\n";
-  for (const Patch& p : mesh.patches) o << p.surface << '\n';
-  o << "</DataArray>\n<DataArray type=\"Float64\" Name=\"area\" format=\"ascii\">\n";
-  for (const Patch& p : mesh.patches) o << p.area << '\n';
-  o << "</DataArray>\n";
-  auto triples = [&](const char* name, auto value) {
-    o << "<DataArray type=\"Float64\" Name=\"" << name
-      << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (int i = 0; i < mesh.size(); ++i) {
-      Vec3 v = value(i);
-      o << v.x << ' ' << v.y << ' ' << v.z << '\n';
+  writeFileStreaming(path, [&](std::ostream& o) {
+    o << std::setprecision(kDigits);
+    o << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n<PolyData>\n"
+      << "<Piece NumberOfPoints=\"" << mesh.vertices.size() << "\" NumberOfPolys=\"" << mesh.size()
+      << "\">\n"
+      << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (const Vec3& v : mesh.vertices) o << v.x << ' ' << v.y << ' ' << v.z << '\n';
+    o << "</DataArray></Points>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
+         "format=\"ascii\">\n";
+    for (const Patch& p : mesh.patches) {
+      for (int k = 0; k < p.vertexCount; ++k) o << p.vertex[k] << ' ';
+      o << '\n';
     }
+    o << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    long long offset = 0;
+    for (const Patch& p : mesh.patches) o << (offset += p.vertexCount) << '\n';
+    o << "</DataArray>\n</Polys>\n<CellData Scalars=\"surface\">\n";
+    o << "<DataArray type=\"Int32\" Name=\"surface\" format=\"ascii\">\n";
+    for (const Patch& p : mesh.patches) o << p.surface << '\n';
+    o << "</DataArray>\n<DataArray type=\"Float64\" Name=\"area\" format=\"ascii\">\n";
+    for (const Patch& p : mesh.patches) o << p.area << '\n';
     o << "</DataArray>\n";
-  };
-  auto material = [&](int i) -> const Material& {
-    return scene.materials[scene.surfaces[mesh.patches[i].surface].material];
-  };
-  triples("reflectance", [&](int i) { return material(i).diffuseAlbedo(); });
-  triples("emission", [&](int i) { return material(i).emission; });
-  if (radiosity) triples("radiosity", [&](int i) { return (*radiosity)[i]; });
-  for (const CellArray& a : extra) {
-    o << "<DataArray type=\"Float64\" Name=\"" << a.name << "\" format=\"ascii\">\n";
-    for (double v : a.values) o << v << '\n';
-    o << "</DataArray>\n";
-  }
-  o << "</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
-  writeFileAtomically(path, o.str());
+    auto triples = [&](const char* name, auto value) {
+      o << "<DataArray type=\"Float64\" Name=\"" << name
+        << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+      for (int i = 0; i < mesh.size(); ++i) {
+        Vec3 v = value(i);
+        o << v.x << ' ' << v.y << ' ' << v.z << '\n';
+      }
+      o << "</DataArray>\n";
+    };
+    auto material = [&](int i) -> const Material& {
+      return scene.materials[scene.surfaces[mesh.patches[i].surface].material];
+    };
+    triples("reflectance", [&](int i) { return material(i).diffuseAlbedo(); });
+    triples("emission", [&](int i) { return material(i).emission; });
+    if (radiosity) triples("radiosity", [&](int i) { return (*radiosity)[i]; });
+    for (const CellArray& a : extra) {
+      o << "<DataArray type=\"Float64\" Name=\"" << a.name << "\" format=\"ascii\">\n";
+      for (double v : a.values) o << v << '\n';
+      o << "</DataArray>\n";
+    }
+    o << "</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  });
 }
 
 void writeSurfacesCsv(const std::string& path, const Scene& scene,

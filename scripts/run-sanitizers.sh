@@ -18,7 +18,7 @@ CC=clang CXX=clang++ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Re
 cmake --build build-sanitize -j"${RADKIT_JOBS:-2}"
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp" UBSAN_OPTIONS=print_stacktrace=1
 ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-sanitize --output-on-failure -j"${RADKIT_JOBS:-2}" \
-  --timeout 900 -E viewer_screenshots
+  --timeout 900 -E viewer_screenshots -LE long
 if [[ ";$folders;" == *";viewer;"* ]]; then
   ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-sanitize --output-on-failure --timeout 900 -R viewer_screenshots
 fi

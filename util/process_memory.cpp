@@ -1,5 +1,6 @@
 #include "util/process_memory.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
 
 #include <fstream>
@@ -25,6 +26,9 @@ std::size_t peakMemory() { return statusBytes("VmHWM:"); }
 std::size_t residentMemory() { return statusBytes("VmRSS:"); }
 
 void markStageMemory(std::vector<StageMemory>& stages, const std::string& stage) {
+  // Hand freed heap back first, so "resident" is what the process holds, not what the
+  // allocator kept from the stage's transients.
+  malloc_trim(0);
   stages.push_back({stage, residentMemory(), lifetimePeakMemory()});
 }
 
