@@ -11,6 +11,7 @@
 #include "hierarchy/link_matrix.h"
 #include "hierarchy/refine.h"
 #include "output/run_files.h"
+#include "render/hdr_io.h"
 #include "render/radiosity_image.h"
 #include "util/output_folder.h"
 #include "util/process_memory.h"
@@ -85,6 +86,9 @@ nlohmann::json hierarchyJson(const Scene& scene, const HierarchicalResult& r,
           {"cluster_link_landings_estimated", r.system->approximateLandings()},
           {"hierarchy_bytes", r.hierarchyBytes},
           {"link_bytes", r.linkBytes},
+          {"daylight_per", r.sky ? (r.daylightPerLeaf ? "element" : "face") : "none"},
+          {"elements_daylit", r.daylightElements},
+          {"elements_split_for_daylight", r.daylightSplits},
           {"rounds", rounds}};
 }
 
@@ -106,9 +110,17 @@ void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalRe
   s.width = job.imageWidth, s.height = job.imageHeight;
   s.smooth = true;          // leaves differ in size by orders of magnitude: flat shading shows the
                             // hierarchy, not the light
+  s.samplesPerAxis = 4;     // 16 per pixel: leaves along a shadow edge are far smaller than a
+                            // pixel, and 4 alias the edge (render.pfm against a path tracer)
   RayScene rays(r.leaves);  // the image needs the leaf under each pixel
   if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
-  if (!writeRadiosityPng(folder.path("render.png"), scene, r.leaves, rays, r.radiosity, s))
+  // render.pfm: the same image in linear radiance, for `radkit render --reference` (the path
+  // tracer's per-surface errors against this solution).
+  const RadianceImage image = renderRadiosity(r.leaves, rays, sceneCamera(scene, r.leaves),
+                                              r.radiosity, scene.twoSidedSurfaces(), s);
+  writePng(folder.path("render.png"), toneMap(image, autoExposure(image, scene, r.leaves)));
+  writePfm(folder.path("render.pfm"), image);
+  if (!(image.meanRadiance() > 0))
     std::fprintf(stderr, "radkit: warning: %s\n", blackPictureWarning("render.png").c_str());
 }
 
@@ -171,8 +183,13 @@ void printSummary(const Scene& scene, const HierarchicalResult& r, const Hierarc
                           " element-element), " + std::to_string(r.raysCast) + " rays");
   if (r.daylight)
     printField("daylight", r.sky->typeName() + " sky" + (r.sky->hasSun() ? " and sun" : "") + ", " +
-                               std::to_string(r.daylight->rays) + " rays on the " +
-                               std::to_string(r.hierarchy->base().size()) + " input faces");
+                               std::to_string(r.daylight->rays) + " rays on " +
+                               (r.daylightPerLeaf
+                                    ? std::to_string(r.daylightElements) + " elements, " +
+                                          std::to_string(r.daylightSplits) +
+                                          " split where it varies"
+                                    : "the " + std::to_string(r.hierarchy->base().size()) +
+                                          " input faces"));
   printField("seconds", "hierarchy " + fmt("%.2f", r.seconds.hierarchy) + ", rays " +
                             fmt("%.2f", r.seconds.rayScene) +
                             (r.daylight ? ", daylight " + fmt("%.2f", r.seconds.daylight) : "") +
@@ -219,10 +236,16 @@ void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& o) {
   run.add_option("--link-colour", o.linkColour, "Hierarchical: colour links.png by F or by power")
       ->check(CLI::IsMember({"F", "power"}))
       ->capture_default_str();
+  run.add_option("--daylight-per", o.daylightPer,
+                 "Hierarchical, with a sky: daylight estimated on every leaf element (elements "
+                 "split along sun shadow edges) or once per input face")
+      ->check(CLI::IsMember({"element", "face"}))
+      ->capture_default_str();
 }
 
 void finishHierarchicalOptions(HierarchicalOptions& o) {
   o.settings.order = parseGatherOrder(o.gather);
+  o.settings.elementDaylight = o.daylightPer == "element";
 }
 
 void runHierarchicalJob(HierarchicalJob job) {

@@ -16,6 +16,7 @@ struct HierarchicalOptions {
   HierarchicalSettings settings;
   std::string gather = "jacobi";
   std::string linkColour = "F";
+  std::string daylightPer = "element";  ///< with a sky: daylight per leaf element or input face
   int checkLinks = 0;  ///< links to check against a Monte Carlo reference (0: none)
   /// Options that belong to the dense method only (rejected with --method hierarchical).
   std::vector<CLI::Option*> denseOnly;

@@ -516,7 +516,7 @@ HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator
         return change;
       }
       const SurfaceRadiometry& rad = m_h.radiometry(n);
-      Vec3 b = rad.emission + mul(rad.reflectance, h);
+      Vec3 b = (m_emission ? (*m_emission)[n] : rad.emission) + mul(rad.reflectance, h);
       Vec3 diff = absDiff(b, state->radiosity[n]);
       state->radiosity[n] = b;
       state->radiosityMin[n] = state->radiosityMax[n] = maxComponent(b);

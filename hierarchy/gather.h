@@ -66,6 +66,9 @@ class HierarchicalSystem {
   SourceState unitState() const;
   /// \brief Sets state.visibleArea (hidden leaves count 0) for pull().
   void setVisibleArea(SourceState& state) const;
+  /// \brief Each leaf's emission E by node (daylight per element), instead of its surface's;
+  /// nullptr: the surface's. Not owned; must cover every leaf.
+  void setEmission(const std::vector<Vec3>* emission) { m_emission = emission; }
   /// Open leaves whose links add up to a row sum so far above 1 that ρ·(row sum) > (1 + ρ)/2,
   /// and the largest deviation |row sum − 1| of any leaf before scaling. Such an open leaf's
   /// irradiance is scaled down to that cap, so coarse links between nearby clusters can never
@@ -101,6 +104,7 @@ class HierarchicalSystem {
   void gatherList(const std::vector<int>& receivers, const SourceState& state);
 
   const Hierarchy& m_h;
+  const std::vector<Vec3>* m_emission = nullptr;
   std::vector<HLink> m_links;
   std::vector<int> m_begin;
   /// Per node: the irradiance its own element links gathered (cluster links land in slots).

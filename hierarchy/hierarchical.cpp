@@ -12,6 +12,7 @@
 
 #include "geometry/sampling.h"
 #include "geometry/subdivision.h"
+#include "hierarchy/element_daylight.h"
 #include "hierarchy/refine.h"
 
 namespace radkit {
@@ -224,33 +225,43 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
   double meshSeconds = since(start);
   std::vector<StageMemory> memory;
   markStageMemory(memory, "input faces");
-  // Daylight is computed per input face (constant over the face's elements): refinement then
-  // follows the light it makes, not the sun's shadow edges inside a face, so a sunlit scene
-  // wants faces no larger than the shadow detail it should show (docs/daylight.md).
+  // With a sky, daylight is estimated on every leaf element by default (the solve below), so
+  // refinement follows sun shadow edges inside large faces. Per input face instead
+  // (settings.elementDaylight false), it is constant over each face's elements and a sunlit
+  // scene wants faces no larger than the shadow detail it should show (docs/daylight.md).
   std::unique_ptr<SkyModel> sky;
   std::unique_ptr<Daylight> daylight;
   std::vector<Vec3> faceDaylight;
   double daylightSeconds = 0;
+  const bool perElement = scene.sky && settings.elementDaylight;
   if (scene.sky) {
     start = Clock::now();
     sky = std::make_unique<SkyModel>(*scene.sky);
-    const RayScene rays(base);
-    daylight = std::make_unique<Daylight>(computeDaylight(base, rays, *sky, settings.seed));
-    for (int f = 0; f < base.size(); ++f) faceDaylight.push_back(daylight->total(f));
+    if (!perElement) {
+      const RayScene rays(base);
+      daylight = std::make_unique<Daylight>(computeDaylight(base, rays, *sky, settings.seed));
+      for (int f = 0; f < base.size(); ++f) faceDaylight.push_back(daylight->total(f));
+      if (log.progress) log.progress("daylight", 1.0);
+      markStageMemory(memory, "daylight");
+    }
     daylightSeconds = since(start);
-    if (log.progress) log.progress("daylight", 1.0);
-    markStageMemory(memory, "daylight");
   }
   HierarchicalResult r = solveHierarchical(std::move(base), std::move(radiometry), settings, log,
-                                           scene.sky ? &faceDaylight : nullptr);
+                                           scene.sky && !perElement ? &faceDaylight : nullptr,
+                                           perElement ? sky.get() : nullptr);
   r.memory.insert(r.memory.begin(), memory.begin(), memory.end());
   r.seconds.hierarchy += meshSeconds;
-  r.seconds.daylight = daylightSeconds;
+  r.seconds.daylight += daylightSeconds;
   start = Clock::now();
   std::vector<int> leafFace(r.leaves.size());
   for (int i = 0; i < r.leaves.size(); ++i) leafFace[i] = (*r.hierarchy)[r.leafNodes[i]].face;
+  if (perElement) daylight = std::move(r.daylight);
+  // The daylight arriving at leaf i: its own (per element) or its input face's.
+  auto leafDaylight = [&](int i) {
+    return perElement ? daylight->total(i) : faceDaylight[leafFace[i]];
+  };
   if (daylight)
-    for (int i = 0; i < r.leaves.size(); ++i) r.irradiance[i] += faceDaylight[leafFace[i]];
+    for (int i = 0; i < r.leaves.size(); ++i) r.irradiance[i] += leafDaylight(i);
   r.surfaces = surfaceResults(scene, r.leaves, r.radiosity, r.irradiance);
   {
     std::vector<double> area(scene.surfaces.size(), 0.0);
@@ -263,7 +274,8 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
     for (std::size_t k = 0; k < area.size(); ++k)
       if (area[k] > 0) r.zeroIrradianceShare[k] /= area[k];
   }
-  if (daylight) addDaylightToSurfaces(r.leaves, *daylight, r.surfaces, &leafFace);
+  if (daylight)
+    addDaylightToSurfaces(r.leaves, *daylight, r.surfaces, perElement ? nullptr : &leafFace);
   // Power bookkeeping as for a dense run, with each leaf's escape fraction measured by rays
   // rather than taken from the links (an emitter, ρ = 0, gathers through coarse links that
   // need not add up), so the balance checks the links' transport independently.
@@ -275,7 +287,7 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
     const Material& m = scene.materials[scene.surfaces[p.surface].material];
     double a = p.area * m2, q = r.escape[i];
     e.emitted += m.emission * a;
-    if (daylight) e.emitted += faceDaylight[leafFace[i]] * a;  // the light the scene takes in
+    if (daylight) e.emitted += leafDaylight(i) * a;  // the light the scene takes in
     e.absorbed += mul(Vec3{1, 1, 1} - m.diffuseAlbedo(), r.irradiance[i]) * a;
     e.escaped += r.radiosity[i] * (a * q);
     Vec3 power = r.radiosity[i] * a;
@@ -296,9 +308,10 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
 
 HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiometry> surfaces,
                                      const HierarchicalSettings& settings, const PipelineLog& log,
-                                     const std::vector<Vec3>* daylight) {
+                                     const std::vector<Vec3>* daylight, const SkyModel* sky) {
   validateHierarchicalSettings(settings);
-  const bool byFace = daylight != nullptr;
+  const bool perElement = sky != nullptr && settings.elementDaylight;
+  const bool byFace = daylight != nullptr && !perElement;
   if (byFace) {
     std::vector<SurfaceRadiometry> perFace;
     perFace.reserve(base.size());
@@ -321,9 +334,11 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
     emitted += p.area * maxComponent(s.emission);
     emissionNorm = std::max(emissionNorm, maxComponent(s.emission));
   }
-  if (!(emitted > 0))
+  const char* const noDaylight =
+      "no light enters the scene: the sky and sun reach no surface that reflects";
+  if (!(emitted > 0) && !perElement)
     throw std::invalid_argument(
-        byFace ? "no light enters the scene: the sky and sun reach no surface that reflects"
+        byFace ? noDaylight
                : "the scene emits no light: give at least one material an \"emission\" above 0");
   r.minArea = settings.minArea > 0 ? settings.minArea : kDefaultMinAreaFraction * totalArea;
   if (r.minArea > totalArea)
@@ -344,6 +359,23 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
   r.rays = std::make_unique<RayScene>(h.base());
   r.seconds.rayScene = since(t);
   markStageMemory(r.memory, "ray scene");
+  // Daylight per element: the input faces' first, which set the emitted power (τ) as the
+  // faces' own daylight does per face.
+  std::unique_ptr<ElementDaylight> elementDaylight;
+  if (perElement) {
+    elementDaylight = std::make_unique<ElementDaylight>(*r.rays, *sky, settings.seed);
+    elementDaylight->sampleNewLeaves(h);
+    emitted = 0;
+    emissionNorm = 0;
+    for (int f = 0; f < faces; ++f) {
+      const double e = maxComponent(elementDaylight->emission()[h.faceNode(f)]);
+      emitted += h.base().patches[f].area * e;
+      emissionNorm = std::max(emissionNorm, e);
+    }
+    if (log.progress) log.progress("daylight", 1.0);
+    markStageMemory(r.memory, "daylight");
+    if (!(emitted > 0)) throw std::invalid_argument(noDaylight);
+  }
 
   // Start from B = E at the input faces.
   SourceState& state = r.state;
@@ -352,7 +384,9 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
   state.radiosityMin.resize(h.size());
   state.radiosityMax.resize(h.size());
   for (int n = 0; n < h.size(); ++n)
-    if (h[n].element) state.radiosity[n] = h.radiometry(n).emission;
+    if (h[n].element)
+      state.radiosity[n] =
+          elementDaylight ? elementDaylight->emission()[n] : h.radiometry(n).emission;
 
   RefineSettings rs;
   rs.minArea = r.minArea;
@@ -409,7 +443,15 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
         log.progress("links, epsilon " + num(info.epsilon),
                      double(settled) / double(settled + pending));
     });
-
+    // New leaves get daylight of their own, and leaves whose daylight varies across them (a sun
+    // shadow edge) are split while that variation is above τ.
+    double daylightSeconds = 0;
+    if (elementDaylight) {
+      const double before = elementDaylight->seconds();
+      elementDaylight->refine(h, rs.threshold, r.minArea);
+      growState(h, state);
+      daylightSeconds = elementDaylight->seconds() - before;
+    }
     // After the last refinement every source's light is known: links still kept blocked for a
     // dark source carry nothing.
     if (round + 1 == settings.rounds)
@@ -422,11 +464,12 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
     r.system.reset();
     r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed,
                                                     hidden, &state);
+    if (elementDaylight) r.system->setEmission(&elementDaylight->emission());
     links.clear();  // moved from; the next round starts from the system's links
 
     r.system->setVisibleArea(state);
     pull(h, state);
-    info.refineSeconds = since(t);
+    info.refineSeconds = since(t) - daylightSeconds;
     info.rays = stats.rays;
     info.links = static_cast<long long>(r.system->links().size());
     info.nodes = h.size();
@@ -533,6 +576,13 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
     r.escapeRays.push_back(escapeRays[n]);
   }
   for (const HLink& l : r.system->links()) ++r.linksByKind[static_cast<int>(linkKind(h, l))];
+  if (elementDaylight) {
+    r.daylight = std::make_unique<Daylight>(elementDaylight->leafDaylight(h, r.leafNodes));
+    r.daylightPerLeaf = true;
+    r.daylightSplits = elementDaylight->splits();
+    r.daylightElements = elementDaylight->sampled();
+    r.seconds.daylight = elementDaylight->seconds();
+  }
   r.hierarchyBytes = h.bytes() + state.radiosity.capacity() * sizeof(Vec3) +
                      state.powerVector.capacity() * sizeof(state.powerVector[0]) +
                      (state.radiosityMin.capacity() + state.radiosityMax.capacity() +

@@ -39,6 +39,9 @@ struct HierarchicalSettings {
   GatherOrder order = GatherOrder::Jacobi;
   std::uint64_t seed = 1;
   std::size_t memoryBudget = std::size_t(8) << 30;
+  /// With a sky: daylight estimated on every leaf element (and elements split where it varies,
+  /// along sun shadow edges); false: once per input face, constant over its elements.
+  bool elementDaylight = true;
   /// Tolerance on max|ΔB|/‖E‖∞ and the sweep limit of the last round.
   SolverSettings stopping = [] {
     SolverSettings s;
@@ -92,9 +95,13 @@ struct HierarchicalResult {
   } seconds;
   std::vector<SurfaceResult> surfaces;
   EnergyBalance energy;
-  /// With a sky: its model and each input face's daylight (leaves take their face's).
+  /// With a sky: its model and the daylight of each leaf (daylight per element: indexed like
+  /// `leaves`) or of each input face (per face: leaves take their face's).
   std::unique_ptr<SkyModel> sky;
   std::unique_ptr<Daylight> daylight;
+  bool daylightPerLeaf = false;
+  long long daylightSplits = 0;    ///< elements split because their daylight varied
+  long long daylightElements = 0;  ///< elements whose daylight was estimated
 };
 
 /// \brief Solves a loaded scene. Throws std::invalid_argument for bad settings or a scene that
@@ -105,11 +112,14 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
 /// \brief The same on input faces made elsewhere (tests): `base` has one patch per input face,
 /// `surfaces` one entry per surface index.
 /// `daylight`, when given, is each input face's daylight (W/m²): its ρ-fold is added to the
-/// face's emission, so every face has radiometry of its own.
+/// face's emission, so every face has radiometry of its own. `sky`, when given (and
+/// settings.elementDaylight), lights every leaf element with daylight of its own instead
+/// (`daylight` is then ignored): result.daylight holds the leaves' (docs/daylight.md).
 HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiometry> surfaces,
                                      const HierarchicalSettings& settings,
                                      const PipelineLog& log = {},
-                                     const std::vector<Vec3>* daylight = nullptr);
+                                     const std::vector<Vec3>* daylight = nullptr,
+                                     const SkyModel* sky = nullptr);
 
 /// "jacobi" or "gauss-seidel"; throws std::invalid_argument otherwise.
 GatherOrder parseGatherOrder(const std::string& name);

@@ -74,7 +74,7 @@ int Hierarchy::buildClusters(std::vector<int>& faces, int begin, int end, int pa
     node.coneAngle = 0;
     for (int k = 0; k < p.vertexCount; ++k)
       node.radius = std::max(node.radius, length(m_base.vertex(p, k) - p.centroid));
-    node.reflectanceMax = maxComponent(m_surfaces[p.surface].reflectance);
+    node.reflectanceMax = maxComponent(m_surfaces[m_byFace ? f : p.surface].reflectance);
     m_faceNode[f] = at;
     return at;
   }
