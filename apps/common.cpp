@@ -1,6 +1,8 @@
 #include "apps/common.h"
 
 #include <cerrno>
+#include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +14,7 @@
 
 #include "geometry/scene_loader.h"
 #include "render/camera.h"
+#include "apps/report.h"
 #include "util/format.h"
 #include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
 #include "util/output_folder.h"
@@ -132,6 +135,11 @@ void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired)
       "Repair meshes instead of refusing them: weld duplicate vertices, drop duplicate and "
       "degenerate faces, cut non-manifold edges and vertices, stitch borders, orient; each "
       "change is reported (docs/bring-your-own-model.md)");
+  command.add_flag_function(
+      "--skip-self-intersections",
+      [&options](std::int64_t) { options.load.selfIntersections = false; },
+      "Skip the self-intersection check of every surface (a warning when found; about 8 s a "
+      "million triangles), for meshes known to be clean (docs/formats.md)");
 }
 
 void addImageSizeOptions(CLI::App& command, int& width, int& height, const std::string& what) {
@@ -170,7 +178,26 @@ Scene loadSceneReporting(const std::string& path, const LoadOptions& load, LoadR
   if (!camera.empty()) given = parseCamera("--camera", camera);
   LoadReport local;
   LoadReport& report = out ? *out : local;
-  Scene scene = loadScene(path, &report, load);
+  // Stages of loading that run over a second (a large mesh read and checked) show progress.
+  LoadOptions options = load;
+  Progress bar;
+  std::string stage;
+  std::chrono::steady_clock::time_point started;
+  bool shown = false;
+  if (!options.progress)
+    options.progress = [&](const std::string& name, double fraction) {
+      const auto now = std::chrono::steady_clock::now();
+      if (name != stage) {
+        stage = name;
+        started = now;
+        shown = false;
+      }
+      if (!shown && now - started < std::chrono::seconds(1)) return;
+      shown = true;
+      bar(name, fraction);
+    };
+  Scene scene = loadScene(path, &report, options);
+  bar.finish();
   for (const std::string& w : report.warnings) std::cerr << "radkit: warning: " << w << '\n';
   if (given) scene.camera = given;
   return scene;

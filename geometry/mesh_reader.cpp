@@ -1,5 +1,6 @@
-// Mesh and OBJ scene reading. PLY/OFF/STL go through OpenMesh's readers; OBJ through
-// tinyobjloader (double build) because it keeps groups and MTL materials.
+// Mesh and OBJ scene reading. PLY/OFF/STL of the common layouts go through the streaming
+// reader (mesh_stream.cpp), the rest through OpenMesh's readers; OBJ through tinyobjloader
+// (double build) because it keeps groups and MTL materials.
 #include "geometry/mesh_reader.h"
 #include "util/format.h"
 
@@ -20,6 +21,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "geometry/mesh_stream.h"
 #include "geometry/mesh_structure.h"
 #include "geometry/openmesh_errors.h"
 #include "geometry/scene_loader.h"
@@ -217,12 +219,16 @@ void compactVertices(const std::vector<Vec3>& all, Surface& surface, std::vector
 
 }  // namespace
 
-RawMesh readMeshFile(const std::string& path, bool repair) {
+RawMesh readMeshFile(const std::string& path, bool repair, const MeshReadProgress& progress,
+                     bool streaming) {
   std::error_code ec;
   if (!fs::exists(path, ec))
     throw InputError(path +
                      ": mesh file not found. Fix: give a path relative to the scene "
                      "file, or an absolute path.");
+  if (streaming)
+    if (std::optional<RawMesh> raw = readMeshStreaming(path, repair, progress))
+      return std::move(*raw);
   std::string offText;
   const long long declaredFaces = checkMeshStructure(path, &offText);
   checkTextMeshNumbers(path);

@@ -2,6 +2,7 @@
 // tinyobjloader. Internal to geometry/.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -17,12 +18,19 @@ struct RawMesh {
   std::size_t droppedFaces = 0;  ///< faces repeating a vertex, dropped when repairing
 };
 
+/// Called with the fraction of a mesh file read (0..1).
+using MeshReadProgress = std::function<void(double)>;
+
 /// \brief Reads a PLY, OFF, STL or OBJ file into one mesh, vertices in file order; throws
 /// InputError naming the file on a missing file, an unknown extension, unreadable content, a
 /// text number that is not a finite decimal (text_numbers.h) or a face repeating a vertex.
 /// Faces wound against their neighbours and non-manifold edges are left to validateScene.
 /// `repair`: faces repeating a vertex, which OpenMesh's readers drop, are counted instead.
-RawMesh readMeshFile(const std::string& path, bool repair = false);
+/// ASCII OFF, PLY and binary STL of the common layouts take the streaming reader
+/// (mesh_stream.h); `streaming` false reads every file the full way (checkMeshStructure,
+/// checkTextMeshNumbers, OpenMesh), the reference the streaming reader is tested against.
+RawMesh readMeshFile(const std::string& path, bool repair = false,
+                     const MeshReadProgress& progress = {}, bool streaming = true);
 
 /// \brief Loads an OBJ with its MTL as a whole scene: each OBJ object or group is a named
 /// surface; MTL Kd becomes reflectance and Ke emission.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bsdf/params.h"
+#include "geometry/face_indices.h"
 #include "geometry/vec3.h"
 
 namespace radkit {
@@ -41,9 +42,10 @@ Material makeMaterial(const std::string& name, const std::string& bsdf, const st
                       const Vec3& emission = {0, 0, 0});
 
 /// One face of a surface: indices into Surface::vertices, counter-clockwise seen from the
-/// front side (normal by the right-hand rule). Three or four vertices after loading.
+/// front side (normal by the right-hand rule). Three or four vertices after loading, held
+/// inline (face_indices.h: 24 bytes a face, no allocation).
 struct Face {
-  std::vector<int> vertices;
+  FaceIndices vertices;
 };
 
 /// A named surface: a polygon or a mesh with one material. Faces that share an edge share

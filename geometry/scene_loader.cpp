@@ -4,6 +4,10 @@
 
 #include <nlohmann/json.hpp>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -186,12 +190,13 @@ using MaterialIndex = std::unordered_map<std::string, int>;
 
 Surface readSurface(const json& j, std::size_t index, const Scene& scene,
                     const MaterialIndex& materialIndex, const std::string& file,
-                    const LoadOptions& options, LoadReport& report) {
+                    const LoadOptions& options, LoadReport& report, bool& selfIntersections) {
   std::string where = "surfaces[" + std::to_string(index) + "]";
   if (j.is_object() && j.contains("name") && j["name"].is_string())
     where += " (\"" + j["name"].get<std::string>() + "\")";
   ObjectReader r(j, where, file);
-  r.allowOnly({"name", "material", "polygon", "polygons", "mesh", "transform", "reverse"});
+  r.allowOnly({"name", "material", "polygon", "polygons", "mesh", "transform", "reverse",
+               "check_self_intersections"});
   Surface s;
   s.source = file + ": " + where;
   s.name = r.string("name", "surface" + std::to_string(index));
@@ -223,7 +228,12 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene,
     fs::path meshPath = fs::path(file).parent_path() / j.at("mesh").get<std::string>();
     RawMesh raw;
     try {
-      raw = readMeshFile(meshPath.string(), options.repair);
+      MeshReadProgress progress;
+      if (options.progress)
+        progress = [&](double f) {
+          options.progress("reading " + meshPath.filename().string(), f);
+        };
+      raw = readMeshFile(meshPath.string(), options.repair, progress);
     } catch (const InputError& e) {
       r.fail("reads its mesh: " + std::string(e.what()));
     }
@@ -234,6 +244,13 @@ Surface readSurface(const json& j, std::size_t index, const Scene& scene,
     s.vertices = std::move(raw.vertices);
     s.faces = std::move(raw.faces);
     s.source += " (mesh " + meshPath.string() + ")";
+  }
+  // For a mesh known to be clean: its self-intersection check (seconds a million faces) is
+  // skipped.
+  if (r.has("check_self_intersections")) {
+    if (!j.at("check_self_intersections").is_boolean())
+      r.fail("\"check_self_intersections\" must be true or false");
+    selfIntersections = j.at("check_self_intersections").get<bool>();
   }
   if (r.has("transform")) {
     if (!r.has("mesh")) r.fail("has a \"transform\": only mesh surfaces take one");
@@ -430,7 +447,8 @@ Camera readCamera(const json& j, const std::string& file) {
   return c;
 }
 
-Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadReport& report) {
+Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadReport& report,
+                    std::vector<bool>& selfIntersections) {
   const json root = readJsonFile(path, "scene file");
   Scene scene;
   scene.file = path;
@@ -455,11 +473,15 @@ Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadRep
   const json& surfaces = r.get("surfaces");
   if (!surfaces.is_array()) r.fail("\"surfaces\" must be an array");
   for (std::size_t i = 0; i < surfaces.size(); ++i) {
-    if (surfaces[i].is_object() && surfaces[i].contains("include"))
+    if (surfaces[i].is_object() && surfaces[i].contains("include")) {
       includeObj(surfaces[i], i, scene, materialIndex, path);
-    else
+    } else {
+      bool check = true;
       scene.surfaces.push_back(
-          readSurface(surfaces[i], i, scene, materialIndex, path, options, report));
+          readSurface(surfaces[i], i, scene, materialIndex, path, options, report, check));
+      selfIntersections.resize(scene.surfaces.size(), true);
+      selfIntersections.back() = check;
+    }
   }
   if (r.has("camera")) scene.camera = readCamera(root.at("camera"), path);
   if (r.has("sky")) scene.sky = readSky(root.at("sky"), path);
@@ -565,8 +587,11 @@ Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& 
   LoadReport local;
   LoadReport& out = report ? *report : local;
   Scene scene;
+  ValidationSettings settings;
+  settings.selfIntersections = options.selfIntersections;
+  settings.progress = options.progress;
   if (ext == ".json")
-    scene = loadJsonScene(path, options, out);
+    scene = loadJsonScene(path, options, out, settings.surfaceSelfIntersections);
   else if (ext == ".obj") {
     scene = loadObjScene(path, &out.warnings);
     if (std::none_of(scene.materials.begin(), scene.materials.end(),
@@ -590,9 +615,14 @@ Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& 
     throw InputError(path + ": unknown scene format '" + ext +
                      "'. Fix: give a .json scene or an .obj with its .mtl.");
   if (ext == ".obj" && !options.units.empty()) scene.units = options.units;
-  validateScene(scene, out, options.repair);
+  validateScene(scene, out, options.repair, settings);
   // A mesh named as too large says what the scene-wide size warning would, with its file.
   if (!warnOnUnitlessGiants(scene, out)) warnOnImplausibleSize(scene, out);
+#ifdef __GLIBC__
+  // Reading and checking a large mesh frees hundreds of megabytes of small blocks that malloc
+  // keeps; hand them back, so the scene's own size is what the process holds from here on.
+  malloc_trim(0);
+#endif
   return scene;
 }
 

@@ -1,6 +1,7 @@
 // Scene loading: JSON scenes (docs/formats.md) and OBJ/MTL files given directly as the scene.
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -44,6 +45,12 @@ struct LoadOptions {
   /// Repair meshes with CGAL's polygon mesh processing (weld, drop duplicate and degenerate
   /// faces, cut non-manifold edges and vertices, stitch, orient) instead of refusing them.
   bool repair = false;
+  /// Look for self-intersections in every surface (CGAL; a warning when found). The costliest
+  /// check on a large mesh (about 8 s a million triangles): false skips it, for meshes known to
+  /// be clean, as a surface's "check_self_intersections": false does for one surface.
+  bool selfIntersections = true;
+  /// Progress of the stages of loading (a stage name, the fraction done); may be empty.
+  std::function<void(const std::string& stage, double fraction)> progress;
 };
 
 /// Units LoadOptions::units and a JSON scene's "units" accept, and their size in metres.

@@ -1,6 +1,10 @@
 // Validation of a loaded scene: every check that names the file, surface and element.
 #pragma once
 
+#include <functional>
+#include <string>
+#include <vector>
+
 #include "geometry/scene.h"
 #include "geometry/scene_loader.h"
 
@@ -18,10 +22,22 @@ constexpr double kPlanarityTolerance = 1e-7;
 /// Repairs, with a warning: faces wound against their neighbours are reversed (CGAL's
 /// orient_polygon_soup), each edge-connected part keeping the winding most of its faces had.
 /// Normalises: polygons with more than four vertices, non-convex and non-planar quads are
-/// triangulated (non-planar ones with a warning). Warns on self-intersections (CGAL).
+/// triangulated (non-planar ones with a warning). Warns on self-intersections (CGAL) unless
+/// `settings` skip that check. Edge checks run in linear time and memory, face checks in
+/// parallel.
 /// `repair`: each surface first goes through repairMesh, which turns repeated and degenerate
 /// faces and non-manifold edges into repairs (LoadReport::repairs) instead of errors.
-void validateScene(Scene& scene, LoadReport& report, bool repair = false);
+/// What validateScene may leave out, and where it reports progress.
+struct ValidationSettings {
+  bool selfIntersections = true;  ///< LoadOptions::selfIntersections
+  /// Per surface (by index; shorter means true): false skips its self-intersection check
+  /// (a surface's "check_self_intersections": false).
+  std::vector<bool> surfaceSelfIntersections;
+  /// A stage ("checking NAME", "self-intersections NAME") and the fraction done.
+  std::function<void(const std::string&, double)> progress;
+};
+void validateScene(Scene& scene, LoadReport& report, bool repair = false,
+                   const ValidationSettings& settings = {});
 
 /// \brief Repairs a surface with CGAL's polygon mesh processing: welds vertices at one
 /// position, drops faces repeating a vertex or of zero area (exact predicate) and duplicate
@@ -39,6 +55,8 @@ constexpr double kMinEmission = 1e-60, kMaxEmission = 1e60;
 
 /// Reports exact self-intersections between non-adjacent faces of one surface (CGAL PMP).
 /// Returns the number of intersecting face pairs found (0 when clean).
-std::size_t countSelfIntersections(const Surface& surface);
+/// `progress` hears the fraction done after each of its steps.
+std::size_t countSelfIntersections(const Surface& surface,
+                                   const std::function<void(double)>& progress = {});
 
 }  // namespace radkit
