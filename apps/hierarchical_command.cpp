@@ -253,6 +253,8 @@ void runHierarchicalJob(HierarchicalJob job) {
   validateHierarchicalSettings(job.settings);
   LoadReport loaded;
   Scene scene = loadSceneReporting(job.scene, job.load, &loaded, job.camera);
+  const double loadSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   addBackSides(scene);  // two-sided surfaces exchange light on both sides
   if (job.out.empty()) job.out = defaultOutFolder(scene.name);
   OutputFolder folder(job.out);  // refuses an --out it cannot replace before the work, not after
@@ -266,6 +268,7 @@ void runHierarchicalJob(HierarchicalJob job) {
   std::vector<StageMemory> loadMemory;
   markStageMemory(loadMemory, "load");  // the scene read and checked
   HierarchicalResult r = solveHierarchical(scene, job.settings, log);
+  const auto solved = std::chrono::steady_clock::now();
   r.memory.insert(r.memory.begin(), loadMemory.begin(), loadMemory.end());
   progress.finish();
   for (const std::string& w : hierarchicalWarnings(scene, r))
@@ -352,12 +355,17 @@ void runHierarchicalJob(HierarchicalJob job) {
   if (!linkCheck.is_null()) report["link_check"] = linkCheck;
   if (r.daylight) report["daylight"] = daylightJson(*r.sky, *r.daylight);
   if (panorama) report["sky_panorama"] = *panorama;
-  report["seconds"] = {{"hierarchy", r.seconds.hierarchy},
+  report["seconds"] = {{"load", loadSeconds},
+                       {"input_faces", r.seconds.inputFaces},
+                       {"hierarchy", r.seconds.hierarchy},
                        {"ray_scene", r.seconds.rayScene},
                        {"daylight", r.seconds.daylight},
                        {"links", r.seconds.refine},
                        {"solve", r.seconds.solve},
                        {"results", r.seconds.results},
+                       {"outputs", std::chrono::duration<double>(
+                                       std::chrono::steady_clock::now() - solved)
+                                       .count()},
                        {"total", total}};
   report["peak_memory_bytes"] = peakMemoryBytes();
   markStageMemory(r.memory, "outputs");

@@ -250,7 +250,7 @@ HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSetti
                                            scene.sky && !perElement ? &faceDaylight : nullptr,
                                            perElement ? sky.get() : nullptr);
   r.memory.insert(r.memory.begin(), memory.begin(), memory.end());
-  r.seconds.hierarchy += meshSeconds;
+  r.seconds.inputFaces = meshSeconds;
   r.seconds.daylight += daylightSeconds;
   start = Clock::now();
   std::vector<int> leafFace(r.leaves.size());

@@ -91,7 +91,8 @@ struct HierarchicalResult {
   /// "ray scene", "links and solve" (the rounds interleave them), "results".
   std::vector<StageMemory> memory;
   struct Seconds {
-    double hierarchy = 0, rayScene = 0, daylight = 0, refine = 0, solve = 0, results = 0;
+    double inputFaces = 0, hierarchy = 0, rayScene = 0, daylight = 0, refine = 0, solve = 0,
+           results = 0;
   } seconds;
   std::vector<SurfaceResult> surfaces;
   EnergyBalance energy;
