@@ -11,6 +11,7 @@
 #include "hierarchy/link_matrix.h"
 #include "hierarchy/refine.h"
 #include "output/run_files.h"
+#include "radiosity/presets.h"
 #include "render/hdr_io.h"
 #include "render/radiosity_image.h"
 #include "util/output_folder.h"
@@ -99,9 +100,10 @@ nlohmann::json memoryJson(const std::vector<StageMemory>& stages, std::size_t in
   for (const StageMemory& m : stages)
     list.push_back({{"stage", m.stage}, {"resident_bytes", m.resident}, {"peak_bytes", m.peak}});
   const std::size_t peak = stages.empty() ? 0 : stages.back().peak;
-  return {{"stages", list},
-          {"input_faces", inputFaces},
-          {"peak_bytes_per_input_face", double(peak) / double(std::max<std::size_t>(1, inputFaces))}};
+  return {
+      {"stages", list},
+      {"input_faces", inputFaces},
+      {"peak_bytes_per_input_face", double(peak) / double(std::max<std::size_t>(1, inputFaces))}};
 }
 
 void renderLeaves(OutputFolder& folder, const Scene& scene, const HierarchicalResult& r,
@@ -134,16 +136,16 @@ std::vector<std::string> hierarchicalWarnings(const Scene& scene, const Hierarch
   for (std::size_t k = 0; k < scene.surfaces.size(); ++k) {
     const Material& m = scene.materials[scene.surfaces[k].material];
     if (maxComponent(m.emission) > 0 || r.zeroIrradianceShare[k] < kDarkShareWarning) continue;
-    darkList += (darkList.empty() ? "" : ", ") + ("\"" + scene.surfaces[k].name + "\" " +
-                                                  fmt("%.0f", 100 * r.zeroIrradianceShare[k]) +
-                                                  " %");
+    darkList +=
+        (darkList.empty() ? "" : ", ") + ("\"" + scene.surfaces[k].name + "\" " +
+                                          fmt("%.0f", 100 * r.zeroIrradianceShare[k]) + " %");
   }
   if (!darkList.empty())
     out.push_back(scene.file + ": no light at all reached " + darkList +
                   " of the area. If these surfaces should be lit, check that their faces point "
                   "toward the light (a mesh wound inward needs \"reverse\": true)");
-  const double se = maxComponent(r.escapedStandardError) /
-                    std::max(1e-300, maxComponent(r.energy.emitted));
+  const double se =
+      maxComponent(r.escapedStandardError) / std::max(1e-300, maxComponent(r.energy.emitted));
   if (r.energy.relativeImbalance > std::max(kImbalanceWarning, 4 * se)) {
     // Elements split into quarters keep their face's shape: a sliver stays a sliver.
     const PatchMesh& base = r.hierarchy->base();
@@ -153,9 +155,8 @@ std::vector<std::string> hierarchicalWarnings(const Scene& scene, const Hierarch
       if (const double a = base.aspectRatio(base.patches[f]); a > aspect) aspect = a, worst = f;
     const std::string sliver =
         aspect > kSliverAspect
-            ? " Input faces as elongated as \"" +
-                  scene.surfaces[base.patches[worst].surface].name + "\"'s (aspect ratio " +
-                  fmt("%.3g", aspect) +
+            ? " Input faces as elongated as \"" + scene.surfaces[base.patches[worst].surface].name +
+                  "\"'s (aspect ratio " + fmt("%.3g", aspect) +
                   ") stay so when split, and their light is not resolved: split them in the "
                   "scene into pieces no longer than a few times their width."
             : "";
@@ -182,14 +183,13 @@ void printSummary(const Scene& scene, const HierarchicalResult& r, const Hierarc
   printField("links", std::to_string(links) + " (" + std::to_string(r.linksByKind[0]) +
                           " element-element), " + std::to_string(r.raysCast) + " rays");
   if (r.daylight)
-    printField("daylight", r.sky->typeName() + " sky" + (r.sky->hasSun() ? " and sun" : "") + ", " +
-                               std::to_string(r.daylight->rays) + " rays on " +
-                               (r.daylightPerLeaf
-                                    ? std::to_string(r.daylightElements) + " elements, " +
-                                          std::to_string(r.daylightSplits) +
-                                          " split where it varies"
-                                    : "the " + std::to_string(r.hierarchy->base().size()) +
-                                          " input faces"));
+    printField("daylight",
+               r.sky->typeName() + " sky" + (r.sky->hasSun() ? " and sun" : "") + ", " +
+                   std::to_string(r.daylight->rays) + " rays on " +
+                   (r.daylightPerLeaf
+                        ? std::to_string(r.daylightElements) + " elements, " +
+                              std::to_string(r.daylightSplits) + " split where it varies"
+                        : "the " + std::to_string(r.hierarchy->base().size()) + " input faces"));
   printField("seconds", "hierarchy " + fmt("%.2f", r.seconds.hierarchy) + ", rays " +
                             fmt("%.2f", r.seconds.rayScene) +
                             (r.daylight ? ", daylight " + fmt("%.2f", r.seconds.daylight) : "") +
@@ -207,11 +207,12 @@ void printSummary(const Scene& scene, const HierarchicalResult& r, const Hierarc
 }  // namespace
 
 void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& o) {
-  run.add_option("--method", o.method,
-                 "dense: F for every patch pair; hierarchical: links between clusters and "
-                 "elements refined to --epsilon (docs/hierarchical.md)")
-      ->check(CLI::IsMember({"dense", "hierarchical"}))
-      ->capture_default_str();
+  o.methodOption =
+      run.add_option("--method", o.method,
+                     "dense: F for every patch pair; hierarchical: links between clusters and "
+                     "elements refined to --epsilon (docs/hierarchical.md)")
+          ->check(CLI::IsMember({"dense", "hierarchical"}))
+          ->capture_default_str();
   run.add_option(
          "--epsilon", o.settings.epsilon,
          "Hierarchical: largest error a link may carry, as a fraction of the emitted power (of a "
@@ -343,7 +344,8 @@ void runHierarchicalJob(HierarchicalJob job) {
        {{"rays_per_leaf", 32},
         {"rays_per_emitting_leaf", 1024},
         {"rays_per_emitting_leaf_max", 65536},
-        {"rays_cast", [&] {
+        {"rays_cast",
+         [&] {
            long long n = 0;
            for (int k : r.escapeRays) n += k;
            return n;
@@ -352,21 +354,22 @@ void runHierarchicalJob(HierarchicalJob job) {
          {r.escapedStandardError.x, r.escapedStandardError.y, r.escapedStandardError.z}}}},
       {"surfaces", surfacesJson(r.surfaces)}};
   report["load"] = loadJson(loaded);
+  if (!job.preset.empty())
+    report["preset"] = {{"name", job.preset}, {"description", describePreset(job.preset)}};
   if (!linkCheck.is_null()) report["link_check"] = linkCheck;
   if (r.daylight) report["daylight"] = daylightJson(*r.sky, *r.daylight);
   if (panorama) report["sky_panorama"] = *panorama;
-  report["seconds"] = {{"load", loadSeconds},
-                       {"input_faces", r.seconds.inputFaces},
-                       {"hierarchy", r.seconds.hierarchy},
-                       {"ray_scene", r.seconds.rayScene},
-                       {"daylight", r.seconds.daylight},
-                       {"links", r.seconds.refine},
-                       {"solve", r.seconds.solve},
-                       {"results", r.seconds.results},
-                       {"outputs", std::chrono::duration<double>(
-                                       std::chrono::steady_clock::now() - solved)
-                                       .count()},
-                       {"total", total}};
+  report["seconds"] = {
+      {"load", loadSeconds},
+      {"input_faces", r.seconds.inputFaces},
+      {"hierarchy", r.seconds.hierarchy},
+      {"ray_scene", r.seconds.rayScene},
+      {"daylight", r.seconds.daylight},
+      {"links", r.seconds.refine},
+      {"solve", r.seconds.solve},
+      {"results", r.seconds.results},
+      {"outputs", std::chrono::duration<double>(std::chrono::steady_clock::now() - solved).count()},
+      {"total", total}};
   report["peak_memory_bytes"] = peakMemoryBytes();
   markStageMemory(r.memory, "outputs");
   report["memory"] = memoryJson(r.memory, r.hierarchy->base().size());

@@ -13,6 +13,7 @@ namespace radkit::app {
 
 struct HierarchicalOptions {
   std::string method = "dense";
+  CLI::Option* methodOption = nullptr;  ///< --method, to tell a given one from the default
   HierarchicalSettings settings;
   std::string gather = "jacobi";
   std::string linkColour = "F";
@@ -33,6 +34,7 @@ struct HierarchicalJob {
   bool noRender = false, photometric = false, smooth = false;
   int imageWidth = 512, imageHeight = 512;
   int checkLinks = 0;
+  std::string preset;  ///< the --preset that chose this method, for report.json
 };
 
 /// Parses --gather and --link-colour, refuses dense-only options; throws CLI::ValidationError.

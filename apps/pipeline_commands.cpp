@@ -145,7 +145,7 @@ void runHierarchical(PipelineCommand& cmd) {
   std::vector<std::string> refused;
   for (const CLI::Option* o : cmd.hierarchical.denseOnly)
     if (o && o->count() > 0) refused.push_back(o->get_name());
-  if (!cmd.preset.empty()) refused.push_back("--preset");
+  if (!cmd.preset.empty() && !presetIsHierarchical(cmd.preset)) refused.push_back("--preset");
   if (cmd.adaptive) refused.push_back("--adaptive");
   if (!refused.empty()) {
     std::string list;
@@ -173,6 +173,7 @@ void runHierarchical(PipelineCommand& cmd) {
   job.imageWidth = cmd.imageWidth, job.imageHeight = cmd.imageHeight;
   job.camera = cmd.camera;
   job.checkLinks = cmd.hierarchical.checkLinks;
+  job.preset = cmd.preset;
   runHierarchicalJob(job);
 }
 
@@ -199,26 +200,26 @@ std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene,
       message.erase(last, fewer.size());  // the last fix: ", use fewer ... smaller)"
     }
   }
-  message += atFloor ? ". The mesh is at its floor: " + std::to_string(faces) +
-                           " input faces, and a patch never spans two, so fewer patches cannot help."
-               : floorTooBig
-                   ? ". Fewer patches cannot help enough: at the floor of " +
-                         std::to_string(faces) +
-                         " patches (one per input face; a patch never spans two) F would "
-                         "still need about " +
-                         formatBytes(atFloorBytes) + "."
-                   : ". Fewer patches help down to about " + std::to_string(faces) +
-                         ", the scene's input faces (a patch never spans two).";
+  message += atFloor
+                 ? ". The mesh is at its floor: " + std::to_string(faces) +
+                       " input faces, and a patch never spans two, so fewer patches cannot help."
+             : floorTooBig
+                 ? ". Fewer patches cannot help enough: at the floor of " + std::to_string(faces) +
+                       " patches (one per input face; a patch never spans two) F would "
+                       "still need about " +
+                       formatBytes(atFloorBytes) + "."
+                 : ". Fewer patches help down to about " + std::to_string(faces) +
+                       ", the scene's input faces (a patch never spans two).";
   if (cmd.job == Job::Run) {
     // Peak memory of `run --method hierarchical --no-render` on the shipped scenes, less
     // radkit's own 40 MiB: terrain-room.json 4.9 kB per input face (51 201 faces, 291 MiB),
     // models/spot-room.json 17 kB (5 870 faces, 141 MiB).
     const double base = 40.0 * 1024 * 1024;
     const double low = base + 4.9e3 * double(faces), high = base + 17e3 * double(faces);
-    message += " --method hierarchical keeps no n×n matrix: on the shipped scenes it took 40 MiB "
-               "and 4.9-17 kB per input face, about " +
-               formatBytes(low) + " to " + formatBytes(high) +
-               " here (docs/bring-your-own-model.md)";
+    message +=
+        " --method hierarchical keeps no n×n matrix: on the shipped scenes it took 40 MiB "
+        "and 4.9-17 kB per input face, about " +
+        formatBytes(low) + " to " + formatBytes(high) + " here (docs/bring-your-own-model.md)";
   }
   return message;
 }
@@ -228,6 +229,22 @@ void runJob(PipelineCommand& cmd) {
   cmd.ff.finish();
   if (cmd.job != Job::FormFactors) cmd.solver.finish();
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
+  if (!cmd.preset.empty() && presetIsHierarchical(cmd.preset)) {
+    // A preset that picks the hierarchical method: only `run` has it, and a --method given
+    // explicitly must agree (explicit options win, so a disagreement has no right answer).
+    const std::string flag = "--preset " + cmd.preset;
+    if (cmd.job != Job::Run)
+      throw CLI::ValidationError(flag,
+                                 "runs hierarchical radiosity, which only `radkit run` "
+                                 "does; use a dense preset (draft, balanced, reference)");
+    if (cmd.hierarchical.methodOption && cmd.hierarchical.methodOption->count() > 0 &&
+        cmd.hierarchical.method != "hierarchical")
+      throw CLI::ValidationError(flag, "runs --method hierarchical, not --method " +
+                                           cmd.hierarchical.method +
+                                           "; drop one of the two, or use a dense preset "
+                                           "(draft, balanced, reference)");
+    cmd.hierarchical.method = "hierarchical";
+  }
   if (cmd.job == Job::Run && cmd.hierarchical.method == "hierarchical") return runHierarchical(cmd);
   if (cmd.hierarchical.checkLinks > 0)
     throw CLI::ValidationError("--check-links",
@@ -241,7 +258,7 @@ void runJob(PipelineCommand& cmd) {
   addBackSides(scene);  // two-sided surfaces exchange light on both sides
   if (cmd.out.empty() && cmd.job == Job::Run)
     cmd.out = defaultOutFolder(scene.name);  // required for the others
-  OutputFolder folder(cmd.out);     // refuses an --out it cannot replace before the work, not after
+  OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the work, not after
 
   PipelineSettings settings = pipelineSettings(cmd);
   Progress progress;

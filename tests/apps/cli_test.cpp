@@ -97,8 +97,10 @@ TEST(FormFactorsCli, ThreadsAndPairLevels) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   json selected = readJson(dir.path("1/report.json"))["form_factors"]["pairs"]["by_rule"];
   json adaptive = readJson(dir.path("a/report.json"))["form_factors"]["pairs"]["by_rule"];
-  EXPECT_GT(selected["tensor_level_3"].get<long long>() + selected["tensor_level_4"].get<long long>(), 0);
-  EXPECT_EQ(adaptive["tensor_level_3"].get<long long>() + adaptive["tensor_level_4"].get<long long>(), 0);
+  EXPECT_GT(
+      selected["tensor_level_3"].get<long long>() + selected["tensor_level_4"].get<long long>(), 0);
+  EXPECT_EQ(
+      adaptive["tensor_level_3"].get<long long>() + adaptive["tensor_level_4"].get<long long>(), 0);
   for (auto& row : readCsv(dir.path("a/surface_formfactors.csv")))
     EXPECT_NEAR(surfaceFactor(dir.path("1/surface_formfactors.csv"), row["from"], row["to"]),
                 std::stod(row["F"]), 2e-6)
@@ -228,6 +230,29 @@ TEST(RunCli, PresetAndExplicitOptions) {
   EXPECT_NEAR(readJson(dir.path("b/report.json"))["mesh"]["patches"].get<double>(), 200, 20);
   EXPECT_NE(runRadkit("run --preset turbo --out '" + dir.path("c") + "'").exitCode, 0);
   EXPECT_FALSE(fs::exists(dir.path("c")));
+}
+
+// The large preset runs the hierarchical method; a disagreeing --method, a dense-only option or
+// another command with it is refused before anything is written.
+TEST(RunCli, LargePresetRunsHierarchical) {
+  test::TempDir dir;
+  auto r = runRadkit("run --preset large --no-render --out '" + dir.path("a") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  json a = readJson(dir.path("a/report.json"));
+  EXPECT_EQ(a["method"], "hierarchical");
+  EXPECT_EQ(a["preset"]["name"], "large");
+  EXPECT_GT(a["hierarchy"]["links"].get<double>(), 0);
+  r = runRadkit("run --preset large --method dense --out '" + dir.path("b") + "'");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--method dense"), std::string::npos) << r.output;
+  r = runRadkit("run --preset large --patches 200 --out '" + dir.path("c") + "'");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--patches"), std::string::npos) << r.output;
+  r = runRadkit("formfactors '" + dataPath("cornell-box.json") + "' --preset large --out '" +
+                dir.path("d") + "'");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("only `radkit run`"), std::string::npos) << r.output;
+  for (const char* d : {"b", "c", "d"}) EXPECT_FALSE(fs::exists(dir.path(d))) << d;
 }
 
 TEST(RunCli, AdaptiveStaysInBudgetAndBalancesEnergy) {

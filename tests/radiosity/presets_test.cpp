@@ -9,11 +9,12 @@
 namespace radkit {
 
 TEST(Presets, ConstructNamesInOrderOfCost) {
-  EXPECT_EQ(presetNames(), (std::vector<std::string>{"draft", "balanced", "reference"}));
+  EXPECT_EQ(presetNames(), (std::vector<std::string>{"draft", "balanced", "reference", "large"}));
   PipelineSettings previous;
   previous.mesh.targetPatches = 0;
   previous.stopping.tolerance = 1;
   for (const std::string& name : presetNames()) {
+    if (presetIsHierarchical(name)) continue;
     PipelineSettings s;
     applyPreset(name, s);
     EXPECT_GT(s.mesh.targetPatches, previous.mesh.targetPatches) << name;
@@ -34,6 +35,23 @@ TEST(Presets, ConstructUnknownNameListsTheKnownOnes) {
     EXPECT_NE(m.find("fast"), std::string::npos) << m;
   }
   EXPECT_THROW(describePreset(""), std::invalid_argument);
+}
+
+// The hierarchical preset picks a method and leaves every dense setting as it was.
+TEST(Presets, ConstructLargeIsHierarchicalAndChangesNoDenseSetting) {
+  EXPECT_TRUE(presetIsHierarchical("large"));
+  for (const char* dense : {"draft", "balanced", "reference"})
+    EXPECT_FALSE(presetIsHierarchical(dense));
+  EXPECT_THROW(presetIsHierarchical("fast"), std::invalid_argument);
+  PipelineSettings s, before;
+  s.mesh.targetPatches = before.mesh.targetPatches = 123;
+  applyPreset("large", s);
+  EXPECT_EQ(s.mesh.targetPatches, 123);
+  EXPECT_EQ(s.mesh.maxArea, before.mesh.maxArea);
+  EXPECT_EQ(s.formFactors.method, before.formFactors.method);
+  EXPECT_EQ(s.formFactors.samples, before.formFactors.samples);
+  EXPECT_EQ(s.stopping.tolerance, before.stopping.tolerance);
+  EXPECT_NE(describePreset("large").find("hierarchical"), std::string::npos);
 }
 
 // A preset changes only its fields; values set after it (explicit options) stay.
