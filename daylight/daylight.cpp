@@ -79,22 +79,23 @@ Daylight computeDaylight(const PatchMesh& mesh, const RayScene& rays, const SkyM
   d.rays = (long long)n * (skySamples + sunSamples);
 
   std::vector<std::pair<double, double>> relative;  // (SE/E, area) over lit patches
-  double lit = 0;
   for (int i = 0; i < n; ++i) {
     const double e = d.sky[i].x + d.sky[i].y + d.sky[i].z;
     if (!(e > 0)) continue;
     relative.push_back({d.skyStandardError[i] / e, mesh.patches[i].area});
-    lit += mesh.patches[i].area;
   }
-  std::sort(relative.begin(), relative.end());
-  double area = 0;
-  for (const auto& [rel, a] : relative)
-    if ((area += a) >= lit / 2) {
-      d.skyNoise = rel;
-      break;
-    }
+  d.skyNoise = areaWeightedMedian(std::move(relative));
   d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return d;
+}
+
+double areaWeightedMedian(std::vector<std::pair<double, double>> values) {
+  double total = 0, area = 0;
+  for (const auto& v : values) total += v.second;
+  std::sort(values.begin(), values.end());
+  for (const auto& [value, a] : values)
+    if ((area += a) >= total / 2) return value;
+  return 0;
 }
 
 }  // namespace radkit

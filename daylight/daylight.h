@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "daylight/sky.h"
@@ -27,6 +28,9 @@ struct Daylight {
 
   Vec3 total(int i) const { return sky[i] + sun[i]; }
 };
+
+/// \brief The area-weighted median of (value, area) pairs (Daylight::skyNoise); 0 when empty.
+double areaWeightedMedian(std::vector<std::pair<double, double>> values);
 
 /// \brief Daylight of every patch of `mesh` (front sides only, as radiosity's patches
 /// receive): `sky.description().samples` sky rays and `sunSamples` sun rays per patch, on

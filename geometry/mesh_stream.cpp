@@ -360,16 +360,6 @@ struct Property {
   bool isFloat = false, isSigned = false;
 };
 
-int typeSize(const std::string& type) {
-  static const std::pair<const char*, int> types[] = {
-      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
-      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
-      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-  for (const auto& t : types)
-    if (type == t.first) return t.second;
-  return 0;
-}
-
 /// Binary values of either byte order.
 struct Bytes {
   const unsigned char* p;
@@ -452,12 +442,12 @@ RawMesh readPly(MappedFile& file, const std::string& path, bool repair,
       if (!list && t.size() != 3) throw Fallback{};
       p.name = t.back();
       p.type = t[t.size() - 2];
-      p.size = typeSize(p.type);
+      p.size = structure::plyTypeSize(p.type);
       p.isFloat = p.type.find_first_of("fd") == 0;
       p.isSigned = p.type[0] != 'u';
       if (list) {
         p.countType = t[2];
-        p.countSize = typeSize(t[2]);
+        p.countSize = structure::plyTypeSize(t[2]);
         if (p.countSize == 0 || t[2][0] == 'f' || t[2][0] == 'd') throw Fallback{};
       }
       if (p.size == 0) throw Fallback{};

@@ -24,16 +24,6 @@ struct PlyElement {
   std::vector<PlyProperty> properties;
 };
 
-int plyTypeSize(const std::string& type) {
-  static const std::pair<const char*, int> types[] = {
-      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
-      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
-      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-  for (const auto& t : types)
-    if (type == t.first) return t.second;
-  return 0;
-}
-
 /// Reads the values of a binary PLY body, checking that each lies inside the file.
 class BinaryCursor {
  public:
@@ -173,6 +163,16 @@ void checkPlyBody(const Fail& fail, const std::string& text, std::size_t pos, lo
 }
 
 }  // namespace
+
+int plyTypeSize(const std::string& type) {
+  static const std::pair<const char*, int> types[] = {
+      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
+      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+  for (const auto& t : types)
+    if (type == t.first) return t.second;
+  return 0;
+}
 
 long long checkPly(const Fail& fail, const std::string& text, std::vector<long long>* strips) {
   Lines lines(text);

@@ -130,6 +130,9 @@ inline void checkFaceSize(const Fail& fail, long line, long long face, long long
                       " vertices. Fix: a face needs at least 3 vertex indices.");
 }
 
+/// Bytes of a PLY scalar type ("uchar", "float32", ...); 0 for a name PLY does not have.
+int plyTypeSize(const std::string& type);
+
 /// The PLY check (ply_structure.cpp): returns the face count the header declares.
 /// `strips`: when given, the vertex indices of a "tristrips" element, each strip ended by -1.
 long long checkPly(const Fail& fail, const std::string& text,

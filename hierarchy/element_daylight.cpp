@@ -183,7 +183,6 @@ Daylight ElementDaylight::leafDaylight(const Hierarchy& h, const std::vector<int
   d.sky.resize(n), d.sun.resize(n), d.skyViewFactor.resize(n), d.skyStandardError.resize(n),
       d.skyViewFactorStandardError.resize(n);
   std::vector<std::pair<double, double>> relative;  // (SE/E, area) over lit leaves
-  double lit = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const int k = leaves[i];
     d.sky[i] = m_sky[k], d.sun[i] = m_sun[k];
@@ -193,15 +192,8 @@ Daylight ElementDaylight::leafDaylight(const Hierarchy& h, const std::vector<int
     const double e = m_sky[k].x + m_sky[k].y + m_sky[k].z;
     if (!(e > 0)) continue;
     relative.push_back({m_skyError[k] / e, h[k].area});
-    lit += h[k].area;
   }
-  std::sort(relative.begin(), relative.end());
-  double area = 0;
-  for (const auto& [rel, a] : relative)
-    if ((area += a) >= lit / 2) {
-      d.skyNoise = rel;
-      break;
-    }
+  d.skyNoise = areaWeightedMedian(std::move(relative));
   d.rays = m_rayCount;
   d.seconds = m_seconds;
   return d;
