@@ -3,5 +3,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
-# Tests labelled long (a million-face run) are left out: `ctest --test-dir build -L long`.
-ctest --test-dir build --output-on-failure -j"${RADKIT_JOBS:-2}" --timeout 600 -LE long
+ctest --test-dir build --output-on-failure -j"${RADKIT_JOBS:-2}" --timeout 600
