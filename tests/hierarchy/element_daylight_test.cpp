@@ -183,7 +183,15 @@ TEST(ElementDaylight, PerFaceDaylightMissesTheEdge) {
   EXPECT_FALSE(h.daylightPerLeaf);
   EXPECT_EQ(h.daylightSplits, 0);
   const Rect edge{-1.3, -1.1, 0.2, 0.6};
-  const double face = region(s.scene, h.leaves, h.radiosity, *h.daylight, edge).mean;
+  // Per face, the result's daylight is per input face: each leaf takes its face's.
+  Daylight leafDaylight;
+  for (int n : h.leafNodes) {
+    const int f = (*h.hierarchy)[n].face;
+    leafDaylight.sun.push_back(h.daylight->sun[f]);
+    leafDaylight.skyStandardError.push_back(h.daylight->skyStandardError[f]);
+  }
+  ASSERT_EQ(leafDaylight.sun.size(), std::size_t(h.leaves.size()));
+  const double face = region(s.scene, h.leaves, h.radiosity, leafDaylight, edge).mean;
   const double dense =
       region(s.scene, s.dense.mesh, s.dense.radiosity, *s.dense.daylight, edge).mean;
   std::printf("daylight per input face: west edge strip %.3f against dense %.3f (%+.1f %%)\n", face,
