@@ -585,7 +585,10 @@ RawMesh readPly(MappedFile& file, const std::string& path, bool repair,
         continue;
       }
       long long n = 0;
-      if (!parseInt(b, e, n) || n < 3) throw Fallback{};
+      // Each index takes two bytes at least ("0 "): a count the rest of the file cannot hold is
+      // the full path's to word (and reserving it would allocate without bound).
+      if (!parseInt(b, e, n) || n < 3 || double(n) * 2 > double(file.size() - cursor.pos()) + 1)
+        throw Fallback{};
       face.reserve(std::size_t(n));
       for (long long i = 0; i < n; ++i) {
         long long index = 0;

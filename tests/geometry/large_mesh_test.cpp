@@ -310,6 +310,18 @@ TEST(LargeMesh, PlyPromisingMoreVerticesThanItHoldsIsNamed) {
   expectMentions(loadError(test::lampMeshScene(dir, "v.ply")), {"v.ply", "Fix"});
 }
 
+// An ASCII PLY face row that claims more indices than the file could hold (found by fuzzing:
+// the count was reserved before it was checked, 600 GB): an error naming the file, no
+// allocation without bound.
+TEST(LargeMesh, AsciiPlyFaceClaimingBillionsOfIndicesIsNamed) {
+  test::TempDir dir;
+  dir.file("n.ply",
+           "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+           "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+           "end_header\n0 0 0\n1 0 0\n0 1 0\n152000000000 0 1 2\n");
+  expectMentions(loadError(test::lampMeshScene(dir, "n.ply")), {"n.ply", "Fix"});
+}
+
 /// A million-face mesh with a NaN coordinate half-way: the error names the file, the vertex and
 /// the fix; through the command line the run fails and leaves no output folder.
 TEST(LargeMesh, NanVertexInAMillionFacesIsNamed) {
