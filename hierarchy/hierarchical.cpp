@@ -460,13 +460,11 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
                   links.end());
     std::vector<float> closed = closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape,
                                              hidden, escapeRays, emitted);
-
     r.system.reset();
     r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed,
                                                     hidden, &state);
     if (elementDaylight) r.system->setEmission(&elementDaylight->emission());
     links.clear();  // moved from; the next round starts from the system's links
-
     r.system->setVisibleArea(state);
     pull(h, state);
     info.refineSeconds = since(t) - daylightSeconds;
@@ -533,7 +531,6 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
       if (done) break;
     }
     info.solveSeconds = since(t);
-
     r.seconds.refine += info.refineSeconds;
     r.seconds.solve += info.solveSeconds;
     {
