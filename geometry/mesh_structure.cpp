@@ -182,6 +182,7 @@ long long checkStl(const Fail& fail, const std::string& text) {
   std::vector<std::string> t;
   long long facets = 0;
   int vertices = -1;  // -1: outside a facet
+  bool ended = false;  // the last solid is closed (CAD exports write one solid per body)
   while (lines.nextTokens(t)) {
     const long n = lines.number();
     if (t[0] == "facet") {
@@ -200,9 +201,12 @@ long long checkStl(const Fail& fail, const std::string& text) {
       ++facets;
     } else if (t[0] == "endsolid") {
       if (vertices >= 0) fail.at(n, "'endsolid' inside a facet." + std::string(kTruncated));
-      return facets;
+      ended = true;
+    } else if (t[0] == "solid") {
+      ended = false;
     }
   }
+  if (ended) return facets;
   fail("the file ends at line " + std::to_string(lines.number()) + " without 'endsolid' (after " +
        std::to_string(facets) + " complete facets)." + kTruncated);
 }

@@ -196,6 +196,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "t.stl",
                  std::string("solid t\n") + kFacet + kFacet + "facet normal 0 0 1\n",
                  {"without 'endsolid'", "after 2 complete facets"}},
+        MeshCase{"StlAsciiSecondSolidWithoutEndsolid",
+                 "t.stl",
+                 std::string("solid a\n") + kFacet + "endsolid a\nsolid b\n" + kFacet,
+                 {"without 'endsolid'", "after 2 complete facets"}},
         MeshCase{"StlBinaryTruncated",
                  "t.stl",
                  std::string(80, ' ') + std::string("\x05\0\0\0", 4) + std::string(60, '\0'),
@@ -263,6 +267,23 @@ TEST(MalformedMeshCli, OffFacesWithColoursAreAllRead) {
   const test::RunResult r = test::runRadkit("mesh '" + scene + "' --out '" + dir.path("out") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("total area: 6 m"), std::string::npos) << r.output;
+}
+
+// CAD programs write one solid per body into an ASCII STL (trimesh's multibody.stl and
+// two_objects_mixed_case_names.stl): every solid's facets are read, not only the first's.
+TEST(MalformedMeshCli, StlWithTwoSolidsReadsBoth) {
+  test::TempDir dir;
+  const char* far =
+      "facet normal 0 0 1\nouter loop\nvertex 5 0 0\nvertex 7 0 0\nvertex 5 2 0\nendloop\n"
+      "endfacet\n";
+  dir.file("two.stl", std::string("solid first body\n") + kFacet + "endsolid first body\n" +
+                          "solid Second\n" + far + "endsolid Second\n");
+  const std::string scene = dir.file("scene.json", R"({"materials": {"lamp": {"emission": [1,1,1]}},
+      "surfaces": [{"name": "two", "material": "lamp", "mesh": "two.stl"}]})");
+  const test::RunResult r = test::runRadkit("mesh '" + scene + "' --out '" + dir.path("out") + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // 0.5 m² from the first solid and 2 m² from the second.
+  EXPECT_NE(r.output.find("total area: 2.5 m"), std::string::npos) << r.output;
 }
 
 TEST(MalformedMeshCli, AcceptsWellFormedVariants) {
