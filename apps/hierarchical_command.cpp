@@ -40,7 +40,7 @@ nlohmann::json hierarchyJson(const Scene& scene, const HierarchicalResult& r,
   for (int n = 0; n < h.size(); ++n) {
     if (h[n].element) {
       ++elements;
-      deepest = std::max(deepest, h[n].level);
+      deepest = std::max(deepest, int(h[n].level));
     } else {
       ++clusters;
     }
@@ -87,6 +87,7 @@ nlohmann::json hierarchyJson(const Scene& scene, const HierarchicalResult& r,
           {"cluster_link_landings_estimated", r.system->approximateLandings()},
           {"hierarchy_bytes", r.hierarchyBytes},
           {"link_bytes", r.linkBytes},
+          {"memory_budget_bytes", s.memoryBudget},
           {"daylight_per", r.sky ? (r.daylightPerLeaf ? "element" : "face") : "none"},
           {"elements_daylit", r.daylightElements},
           {"elements_split_for_daylight", r.daylightSplits},

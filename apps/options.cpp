@@ -84,7 +84,8 @@ void addFormFactorOptions(CLI::App& c, FormFactorOptions& o) {
       ->check(CLI::IsMember({"double", "float"}))
       ->capture_default_str();
   c.add_option("--memory-budget", o.memoryBudget,
-               "Memory F may use; dense when it fits, else sparse")
+               "Memory F may use (dense when it fits, else sparse). The hierarchical "
+               "method's tree and links: 3/4 of this machine's memory unless given")
       ->capture_default_str();
 }
 

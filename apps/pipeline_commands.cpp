@@ -35,7 +35,8 @@ struct PipelineCommand {
   AdaptiveSettings adaptiveSettings;
   HierarchicalOptions hierarchical;
   /// Options a preset must not override when the user gave them.
-  std::vector<CLI::Option*> meshFlags, methodFlag, samplesFlag, tolFlag, maxIterationsFlag;
+  std::vector<CLI::Option*> meshFlags, methodFlag, samplesFlag, tolFlag, maxIterationsFlag,
+      memoryBudgetFlag;
 };
 
 bool given(const std::vector<CLI::Option*>& flags) {
@@ -162,7 +163,8 @@ void runHierarchical(PipelineCommand& cmd) {
   job.out = cmd.out;
   job.settings = cmd.hierarchical.settings;
   job.settings.seed = cmd.ff.settings.seed;
-  job.settings.memoryBudget = cmd.ff.settings.memoryBudget;
+  // Dense F's default budget is a fixed 8 GiB; the hierarchy's follows the machine.
+  if (given(cmd.memoryBudgetFlag)) job.settings.memoryBudget = cmd.ff.settings.memoryBudget;
   job.settings.stopping = cmd.solver.stopping;
   // The dense default (10⁸ steps) is no bound on a gather's sweeps: the hierarchy has its own.
   if (!given(cmd.maxIterationsFlag))
@@ -173,6 +175,7 @@ void runHierarchical(PipelineCommand& cmd) {
   job.imageWidth = cmd.imageWidth, job.imageHeight = cmd.imageHeight;
   job.camera = cmd.camera;
   job.checkLinks = cmd.hierarchical.checkLinks;
+  job.settings.keepGatherArrays = job.checkLinks > 0;
   job.preset = cmd.preset;
   runHierarchicalJob(job);
 }
@@ -362,6 +365,7 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
   cmd->meshFlags = {sub->get_option("--patches"), sub->get_option("--max-area")};
   cmd->methodFlag = {sub->get_option("--ff")};
   cmd->samplesFlag = {sub->get_option("--ff-samples")};
+  cmd->memoryBudgetFlag = {sub->get_option("--memory-budget")};
   // `solvers` runs past 1e-9 so report.json's table of iterations to 1e-3, 1e-6 and 1e-9 is whole.
   if (job == Job::Solvers) cmd->solver.stopping.tolerance = 1e-10;
   if (job != Job::FormFactors) {

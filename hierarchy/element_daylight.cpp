@@ -70,8 +70,8 @@ void ElementDaylight::sample(const Hierarchy& h, const std::vector<int>& nodes) 
           quarterPolygons(p, kids, areas);
           for (double a : areas) total += a;
           const Frame frame(p.normal);
-          Rng skyRng(m_seed, h[n].key, 0x656c736b79ULL);  // "elsky"
-          Rng sunRng(m_seed, h[n].key, 0x656c73756eULL);  // "elsun"
+          Rng skyRng(m_seed, h.key(n), 0x656c736b79ULL);  // "elsky"
+          Rng sunRng(m_seed, h.key(n), 0x656c73756eULL);  // "elsun"
           Vec3 sky{0, 0, 0}, sun{0, 0, 0};
           double svf = 0, skyVar = 0, svfVar = 0;
           double w[4], D[4], V[4];  // per quarter: weight, mean sky light, variance of the mean

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
+#include <stdexcept>
+#include <type_traits>
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -30,6 +31,8 @@ constexpr int kMaxExpansions = 256;
 constexpr double kNormaliseLow = 0.8, kNormaliseHigh = 1.25;
 /// Bounds on a landing's distance correction: overlapping nodes are the oracle's to refine.
 constexpr double kMinLandingScale = 0.25, kMaxLandingScale = 4.0;
+/// Receivers whose cluster links are resolved into landings at once.
+constexpr std::size_t kLandingChunk = 1 << 16;
 /// Reflectance from which the row-sum fill ramps in, and at which it is whole.
 constexpr double kFillFrom = 0.75, kFillFull = 0.9;
 /// Slack on "every normal within 90° of ω" (radians): rounding, not geometry.
@@ -81,7 +84,8 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
   for (const HLink& l : m_links) ++m_begin[l.receiver + 1];
   for (int n = 0; n < h.size(); ++n) m_begin[n + 1] += m_begin[n];
   m_gathered.assign(h.size(), Vec3{});
-  buildLandings(hidden);
+  m_hidden = hidden;
+  buildLandings();
   m_firstSplit = h.firstSplitNode();
   m_fromParent.assign(std::size_t(h.size() - m_firstSplit), Vec3{});
 
@@ -116,7 +120,8 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
   m_rowSum.assign(h.size(), 0.0);
   m_fillSurfaces = static_cast<int>(h.base().surfaceBegin.size()) - 1;
   m_meanIncoming.assign(m_fillSurfaces, Vec3{});
-  std::vector<Vec3> rows;
+  // Each leaf's raw row sum is written straight into m_rowSum (all channels agree with B = 1).
+  m_rowPass = true;
   if (scratch) {
     // B = 1 on the leaves, pulled up: the same state unitState() makes.
     std::vector<Vec3> kept;
@@ -124,19 +129,23 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
       if (h[n].isLeaf()) kept.push_back(scratch->radiosity[n]), scratch->radiosity[n] = {1, 1, 1};
     setVisibleArea(*scratch);
     pull(h, *scratch);
-    rows = leafIrradiance(*scratch);
+    leafIrradiance(*scratch);
     std::size_t k = 0;
     for (int n = 0; n < h.size(); ++n)
       if (h[n].isLeaf()) scratch->radiosity[n] = kept[k++];
   } else {
-    rows = leafIrradiance(unitState());
+    leafIrradiance(unitState());
   }
+  m_rowPass = false;
   m_deficit.assign(h.size(), 0.0);
   for (int n = 0; n < h.size(); ++n) {
-    if (!h[n].isLeaf() || !h[n].element || !(rows[n].x > 0)) continue;
-    m_largestRowSumError = std::max(m_largestRowSumError, std::fabs(rows[n].x - 1));
+    const double row = m_rowSum[n];
+    if (!h[n].isLeaf() || !h[n].element || !(row > 0)) {
+      m_rowSum[n] = 0;
+      continue;
+    }
+    m_largestRowSumError = std::max(m_largestRowSumError, std::fabs(row - 1));
     const double target = n < static_cast<int>(rowTarget.size()) ? rowTarget[n] : 0.0;
-    m_rowSum[n] = rows[n].x;
     if (target > 0) {
       // The leaf's links add up to row instead of target: the share they miss (or count
       // twice) is filled with the light its surface receives on average per unit of row sum.
@@ -149,19 +158,19 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
       // against −2.5 … +1.6 % for the links alone. A row sum's error is amplified about
       // ρ/(1 − ρ) times in B, so the fill pays where ρ is high (it keeps a furnace at ρ = 0.95
       // exact): it ramps in from ρ = kFillFrom to full at kFillFull.
-      const double ratio = rows[n].x / target;
+      const double ratio = row / target;
       const double weight =
           std::clamp((h[n].reflectanceMax - kFillFrom) / (kFillFull - kFillFrom), 0.0, 1.0);
       if (weight > 0 && ratio >= kNormaliseLow && ratio <= kNormaliseHigh) {
-        m_deficit[n] = weight * (target - rows[n].x);
-        m_rowSum[n] = rows[n].x + m_deficit[n], ++m_normalised;
+        m_deficit[n] = weight * (target - row);
+        m_rowSum[n] = row + m_deficit[n], ++m_normalised;
         continue;
       }
       if (weight > 0) ++m_unnormalised;
     }
     // Cap ρ·(row sum) at (1 + ρ)/2 < 1: every sweep then contracts, whatever the links.
     const double rho = h[n].reflectanceMax, cap = rho > 0 ? (1 + rho) / (2 * rho) : INFINITY;
-    if (rows[n].x > cap) m_rowScale[n] = cap / rows[n].x, m_rowSum[n] = cap, ++m_clamped;
+    if (row > cap) m_rowScale[n] = cap / row, m_rowSum[n] = cap, ++m_clamped;
   }
   // Without a leaf to fill, the fill's per-leaf arrays are not kept.
   if (std::all_of(m_deficit.begin(), m_deficit.end(), [](double d) { return d == 0; }))
@@ -180,129 +189,136 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
   }
 }
 
-void HierarchicalSystem::buildLandings(const std::vector<char>& hidden) {
+void HierarchicalSystem::resolveLink(int i, const ClusterTransfer& t,
+                                     std::vector<std::pair<int, float>>& found,
+                                     std::vector<SourceLanding>* sources,
+                                     std::vector<ReceiverLanding>& receivers,
+                                     long long& approximate) const {
+  const Hierarchy& h = m_h;
+  const HLink& l = m_links[i];
+  const int r = l.receiver;
+  auto scale = [&](const Vec3& a, const Vec3& b, double soft) {
+    const Vec3 d = a - b;
+    return float(
+        std::clamp(t.denominator / (dot(d, d) + soft), kMinLandingScale, kMaxLandingScale));
+  };
+  if (sources) {
+    facingNodes(h, l.source, -t.w, found, approximate);
+    for (auto [node, c] : found)
+      sources->push_back({node, c < 0 ? (c < -1.5f ? kApproximate : kVector) : c,
+                          scale(h[node].centre, h[r].centre, projectedArea(h, node, -t.w) / kPi)});
+  }
+  facingNodes(h, r, t.w, found, approximate);
+  const Vec3 between = h[l.source].centre - h[r].centre;
+  const double soft = t.denominator - dot(between, between);  // P_s/π
+  for (auto [node, c] : found) {
+    // A hidden leaf receives nothing (nothing sees it).
+    if (node < static_cast<int>(m_hidden.size()) && m_hidden[node] && h[node].isLeaf()) continue;
+    float factor = c;
+    if (c < -1.5f)
+      factor = float(projectedArea(h, node, t.w) / h[node].area);
+    else if (c < 0)
+      factor = kVector;
+    receivers.push_back({node, factor, scale(h[node].centre, h[l.source].centre, soft)});
+  }
+}
+
+void HierarchicalSystem::buildLandings() {
   const Hierarchy& h = m_h;
   const std::size_t L = m_links.size();
   m_linkDirection.assign(L, Vec3{});
   m_linkGeometry.assign(L, 0.0);
-  // Per receiver (in parallel): resolve each cluster link's two ends, collect the receiver's
-  // slots (one per target node), then concatenate in receiver order: deterministic.
+  // Receivers in chunks, each resolved in parallel and appended in receiver order
+  // (deterministic); a chunk's per-receiver parts are all that exists twice, where parts for
+  // every receiver at once held about twice the landings (400 MiB at a million faces).
   struct Part {
     std::vector<SourceLanding> sources;
-    std::vector<std::tuple<int, float, float>> receivers;  // (target, factor, scale) per landing
-    std::vector<int> sourceCount, receiverCount;           // per link of this receiver
-    std::vector<int> targets;                              // slot targets, in first-use order
+    std::vector<ReceiverLanding> receivers;
+    std::vector<int> sourceCount, receiverCount;  // per link of this receiver
     long long approximate = 0;
   };
   std::vector<int> receivers;
   for (int n = 0; n < h.size(); ++n)
     if (linkCount(n) > 0) receivers.push_back(n);
-  std::vector<Part> parts(receivers.size());
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, receivers.size(), 16),
-      [&](const tbb::blocked_range<std::size_t>& range) {
-        std::vector<std::pair<int, float>> found;
-        for (std::size_t i = range.begin(); i < range.end(); ++i) {
-          const int r = receivers[i];
-          Part& part = parts[i];
-          for (int li = m_begin[r]; li < m_begin[r + 1]; ++li) {
-            const HLink& l = m_links[li];
-            if (h[r].element && h[l.source].element) {
-              part.sourceCount.push_back(0), part.receiverCount.push_back(0);
-              continue;
-            }
-            const ClusterTransfer t = clusterTransfer(h, r, l.source);
-            m_linkDirection[li] = t.w;
-            m_linkGeometry[li] = double(l.visibility) / (kPi * t.denominator);
-            facingNodes(h, l.source, -t.w, found, part.approximate);
-            auto scale = [&](const Vec3& a, const Vec3& b, double soft) {
-              const Vec3 d = a - b;
-              return float(std::clamp(t.denominator / (dot(d, d) + soft), kMinLandingScale,
-                                      kMaxLandingScale));
-            };
-            for (auto [node, c] : found)
-              part.sources.push_back(
-                  {node, c < 0 ? (c < -1.5f ? kApproximate : kVector) : c,
-                   scale(h[node].centre, h[r].centre, projectedArea(h, node, -t.w) / kPi)});
-            part.sourceCount.push_back(static_cast<int>(found.size()));
-            facingNodes(h, r, t.w, found, part.approximate);
-            const Vec3 between = h[l.source].centre - h[r].centre;
-            const double soft = t.denominator - dot(between, between);  // P_s/π
-            int kept = 0;
-            for (auto [node, c] : found) {
-              // A hidden leaf receives nothing (nothing sees it).
-              if (node < static_cast<int>(hidden.size()) && hidden[node] && h[node].isLeaf())
-                continue;
-              float factor = c;
-              if (c < -1.5f)
-                factor = float(projectedArea(h, node, t.w) / h[node].area);
-              else if (c < 0)
-                factor = kVector;
-              part.receivers.push_back(
-                  {node, factor, scale(h[node].centre, h[l.source].centre, soft)});
-              ++kept;
-            }
-            part.receiverCount.push_back(kept);
-          }
-        }
-      });
   m_sourceBegin.assign(L + 1, 0);
-  m_receiverBegin.assign(L + 1, 0);
-  std::vector<int> slotOf(h.size(), -1);
+  std::vector<int> receiverBegin(L + 1, 0);
+  std::vector<ReceiverLanding> byLink;  // every receiver end, in link order
   std::size_t li = 0;
-  {
-    // Exact sizes first: grown by doubling, these arrays held up to twice their size.
+  for (std::size_t first = 0; first < receivers.size(); first += kLandingChunk) {
+    const std::size_t end = std::min(receivers.size(), first + kLandingChunk);
+    std::vector<Part> parts(end - first);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(first, end, 16),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        std::vector<std::pair<int, float>> found;
+                        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                          const int r = receivers[i];
+                          Part& part = parts[i - first];
+                          for (int k = m_begin[r]; k < m_begin[r + 1]; ++k) {
+                            const HLink& l = m_links[k];
+                            if (h[r].element && h[l.source].element) {
+                              part.sourceCount.push_back(0), part.receiverCount.push_back(0);
+                              continue;
+                            }
+                            const ClusterTransfer t = clusterTransfer(h, r, l.source);
+                            m_linkDirection[k] = t.w;
+                            m_linkGeometry[k] = double(l.visibility) / (kPi * t.denominator);
+                            const std::size_t s0 = part.sources.size();
+                            const std::size_t r0 = part.receivers.size();
+                            resolveLink(k, t, found, &part.sources, part.receivers,
+                                        part.approximate);
+                            part.sourceCount.push_back(int(part.sources.size() - s0));
+                            part.receiverCount.push_back(int(part.receivers.size() - r0));
+                          }
+                        }
+                      });
     std::size_t sources = 0, landings = 0;
-    for (const Part& part : parts)
-      sources += part.sources.size(), landings += part.receivers.size();
-    m_sourceLandings.reserve(sources);
-    m_receiverLandings.reserve(landings);
-  }
-  for (std::size_t i = 0; i < receivers.size(); ++i) {
-    Part& part = parts[i];
-    m_approximateLandings += part.approximate;
-    m_sourceLandings.insert(m_sourceLandings.end(), part.sources.begin(), part.sources.end());
-    std::size_t next = 0;
-    std::vector<int> mine;
-    for (std::size_t k = 0; k < part.sourceCount.size(); ++k, ++li) {
-      m_sourceBegin[li + 1] = m_sourceBegin[li] + part.sourceCount[k];
-      for (int j = 0; j < part.receiverCount[k]; ++j, ++next) {
-        auto [node, factor, landingScale] = part.receivers[next];
-        if (slotOf[node] < 0) {
-          slotOf[node] = static_cast<int>(m_slotTarget.size());
-          m_slotTarget.push_back(node);
-          mine.push_back(node);
-        }
-        m_receiverLandings.push_back({slotOf[node], factor, landingScale});
+    for (const Part& part : parts) sources += part.sources.size(), landings += part.receivers.size();
+    reserveFor(m_sourceLandings, m_sourceLandings.size() + sources);
+    reserveFor(byLink, byLink.size() + landings);
+    for (Part& part : parts) {
+      m_approximateLandings += part.approximate;
+      m_sourceLandings.insert(m_sourceLandings.end(), part.sources.begin(), part.sources.end());
+      byLink.insert(byLink.end(), part.receivers.begin(), part.receivers.end());
+      for (std::size_t k = 0; k < part.sourceCount.size(); ++k, ++li) {
+        m_sourceBegin[li + 1] = m_sourceBegin[li] + part.sourceCount[k];
+        receiverBegin[li + 1] = receiverBegin[li] + part.receiverCount[k];
       }
-      m_receiverBegin[li + 1] = static_cast<int>(m_receiverLandings.size());
+      part = Part{};  // copied: its memory goes now
     }
-    for (int node : mine) slotOf[node] = -1;
-    part = Part{};  // copied: its memory goes now, not after the last receiver
   }
-  // Each slot's landings, in the order the links make them (a stable counting sort): the
-  // gathered light of a node is summed from them when it is pushed down, so no accumulator
-  // per slot is kept (96 bytes each, millions of slots at a million faces).
-  m_slotLandingBegin.assign(m_slotTarget.size() + 1, 0);
-  for (const ReceiverLanding& t : m_receiverLandings) ++m_slotLandingBegin[t.slot + 1];
-  for (std::size_t k = 0; k < m_slotTarget.size(); ++k)
-    m_slotLandingBegin[k + 1] += m_slotLandingBegin[k];
-  m_slotLandings.resize(m_receiverLandings.size());
+  // By target node, in link order within each (a stable counting sort): a node's gathered
+  // light is summed from them when it is pushed down, so no accumulator per (receiver, node)
+  // slot is kept (96 bytes each, millions of slots at a million faces).
+  m_incomingBegin.assign(std::size_t(h.size()) + 1, 0);
+  for (const ReceiverLanding& t : byLink) ++m_incomingBegin[t.node + 1];
+  for (int n = 0; n < h.size(); ++n) m_incomingBegin[n + 1] += m_incomingBegin[n];
+  m_incoming.resize(byLink.size());
   {
-    std::vector<int> at(m_slotLandingBegin.begin(), m_slotLandingBegin.end() - 1);
-    for (std::size_t link = 0; link < L; ++link)
-      for (int k = m_receiverBegin[link]; k < m_receiverBegin[link + 1]; ++k)
-        m_slotLandings[at[m_receiverLandings[k].slot]++] = {static_cast<int>(link), k};
+    std::vector<int> at(m_incomingBegin.begin(), m_incomingBegin.end() - 1);
+    std::vector<int> lastFrom(h.size(), -1);  // receiver of each node's last landing so far
+    for (std::size_t link = 0; link < L; ++link) {
+      const int from = m_links[link].receiver;
+      for (int k = receiverBegin[link]; k < receiverBegin[link + 1]; ++k) {
+        const ReceiverLanding& t = byLink[k];
+        const bool first = lastFrom[t.node] != from;
+        lastFrom[t.node] = from;
+        const int index = static_cast<int>(link);
+        m_incoming[at[t.node]++] = {first ? -index - 1 : index, t.factor, t.scale};
+      }
+    }
   }
   m_linkIrradiance.assign(L, Vec3{});
-  m_slotTarget.shrink_to_fit();  // grown by doubling above
-  m_incomingBegin.assign(std::size_t(h.size()) + 1, 0);
-  for (int q : m_slotTarget) ++m_incomingBegin[q + 1];
-  for (int n = 0; n < h.size(); ++n) m_incomingBegin[n + 1] += m_incomingBegin[n];
-  m_incoming.resize(m_slotTarget.size());
-  std::vector<int> fill(m_incomingBegin.begin(), m_incomingBegin.end() - 1);
-  for (std::size_t k = 0; k < m_slotTarget.size(); ++k)
-    m_incoming[fill[m_slotTarget[k]]++] = static_cast<int>(k);
+  m_landingCount = static_cast<long long>(m_sourceLandings.size() + m_incoming.size());
+}
+
+void HierarchicalSystem::releaseGatherArrays() {
+  auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
+  release(m_gathered), release(m_linkDirection), release(m_linkGeometry);
+  release(m_sourceBegin), release(m_sourceLandings), release(m_incomingBegin);
+  release(m_incoming), release(m_hidden), release(m_linkIrradiance), release(m_leafIrradiance);
+  release(m_fromParent), release(m_visibleFraction), release(m_rowScale), release(m_deficit);
+  release(m_rowSum), release(m_leafRaw), release(m_meanIncoming), release(m_blockReceivers);
+  m_released = true;
 }
 
 void HierarchicalSystem::gather(int r, const SourceState& state) {
@@ -364,10 +380,10 @@ Vec3 HierarchicalSystem::sourceIntensity(int i, const SourceState& state) const 
     if (s.cosine >= 0) {
       part = state.radiosity[s.node] * (seen * double(s.cosine));
     } else if (s.cosine == kVector) {
-      const auto& phi = state.powerVector[s.node];
+      const auto& phi = state.powerVector[m_h[s.node].cluster];
       part = Vec3{-dot(phi[0], w), -dot(phi[1], w), -dot(phi[2], w)};
     } else {
-      const auto& phi = state.powerVector[s.node];
+      const auto& phi = state.powerVector[m_h[s.node].cluster];
       const Vec3 power = state.radiosity[s.node] * seen;
       for (int c = 0; c < 3; ++c) part[c] = projectedSum(power[c], phi[c], -w);
     }
@@ -377,16 +393,22 @@ Vec3 HierarchicalSystem::sourceIntensity(int i, const SourceState& state) const 
 }
 
 double HierarchicalSystem::linkPower(int i, const SourceState& unit) const {
+  if (m_released) throw std::logic_error("HierarchicalSystem: its gather arrays were released");
   const HLink& l = m_links[i];
   const HNode& R = m_h[l.receiver];
   if (R.element && m_h[l.source].element) return R.area * l.formFactor * double(l.visibility);
   const Vec3& w = m_linkDirection[i];
   const double intensity = sourceIntensity(i, unit).x;
   // What the faces below each landing take: A n·ω e in all (push-down keeps it over seen area).
+  // The receiver end resolved again (the system keeps it by target node, not by link).
+  std::vector<std::pair<int, float>> found;
+  std::vector<ReceiverLanding> landings;
+  long long approximate = 0;
+  resolveLink(i, clusterTransfer(m_h, l.receiver, l.source), found, nullptr, landings,
+              approximate);
   double projected = 0;
-  for (int k = m_receiverBegin[i]; k < m_receiverBegin[i + 1]; ++k) {
-    const ReceiverLanding& t = m_receiverLandings[k];
-    const HNode& node = m_h[m_slotTarget[t.slot]];
+  for (const ReceiverLanding& t : landings) {
+    const HNode& node = m_h[t.node];
     projected += (t.factor == kVector ? dot(node.areaNormal, w) : node.area * double(t.factor)) *
                  double(t.scale);
   }
@@ -396,24 +418,26 @@ double HierarchicalSystem::linkPower(int i, const SourceState& unit) const {
 HierarchicalSystem::Accumulator HierarchicalSystem::gathered(int n) const {
   Accumulator a;
   a.sum = m_gathered[n];
+  // One slot at a time: what one receiver's links bring to n, summed as one accumulator first
+  // (the order the sums have always been taken in).
+  Accumulator s;
   for (int k = m_incomingBegin[n]; k < m_incomingBegin[n + 1]; ++k) {
-    // One slot: what one receiver's links bring to n, summed as one accumulator first (the
-    // order the sums have always been taken in).
-    const int slot = m_incoming[k];
-    Accumulator s;
-    for (int j = m_slotLandingBegin[slot]; j < m_slotLandingBegin[slot + 1]; ++j) {
-      const SlotLanding& sl = m_slotLandings[j];
-      const ReceiverLanding& t = m_receiverLandings[sl.landing];
-      const Vec3 el = m_linkIrradiance[sl.link] * double(t.scale);
-      if (t.factor == kVector) {
-        const Vec3& w = m_linkDirection[sl.link];
-        s.vec[0] += w * el.x, s.vec[1] += w * el.y, s.vec[2] += w * el.z;
-      } else {
-        s.sum += el * double(t.factor);
-      }
+    const IncomingLanding& t = m_incoming[k];
+    int link = t.link;
+    if (link < 0) {  // the first landing of a slot
+      if (k > m_incomingBegin[n]) a.add(s);
+      s = Accumulator{};
+      link = -link - 1;
     }
-    a.add(s);
+    const Vec3 el = m_linkIrradiance[link] * double(t.scale);
+    if (t.factor == kVector) {
+      const Vec3& w = m_linkDirection[link];
+      s.vec[0] += w * el.x, s.vec[1] += w * el.y, s.vec[2] += w * el.z;
+    } else {
+      s.sum += el * double(t.factor);
+    }
   }
+  if (m_incomingBegin[n + 1] > m_incomingBegin[n]) a.add(s);
   return a;
 }
 
@@ -448,14 +472,14 @@ void pullNode(const Hierarchy& h, int n, SourceState& state) {
       const Vec3& nrm = h.normal(c);
       vec[0] += nrm * w.x, vec[1] += nrm * w.y, vec[2] += nrm * w.z;
     } else {
-      for (int ch = 0; ch < 3; ++ch) vec[ch] += state.powerVector[c][ch];
+      for (int ch = 0; ch < 3; ++ch) vec[ch] += state.powerVector[child.cluster][ch];
     }
   }
   state.radiosity[n] = seen > 0 ? power / seen : Vec3{};
   if (!(lo <= hi)) lo = hi = 0;  // nothing below is seen
   state.radiosityMin[n] = lo, state.radiosityMax[n] = hi;
   if (hidden) state.visibleArea[n] = seen;
-  if (!node.element) state.powerVector[n] = vec;
+  if (!node.element) state.powerVector[node.cluster] = vec;
 }
 
 void pull(const Hierarchy& h, SourceState& state) {
@@ -512,7 +536,10 @@ HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator
         h *= m_rowScale[n];
       }
       if (!state) {
-        m_leafIrradiance[n] = h;
+        if (m_rowPass)
+          m_rowSum[n] = h.x;
+        else
+          m_leafIrradiance[n] = h;
         return change;
       }
       const SurfaceRadiometry& rad = m_h.radiometry(n);
@@ -531,6 +558,7 @@ HierarchicalSystem::Change HierarchicalSystem::pushPull(int n, const Accumulator
 }
 
 HierarchicalSystem::Change HierarchicalSystem::sweep(SourceState& state) {
+  if (m_released) throw std::logic_error("HierarchicalSystem: its gather arrays were released");
   gatherList(m_aboveReceivers, state);
   // What the clusters above each block gathered, summed down to the block's root.
   std::vector<Accumulator> blockInherited(m_blocks.size());
@@ -561,11 +589,12 @@ HierarchicalSystem::Change HierarchicalSystem::sweep(SourceState& state) {
 }
 
 std::vector<Vec3> HierarchicalSystem::leafIrradiance(const SourceState& state) {
+  if (m_released) throw std::logic_error("HierarchicalSystem: its gather arrays were released");
   std::vector<int> all;
   for (int n = 0; n < m_h.size(); ++n)
     if (linkCount(n) > 0) all.push_back(n);
   gatherList(all, state);
-  m_leafIrradiance.assign(m_h.size(), Vec3{});
+  if (!m_rowPass) m_leafIrradiance.assign(m_h.size(), Vec3{});
   pushPull(m_h.root(), Accumulator{}, nullptr);
   return std::move(m_leafIrradiance);
 }
@@ -580,7 +609,7 @@ SourceState HierarchicalSystem::unitState() const {
   s.radiosity.assign(m_h.size(), Vec3{1, 1, 1});
   s.radiosityMin.assign(m_h.size(), 1.0);
   s.radiosityMax.assign(m_h.size(), 1.0);
-  s.powerVector.resize(m_h.size());
+  s.powerVector.resize(m_h.clusterCount());
   setVisibleArea(s);
   pull(m_h, s);  // power vectors over the seen area, as the solve's pull makes them
   return s;
@@ -596,11 +625,9 @@ std::size_t capacityBytes(const std::vector<T>& v) {
 std::size_t HierarchicalSystem::bytes() const {
   std::size_t b = capacityBytes(m_links) + capacityBytes(m_begin) + capacityBytes(m_gathered) +
                   capacityBytes(m_linkDirection) + capacityBytes(m_linkGeometry) +
-                  capacityBytes(m_sourceBegin) + capacityBytes(m_receiverBegin) +
-                  capacityBytes(m_sourceLandings) + capacityBytes(m_receiverLandings) +
-                  capacityBytes(m_slotLandingBegin) + capacityBytes(m_slotTarget) +
-                  capacityBytes(m_slotLandings) + capacityBytes(m_linkIrradiance) +
+                  capacityBytes(m_sourceBegin) + capacityBytes(m_sourceLandings) +
                   capacityBytes(m_incomingBegin) + capacityBytes(m_incoming) +
+                  capacityBytes(m_hidden) + capacityBytes(m_linkIrradiance) +
                   capacityBytes(m_leafIrradiance) + capacityBytes(m_fromParent) +
                   capacityBytes(m_visibleFraction) + capacityBytes(m_rowScale) +
                   capacityBytes(m_deficit) + capacityBytes(m_rowSum) + capacityBytes(m_leafRaw) +

@@ -39,6 +39,10 @@ class HierarchicalSystem {
   const std::vector<HLink>& links() const { return m_links; }
   /// Hands the links over (for the next round's refinement); the system is unusable after.
   std::vector<HLink> releaseLinks() { return std::move(m_links); }
+  /// \brief Frees everything but the links and their counts per node (linkCount()) and the
+  /// statistics: the gather's arrays are most of the system's bytes, and the outputs need only
+  /// the links. sweep(), leafIrradiance(), linkPower() and rowSum() must not be called after.
+  void releaseGatherArrays();
   /// Links gathered by node n.
   int linkCount(int n) const { return m_begin[n + 1] - m_begin[n]; }
 
@@ -82,7 +86,7 @@ class HierarchicalSystem {
   long long approximateLandings() const { return m_approximateLandings; }
   /// Landings (facing nodes) over all cluster links, both ends.
   long long landings() const {
-    return static_cast<long long>(m_sourceLandings.size() + m_receiverLandings.size());
+    return m_landingCount;
   }
 
  private:
@@ -97,7 +101,7 @@ class HierarchicalSystem {
   /// What node n gathered itself plus what its incoherent ancestors gathered for it.
   Accumulator gathered(int n) const;
   void gather(int r, const SourceState& state);
-  void buildLandings(const std::vector<char>& hidden);
+  void buildLandings();
   /// Push-pull below `node` with what its ancestors gathered: records each leaf's H and, with a
   /// state, sets its B = E + ρH and pulls up; returns the largest change of a leaf's B.
   Change pushPull(int node, const Accumulator& inherited, SourceState* state);
@@ -126,26 +130,37 @@ class HierarchicalSystem {
     float cosine;  ///< element: its n·(−ω); kApproximate: a cluster summed by projectedSum
     float scale;
   };
+  /// A receiver-end landing: one link's light onto one facing node.
   struct ReceiverLanding {
-    int slot;
+    int node;
     float factor;  ///< kVector: a cluster facing ω (Σ e·ω kept); else irradiance per unit e
     float scale;
   };
+  /// The same stored by target node: m_incoming[m_incomingBegin[n] ...] in link order, so the
+  /// push-down sums a node's landings from one receiver (one slot) before adding the next:
+  /// the order the sums have always been taken in.
+  struct IncomingLanding {
+    int link;  ///< −(link + 1) on the first landing of a slot
+    float factor;
+    float scale;
+  };
   static constexpr float kApproximate = -2.0f, kVector = -1.0f;
+  /// Resolves both ends of cluster link i (transfer `t`) into facing nodes, appended to
+  /// `sources` (unless null) and `receivers` (hidden leaves receive nothing); `found` is
+  /// scratch.
+  void resolveLink(int i, const ClusterTransfer& t, std::vector<std::pair<int, float>>& found,
+                   std::vector<SourceLanding>* sources, std::vector<ReceiverLanding>& receivers,
+                   long long& approximate) const;
   std::vector<Vec3> m_linkDirection;   ///< per link: ω (cluster links)
   std::vector<double> m_linkGeometry;  ///< per link: V / (π (d² + P_s/π)) (cluster links)
-  std::vector<int> m_sourceBegin, m_receiverBegin;  ///< per link, into the landings
+  std::vector<int> m_sourceBegin;      ///< per link, into m_sourceLandings
   std::vector<SourceLanding> m_sourceLandings;
-  std::vector<ReceiverLanding> m_receiverLandings;
-  long long m_approximateLandings = 0;
-  /// A slot is one receiver's landings on one node: slot k is for node m_slotTarget[k], its
-  /// landings are m_slotLandings[m_slotLandingBegin[k] ...] (link and index into
-  /// m_receiverLandings, in link order); m_incoming lists, per node, the slots meant for it.
-  struct SlotLanding {
-    int link, landing;
-  };
-  std::vector<int> m_slotTarget, m_slotLandingBegin, m_incomingBegin, m_incoming;
-  std::vector<SlotLanding> m_slotLandings;
+  std::vector<int> m_incomingBegin;  ///< per node, into m_incoming
+  std::vector<IncomingLanding> m_incoming;
+  std::vector<char> m_hidden;  ///< per node: a leaf that nothing sees (receives nothing)
+  long long m_approximateLandings = 0, m_landingCount = 0;
+  bool m_released = false;
+  bool m_rowPass = false;  ///< leafIrradiance() writes raw row sums into m_rowSum instead
   /// Per link, from the last gather: the irradiance e its cluster end delivers (cluster links).
   std::vector<Vec3> m_linkIrradiance;
   std::vector<Vec3> m_leafIrradiance;

@@ -142,7 +142,7 @@ std::vector<float> closedLeaves(const Hierarchy& h, const RayScene& rays, std::u
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
           const int n = todo[i];
           const HPolygon p = h.polygon(n);
-          Rng rng(seed, h[n].key, 0x636c6f736564ULL);
+          Rng rng(seed, h.key(n), 0x636c6f736564ULL);
           const int K = closureRays(h, n, emitted);
           raysCast[n] = K;
           latinHypercube(K, 4, rng, u, scratch);
@@ -210,6 +210,11 @@ void validateHierarchicalSettings(const HierarchicalSettings& s) {
   if (!(s.stopping.tolerance > 0) || !std::isfinite(s.stopping.tolerance))
     throw std::invalid_argument("--tol " + num(s.stopping.tolerance) +
                                 " must be a positive number, e.g. 1e-6");
+}
+
+std::size_t defaultHierarchicalMemoryBudget() {
+  const std::size_t machine = availableMachineMemory();
+  return machine > 0 ? machine / 4 * 3 : std::size_t(8) << 30;
 }
 
 HierarchicalResult solveHierarchical(const Scene& scene, const HierarchicalSettings& settings,
@@ -380,7 +385,7 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
   // Start from B = E at the input faces.
   SourceState& state = r.state;
   state.radiosity.resize(h.size());
-  state.powerVector.resize(h.size());
+  state.powerVector.resize(h.clusterCount());
   state.radiosityMin.resize(h.size());
   state.radiosityMax.resize(h.size());
   for (int n = 0; n < h.size(); ++n)
@@ -561,17 +566,25 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
   markStageMemory(r.memory, "links and solve");
 
   t = Clock::now();
-  std::vector<Vec3> nodeH = r.system->leafIrradiance(state);
-
   r.leafNodes = h.leavesByFace();
-  r.leaves = leafMesh(h, r.leafNodes);
+  const std::size_t leaves = r.leafNodes.size();
+  std::vector<Vec3> nodeH = r.system->leafIrradiance(state);
+  r.rowSums.reserve(leaves);
+  for (int n : r.leafNodes) r.rowSums.push_back(r.system->rowSum(n));
+  const std::size_t linkBytes = r.system->bytes();
+  // The outputs need the links themselves only; the gather's arrays go before the leaves'
+  // results and mesh are made.
+  if (!settings.keepGatherArrays) r.system->releaseGatherArrays();
+  r.irradiance.reserve(leaves);
+  for (int n : r.leafNodes) r.irradiance.push_back(nodeH[n]);
+  std::vector<Vec3>().swap(nodeH);
+  r.radiosity.reserve(leaves), r.escape.reserve(leaves), r.escapeRays.reserve(leaves);
   for (int n : r.leafNodes) {
     r.radiosity.push_back(state.radiosity[n]);
-    r.irradiance.push_back(nodeH[n]);
-    r.rowSums.push_back(r.system->rowSum(n));
     r.escape.push_back(escape[n]);
     r.escapeRays.push_back(escapeRays[n]);
   }
+  r.leaves = leafMesh(h, r.leafNodes);
   for (const HLink& l : r.system->links()) ++r.linksByKind[static_cast<int>(linkKind(h, l))];
   if (elementDaylight) {
     r.daylight = std::make_unique<Daylight>(elementDaylight->leafDaylight(h, r.leafNodes));
@@ -579,13 +592,15 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
     r.daylightSplits = elementDaylight->splits();
     r.daylightElements = elementDaylight->sampled();
     r.seconds.daylight = elementDaylight->seconds();
+    elementDaylight.reset();  // it casts its rays in r.rays
   }
+  if (!settings.keepGatherArrays) r.rays.reset();
   r.hierarchyBytes = h.bytes() + state.radiosity.capacity() * sizeof(Vec3) +
                      state.powerVector.capacity() * sizeof(state.powerVector[0]) +
                      (state.radiosityMin.capacity() + state.radiosityMax.capacity() +
                       state.visibleArea.capacity()) *
                          sizeof(double);
-  r.linkBytes = r.system->bytes();
+  r.linkBytes = linkBytes;
   for (int c = 0; c < 3; ++c) {
     r.solve.radiosity[c].resize(r.radiosity.size());
     for (std::size_t i = 0; i < r.radiosity.size(); ++i)

@@ -27,6 +27,10 @@ constexpr double kMinEpsilon = 1e-6;
 /// ρ = 0.999999 after a few hundred sweeps instead of millions.
 constexpr long kDefaultHierarchicalSweeps = 100000;
 
+/// Three quarters of the memory this process may use (availableMachineMemory()), leaving room
+/// for the solve's arrays, which refinement does not count; 8 GiB where that is unknown.
+std::size_t defaultHierarchicalMemoryBudget();
+
 struct HierarchicalSettings {
   /// A link may carry an estimated error of at most ε times the power the scene emits.
   double epsilon = 1e-4;
@@ -38,10 +42,15 @@ struct HierarchicalSettings {
   int rounds = 3;
   GatherOrder order = GatherOrder::Jacobi;
   std::uint64_t seed = 1;
-  std::size_t memoryBudget = std::size_t(8) << 30;
+  /// Bytes the tree, its state and the links may reach while refining (the mesh and the ray
+  /// scene included); default: defaultHierarchicalMemoryBudget().
+  std::size_t memoryBudget = defaultHierarchicalMemoryBudget();
   /// With a sky: daylight estimated on every leaf element (and elements split where it varies,
   /// along sun shadow edges); false: once per input face, constant over its elements.
   bool elementDaylight = true;
+  /// Keep the system's gather arrays and the ray scene in the result (checkLinks() needs
+  /// them); false frees them before the results are assembled, which lowers the peak.
+  bool keepGatherArrays = false;
   /// Tolerance on max|ΔB|/‖E‖∞ and the sweep limit of the last round.
   SolverSettings stopping = [] {
     SolverSettings s;

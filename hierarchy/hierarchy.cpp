@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <tbb/task_group.h>
@@ -23,17 +24,8 @@ std::uint64_t childKey(std::uint64_t parent, int k) {
   return splitMix64(parent * 4 + std::uint64_t(k) + 0x9e3779b97f4a7c15ULL);
 }
 
-namespace {
-
 /// Grows a vector's capacity by an eighth at a time instead of doubling it: the node arrays
 /// of a million-face hierarchy hold hundreds of MiB, and refinement adds only a few per cent.
-template <class T>
-void reserveFor(std::vector<T>& v, std::size_t n) {
-  if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 8 + 16));
-}
-
-}  // namespace
-
 template <class T>
 void growVector(std::vector<T>& v, std::size_t n) {
   reserveFor(v, n);
@@ -52,14 +44,18 @@ Hierarchy::Hierarchy(PatchMesh base, std::vector<SurfaceRadiometry> surfaces, bo
   std::vector<int> faces(n);
   for (int f = 0; f < n; ++f) faces[f] = f;
   buildClusters(faces, 0, n, -1, 0, 0);
+  int clusters = 0;
+  for (HNode& node : m_nodes)
+    if (!node.element) node.cluster = clusters++;
 }
 
 int Hierarchy::buildClusters(std::vector<int>& faces, int begin, int end, int parent, int level,
                              int at) {
   HNode& node = m_nodes[at];
   node.parent = parent;
-  node.level = level;
-  node.key = splitMix64(std::uint64_t(at) ^ 0x5bd1e9955bd1e995ULL);
+  if (level > std::numeric_limits<std::int16_t>::max())
+    throw std::runtime_error("hierarchy: the cluster tree is deeper than 32767 levels");
+  node.level = static_cast<std::int16_t>(level);
   if (end - begin == 1) {
     // An input face: the element at the top of its quadtree.
     const int f = faces[begin];
@@ -195,10 +191,8 @@ void Hierarchy::split(int node) {
     HNode child;
     child.element = true;
     child.parent = node;
-    child.level = up.level + 1;
+    child.level = static_cast<std::int16_t>(up.level + 1);
     child.face = up.face;
-    child.polygon = static_cast<int>(m_polygons.size());
-    child.key = childKey(up.key, k);
     child.reflectanceMax = up.reflectanceMax;
     child.coneAxis = up.coneAxis;
     const HPolygon& p = kids[k];
@@ -268,10 +262,16 @@ std::vector<int> Hierarchy::leavesInTreeOrder(std::vector<std::pair<int, int>>* 
   return out;
 }
 
+std::uint64_t Hierarchy::key(int node) const {
+  if (node < firstSplitNode()) return splitMix64(std::uint64_t(node) ^ 0x5bd1e9955bd1e995ULL);
+  const int parent = m_nodes[node].parent;
+  return childKey(key(parent), node - m_nodes[parent].firstChild);
+}
+
 HPolygon Hierarchy::polygon(int node) const {
   const HNode& n = m_nodes[node];
   RADKIT_DCHECK(n.element);
-  if (n.polygon >= 0) return m_polygons[n.polygon];
+  if (node >= firstSplitNode()) return m_polygons[node - firstSplitNode()];  // split in step
   const Patch& p = m_base.patches[n.face];
   HPolygon poly;
   poly.count = p.vertexCount;

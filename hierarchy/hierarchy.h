@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -27,15 +28,16 @@ struct HNode {
   int parent = -1;
   int firstChild = -1;    ///< an element's four children are contiguous from here
   int rightChild = -1;    ///< a cluster's second child (its left subtree lies in between)
-  int childCount = 0;     ///< 2 for clusters, 4 for split elements, 0 for leaves
-  int level = 0;          ///< elements: splits below the input face; clusters: depth in the tree
   int face = -1;          ///< elements: the input face (patch of the base mesh); clusters: -1
-  int polygon = -1;       ///< split elements: index into the stored quarters (input faces: -1)
-  std::uint64_t key = 0;  ///< stable identity, independent of creation order: seeds rays
+  int cluster = -1;       ///< clusters: row in the per-cluster arrays (SourceState::powerVector)
+  std::int16_t level = 0;  ///< elements: splits below the input face; clusters: depth in the tree
+  std::uint8_t childCount = 0;  ///< 2 for clusters, 4 for split elements, 0 for leaves
   bool element = false;
 
   bool isLeaf() const { return childCount == 0; }
 };
+// Two nodes per input face: at ten million faces every byte here is 20 MB.
+static_assert(sizeof(HNode) == 128, "HNode grew");
 
 /// An element's polygon: 3 or 4 vertices, counter-clockwise seen from the front.
 struct HPolygon {
@@ -91,8 +93,13 @@ class Hierarchy {
   /// Nodes made by split() are numbered from here on (the tree over the input faces comes
   /// first).
   int firstSplitNode() const { return 2 * m_base.size() - 1; }
+  /// Stable identity of a node, independent of creation order: seeds its rays. The tree's
+  /// nodes hash their number; a split element's is its parent's key and its quarter.
+  std::uint64_t key(int node) const;
   /// Node of input face f.
   int faceNode(int f) const { return m_faceNode[f]; }
+  /// Clusters (inner nodes of the tree over the input faces); split() makes none.
+  int clusterCount() const { return m_base.size() - 1; }
 
   /// \brief Whether element `node` may be split: its quarters are at least minArea.
   bool canSplit(int node, double minArea) const;
@@ -128,6 +135,11 @@ class Hierarchy {
 /// adds to per-node arrays of millions of nodes is a few per cent.
 template <class T>
 void growVector(std::vector<T>& v, std::size_t n);
+/// Makes room for n elements the same way (an eighth more than the capacity when it grows).
+template <class T>
+void reserveFor(std::vector<T>& v, std::size_t n) {
+  if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 8 + 16));
+}
 
 /// Stable key of child k of a node with key `parent`.
 std::uint64_t childKey(std::uint64_t parent, int k);

@@ -41,7 +41,7 @@ std::vector<LinkCheck> checkLinksAt(const Hierarchy& h, const HierarchicalSystem
                         c.receiver = l.receiver, c.source = l.source;
                         c.kind = linkKind(h, l);
                         c.model = system.linkPower(chosen[i], unit);
-                        Rng rng(seed, h[l.receiver].key, h[l.source].key);
+                        Rng rng(seed, h.key(l.receiver), h.key(l.source));
                         latinHypercube(samples, 6, rng, u, scratch);
                         double sum = 0, sum2 = 0;
                         for (int k = 0; k < samples; ++k) {

@@ -57,7 +57,7 @@ Vec3 intensityToward(const Hierarchy& h, const SourceState& state, int s, const 
       const HNode& node = h[k];
       const double power = state.radiosity[k][c] * node.area;
       return node.element ? power * std::max(0.0, dot(h.normal(k), w))
-                          : projectedSum(power, state.powerVector[k][c], w);
+                          : projectedSum(power, state.powerVector[node.cluster][c], w);
     });
   return out / kPi;
 }

@@ -61,6 +61,8 @@ const char* linkKindName(LinkKind kind);
 /// 1999's vector form, which makes a planar cluster's emission exact).
 struct SourceState {
   std::vector<Vec3> radiosity;
+  /// Per cluster (row HNode::cluster; elements need none): Σ B A n over the faces below, per
+  /// channel.
   std::vector<std::array<Vec3, 3>> powerVector;
   /// Range of the leaves' radiosity (largest channel) below each node: a link that uses the
   /// source's mean B errs by up to this where the part the receiver sees is brighter or darker

@@ -101,7 +101,6 @@ std::string gib(std::size_t bytes) {
 void growState(const Hierarchy& h, SourceState& state) {
   std::size_t old = state.radiosity.size();
   growVector(state.radiosity, h.size());
-  growVector(state.powerVector, h.size());
   growVector(state.radiosityMin, h.size());
   growVector(state.radiosityMax, h.size());
   if (!state.visibleArea.empty()) growVector(state.visibleArea, h.size());
@@ -204,7 +203,7 @@ void Refiner::receiverShares(int r, int s, const VisibilityEstimate& v, HLink& l
 }
 
 Refiner::VisibilityEstimate Refiner::visibleFraction(int r, int s, int K, int stream) const {
-  Rng rng(m_settings.seed + 0x9E3779B97F4A7C15ull * std::uint64_t(stream), m_h[r].key, m_h[s].key);
+  Rng rng(m_settings.seed + 0x9E3779B97F4A7C15ull * std::uint64_t(stream), m_h.key(r), m_h.key(s));
   std::vector<double> u;
   std::vector<int> scratch;
   latinHypercube(K, 6, rng, u, scratch);
@@ -396,7 +395,7 @@ Refiner::Outcome Refiner::evaluate(const HLink& c, bool knownVisibility,
   if (!(V > 0) && (transfer > 0 || sourceRadiosity > 0) && m_settings.last) {
     const double survive = std::min(1.0, rho * transfer / tau);
     Rng roulette(m_settings.seed + 0x9E3779B97F4A7C15ull * std::uint64_t(2 * m_settings.round + 2),
-                 m_h[r].key, m_h[s].key);
+                 m_h.key(r), m_h.key(s));
     if (!(roulette.uniform() < survive)) return out;  // Drop
     weight = 1 / survive;
   }

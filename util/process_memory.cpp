@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <string>
@@ -30,6 +31,16 @@ void markStageMemory(std::vector<StageMemory>& stages, const std::string& stage)
   // allocator kept from the stage's transients.
   malloc_trim(0);
   stages.push_back({stage, residentMemory(), lifetimePeakMemory()});
+}
+
+std::size_t availableMachineMemory() {
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  std::size_t bytes = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : 0;
+  // cgroup v2; "max" (no limit) does not parse as a number and is ignored.
+  std::ifstream limit("/sys/fs/cgroup/memory.max");
+  unsigned long long cgroup = 0;
+  if (limit >> cgroup && cgroup > 0 && (bytes == 0 || cgroup < bytes)) bytes = std::size_t(cgroup);
+  return bytes;
 }
 
 std::size_t lifetimePeakMemory() {

@@ -15,6 +15,9 @@ std::size_t peakMemory();
 std::size_t lifetimePeakMemory();
 /// VmRSS of /proc/self/status in bytes: what the process holds now (0 where it cannot be read).
 std::size_t residentMemory();
+/// Memory this process may use: the machine's installed memory, or the cgroup's limit
+/// (memory.max, as in a container or a batch job) when that is lower; 0 where unknown.
+std::size_t availableMachineMemory();
 
 /// Memory after one stage of a run: what the process still holds, and the lifetime peak so far
 /// (which includes the stage's transient buffers). Read without resetting anything, so a caller

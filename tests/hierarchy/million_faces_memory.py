@@ -2,7 +2,7 @@
 """Bytes per input face of a hierarchical run at a million input triangles: builds the scaling
 ladder's terrain (data/tools/make_terrain_ladder.py), runs `radkit run --method hierarchical
 --no-render` and checks report.json's memory against the bound below. About a minute and
-2 GiB on two cores: labelled `long`, which the sanitizer job leaves out; run it alone with
+1.3 GiB on two cores: labelled `long`, which the sanitizer job leaves out; run it alone with
 `ctest --test-dir build -L long`.
 
     million_faces_memory.py RADKIT MAKE_TERRAIN_LADDER"""
@@ -12,10 +12,10 @@ import subprocess
 import sys
 import tempfile
 
-# Peak resident bytes per input face the run may reach (docs/hierarchical.md measures 1.92 kB
+# Peak resident bytes per input face the run may reach (docs/hierarchical.md measures 1.33 kB
 # at this size; 3.4 kB before the hierarchy's arrays were made compact). The bound leaves 15 %
 # for the allocator and the libraries, not room for a regression of the arrays.
-BOUND = 2200
+BOUND = 1530
 
 radkit, ladder = sys.argv[1], sys.argv[2]
 with tempfile.TemporaryDirectory() as tmp:
