@@ -181,7 +181,7 @@ long long checkStl(const Fail& fail, const std::string& text) {
   Lines lines(text);
   std::vector<std::string> t;
   long long facets = 0;
-  int vertices = -1;  // -1: outside a facet
+  int vertices = -1;   // -1: outside a facet
   bool ended = false;  // the last solid is closed (CAD exports write one solid per body)
   while (lines.nextTokens(t)) {
     const long n = lines.number();

@@ -272,7 +272,8 @@ void HierarchicalSystem::buildLandings() {
                         }
                       });
     std::size_t sources = 0, landings = 0;
-    for (const Part& part : parts) sources += part.sources.size(), landings += part.receivers.size();
+    for (const Part& part : parts)
+      sources += part.sources.size(), landings += part.receivers.size();
     reserveFor(m_sourceLandings, m_sourceLandings.size() + sources);
     reserveFor(byLink, byLink.size() + landings);
     for (Part& part : parts) {
@@ -404,8 +405,7 @@ double HierarchicalSystem::linkPower(int i, const SourceState& unit) const {
   std::vector<std::pair<int, float>> found;
   std::vector<ReceiverLanding> landings;
   long long approximate = 0;
-  resolveLink(i, clusterTransfer(m_h, l.receiver, l.source), found, nullptr, landings,
-              approximate);
+  resolveLink(i, clusterTransfer(m_h, l.receiver, l.source), found, nullptr, landings, approximate);
   double projected = 0;
   for (const ReceiverLanding& t : landings) {
     const HNode& node = m_h[t.node];

@@ -85,9 +85,7 @@ class HierarchicalSystem {
   /// Cluster-link ends that were too large to resolve into facing nodes and were estimated.
   long long approximateLandings() const { return m_approximateLandings; }
   /// Landings (facing nodes) over all cluster links, both ends.
-  long long landings() const {
-    return m_landingCount;
-  }
+  long long landings() const { return m_landingCount; }
 
  private:
   struct Accumulator {

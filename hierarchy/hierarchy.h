@@ -3,8 +3,8 @@
 // Salzman & Aupperle 1991; clusters after Smits, Arvo & Greenberg 1994 and Sillion 1995).
 #pragma once
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -26,10 +26,10 @@ struct HNode {
   double coneAngle = 0;  ///< every normal below lies within this angle (radians) of coneAxis
   double reflectanceMax = 0;  ///< largest ρ (any channel) below: the oracle's worst case
   int parent = -1;
-  int firstChild = -1;    ///< an element's four children are contiguous from here
-  int rightChild = -1;    ///< a cluster's second child (its left subtree lies in between)
-  int face = -1;          ///< elements: the input face (patch of the base mesh); clusters: -1
-  int cluster = -1;       ///< clusters: row in the per-cluster arrays (SourceState::powerVector)
+  int firstChild = -1;     ///< an element's four children are contiguous from here
+  int rightChild = -1;     ///< a cluster's second child (its left subtree lies in between)
+  int face = -1;           ///< elements: the input face (patch of the base mesh); clusters: -1
+  int cluster = -1;        ///< clusters: row in the per-cluster arrays (SourceState::powerVector)
   std::int16_t level = 0;  ///< elements: splits below the input face; clusters: depth in the tree
   std::uint8_t childCount = 0;  ///< 2 for clusters, 4 for split elements, 0 for leaves
   bool element = false;

@@ -90,8 +90,10 @@ TEST(HierarchicalCli, MemoryBudgetFollowsTheMachineUnlessGiven) {
     std::string key;
     double kB = 0;
     while (meminfo >> key >> kB)
-      if (key == "MemTotal:") machine = kB * 1024;
-      else meminfo.ignore(1 << 10, '\n');
+      if (key == "MemTotal:")
+        machine = kB * 1024;
+      else
+        meminfo.ignore(1 << 10, '\n');
   }
   ASSERT_GT(machine, 0) << "no MemTotal in /proc/meminfo";
   unsigned long long cgroup = 0;
