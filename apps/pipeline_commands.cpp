@@ -215,13 +215,14 @@ std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene,
                        ", the scene's input faces (a patch never spans two).";
   if (cmd.job == Job::Run) {
     // Peak memory of `run --method hierarchical --no-render` on the shipped scenes, less
-    // radkit's own 40 MiB: terrain-room.json 4.9 kB per input face (51 201 faces, 291 MiB),
-    // models/spot-room.json 17 kB (5 870 faces, 141 MiB).
+    // radkit's own 40 MiB: terrain-room.json 2.7 kB per input face (51 201 faces, 170 MiB),
+    // models/spot-room.json 11.7 kB (5 870 faces, 105 MiB). A million-face terrain takes
+    // 1.3 kB, so for large meshes the range errs high.
     const double base = 40.0 * 1024 * 1024;
-    const double low = base + 4.9e3 * double(faces), high = base + 17e3 * double(faces);
+    const double low = base + 2.7e3 * double(faces), high = base + 11.7e3 * double(faces);
     message +=
         " --method hierarchical keeps no n×n matrix: on the shipped scenes it took 40 MiB "
-        "and 4.9-17 kB per input face, about " +
+        "and 2.7-11.7 kB per input face, about " +
         formatBytes(low) + " to " + formatBytes(high) + " here (docs/bring-your-own-model.md)";
   }
   return message;
