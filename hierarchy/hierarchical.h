@@ -73,8 +73,10 @@ struct HierarchicalRound {
 
 struct HierarchicalResult {
   std::unique_ptr<Hierarchy> hierarchy;
+  /// The links; its gather arrays only with HierarchicalSettings::keepGatherArrays.
   std::unique_ptr<HierarchicalSystem> system;
-  std::unique_ptr<RayScene> rays;  ///< over the input faces
+  /// Over the input faces; only with HierarchicalSettings::keepGatherArrays (else null).
+  std::unique_ptr<RayScene> rays;
   PatchMesh leaves;                ///< leaf elements in output order (grouped by surface)
   std::vector<int> leafNodes;      ///< node of each leaf patch
   SourceState state;             ///< every node's radiosity (leaves solved, inner nodes pulled up)
