@@ -175,52 +175,55 @@ void checkMaterials(const Scene& scene) {
   }
 }
 
-/// Whether checkFace would throw for face f (the same tests, no allocation).
-bool faceFails(const Surface& s, std::size_t f) {
+/// What is wrong with face f as given, tested in this order; no allocation, so the search for
+/// the first bad face can run over millions of faces. `vertex`: the first index out of range.
+enum class FaceProblem { None, TooFewVertices, MissingVertex, RepeatedVertex, Degenerate };
+FaceProblem faceProblem(const Surface& s, std::size_t f, int& vertex) {
   const Face& face = s.faces[f];
   const std::size_t n = face.vertices.size();
-  if (n < 3) return true;
+  if (n < 3) return FaceProblem::TooFewVertices;
   for (int v : face.vertices)
-    if (v < 0 || v >= int(s.vertices.size())) return true;
+    if (v < 0 || v >= int(s.vertices.size())) {
+      vertex = v;
+      return FaceProblem::MissingVertex;
+    }
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b)
-      if (face.vertices[a] == face.vertices[b]) return true;
+      if (face.vertices[a] == face.vertices[b]) return FaceProblem::RepeatedVertex;
   const Vec3& p0 = s.vertices[face.vertices[0]];
   const Vec3& p1 = s.vertices[face.vertices[1]];
   bool allCollinear = true;
   for (std::size_t k = 2; k < n && allCollinear; ++k)
     allCollinear = CGAL::collinear(toCgal(p0), toCgal(p1), toCgal(s.vertices[face.vertices[k]]));
-  if (allCollinear) return true;
-  Vec3 normal;
+  if (allCollinear) return FaceProblem::Degenerate;
+  Vec3 normal;  // newellNormal without the copy of the points
   for (std::size_t k = 0; k < n; ++k)
     normal += cross(s.vertices[face.vertices[k]], s.vertices[face.vertices[(k + 1) % n]]);
-  return length(normal * 0.5) == 0;
+  return length(normal * 0.5) == 0 ? FaceProblem::Degenerate : FaceProblem::None;
 }
 
 /// Exact checks of one face as given: vertex indices, repeats, collinearity.
 void checkFace(const Surface& s, std::size_t f) {
-  const Face& face = s.faces[f];
-  if (face.vertices.size() < 3)
-    throw InputError(faceName(s, f) + " has " + std::to_string(face.vertices.size()) +
-                     " vertices. Fix: a face needs at least 3.");
-  for (int v : face.vertices)
-    if (v < 0 || v >= int(s.vertices.size()))
-      throw InputError(faceName(s, f) + " names vertex " + std::to_string(v) +
+  int vertex = 0;
+  switch (faceProblem(s, f, vertex)) {
+    case FaceProblem::None:
+      return;
+    case FaceProblem::TooFewVertices:
+      throw InputError(faceName(s, f) + " has " + std::to_string(s.faces[f].vertices.size()) +
+                       " vertices. Fix: a face needs at least 3.");
+    case FaceProblem::MissingVertex:
+      throw InputError(faceName(s, f) + " names vertex " + std::to_string(vertex) +
                        ", which does not exist.");
-  std::set<int> seen(face.vertices.begin(), face.vertices.end());
-  if (seen.size() != face.vertices.size())
-    throw InputError(faceName(s, f) +
-                     " repeats a vertex (degenerate face). Fix: remove the repeated point, "
-                     "or give --repair to drop such faces.");
-  std::vector<Vec3> p = facePoints(s, face);
-  bool allCollinear = true;
-  for (std::size_t k = 2; k < p.size() && allCollinear; ++k)
-    allCollinear = CGAL::collinear(toCgal(p[0]), toCgal(p[1]), toCgal(p[k]));
-  if (allCollinear || length(newellNormal(p)) == 0)
-    throw InputError(faceName(s, f) +
-                     " is degenerate: its vertices are collinear, so its area "
-                     "is zero. Fix: remove the face or correct its vertices, or give --repair to "
-                     "drop such faces.");
+    case FaceProblem::RepeatedVertex:
+      throw InputError(faceName(s, f) +
+                       " repeats a vertex (degenerate face). Fix: remove the repeated point, "
+                       "or give --repair to drop such faces.");
+    case FaceProblem::Degenerate:
+      throw InputError(faceName(s, f) +
+                       " is degenerate: its vertices are collinear, so its area "
+                       "is zero. Fix: remove the face or correct its vertices, or give --repair "
+                       "to drop such faces.");
+  }
 }
 
 /// Two faces of one surface running an edge the same way.
@@ -853,12 +856,13 @@ void validateScene(Scene& scene, LoadReport& report, bool repair,
     const std::size_t bad = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, s.faces.size(), 4096), s.faces.size(),
         [&](const tbb::blocked_range<std::size_t>& range, std::size_t first) {
+          int vertex = 0;
           for (std::size_t f = range.begin(); f != range.end() && f < first; ++f)
-            if (faceFails(s, f)) return f;
+            if (faceProblem(s, f, vertex) != FaceProblem::None) return f;
           return first;
         },
         [](std::size_t a, std::size_t b) { return std::min(a, b); });
-    for (std::size_t f = bad; f < s.faces.size(); ++f) checkFace(s, f);
+    if (bad < s.faces.size()) checkFace(s, bad);
     progress(checking, 0.5);
     repairOrientation(s, report);
     progress(checking, 0.8);
