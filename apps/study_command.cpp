@@ -68,8 +68,8 @@ void addHierarchicalRows(const Scene& scene, const StudyCommand& cmd, StudyResul
     last = took;
     row.ran = true;
     row.patches = h.leaves.size();
-    row.seconds = {h.seconds.inputFaces + h.seconds.hierarchy, h.seconds.rayScene, h.seconds.refine, h.seconds.solve,
-                   h.seconds.results};
+    row.seconds = {h.seconds.inputFaces + h.seconds.hierarchy, h.seconds.rayScene, h.seconds.refine,
+                   h.seconds.solve, h.seconds.results};
     row.totalSeconds = last;
     row.peakBytes = peakMemory();
     row.iterations = h.solve.iterations;

@@ -73,8 +73,9 @@ void facingNodes(const Hierarchy& h, int n, const Vec3& w, std::vector<std::pair
 }  // namespace
 
 HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links,
-                                       GatherOrder order, const std::vector<float>& rowTarget,
-                                       const std::vector<char>& hidden, SourceState* scratch)
+                                       GatherOrder order, SourceState& scratch,
+                                       const std::vector<float>& rowTarget,
+                                       const std::vector<char>& hidden)
     : m_h(h), m_links(std::move(links)) {
   m_links.shrink_to_fit();  // refinement grew it by doubling
   tbb::parallel_sort(m_links.begin(), m_links.end(), [](const HLink& a, const HLink& b) {
@@ -121,20 +122,18 @@ HierarchicalSystem::HierarchicalSystem(const Hierarchy& h, std::vector<HLink> li
   m_fillSurfaces = static_cast<int>(h.base().surfaceBegin.size()) - 1;
   m_meanIncoming.assign(m_fillSurfaces, Vec3{});
   // Each leaf's raw row sum is written straight into m_rowSum (all channels agree with B = 1).
+  // B = 1 on the leaves, pulled up: the same state unitState() makes.
   m_rowPass = true;
-  if (scratch) {
-    // B = 1 on the leaves, pulled up: the same state unitState() makes.
+  {
     std::vector<Vec3> kept;
     for (int n = 0; n < h.size(); ++n)
-      if (h[n].isLeaf()) kept.push_back(scratch->radiosity[n]), scratch->radiosity[n] = {1, 1, 1};
-    setVisibleArea(*scratch);
-    pull(h, *scratch);
-    leafIrradiance(*scratch);
+      if (h[n].isLeaf()) kept.push_back(scratch.radiosity[n]), scratch.radiosity[n] = {1, 1, 1};
+    setVisibleArea(scratch);
+    pull(h, scratch);
+    leafIrradiance(scratch);
     std::size_t k = 0;
     for (int n = 0; n < h.size(); ++n)
-      if (h[n].isLeaf()) scratch->radiosity[n] = kept[k++];
-  } else {
-    leafIrradiance(unitState());
+      if (h[n].isLeaf()) scratch.radiosity[n] = kept[k++];
   }
   m_rowPass = false;
   m_deficit.assign(h.size(), 0.0);

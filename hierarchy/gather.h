@@ -29,12 +29,12 @@ class HierarchicalSystem {
   /// Howell), or a ray estimate below 1 where a little of it is not. The leaf's irradiance is
   /// scaled so its links add up to that, which removes the error of gathering at coarser
   /// nodes from the leaf's total. Empty or 0: not known, not scaled (only capped).
-  /// `scratch`, when given, is the solve's state: the row sums are taken in it (its leaves'
-  /// radiosity is kept, everything pulled from them is not: pull it again after) instead of
-  /// in a state of its own, which at a million faces is a few hundred MiB more at the peak.
+  /// `scratch` is the solve's state: the row sums are taken in it (its leaves' radiosity is
+  /// kept, everything pulled from them is not: pull it again after) instead of in a state of
+  /// its own, which at a million faces is a few hundred MiB more at the peak.
   HierarchicalSystem(const Hierarchy& h, std::vector<HLink> links, GatherOrder order,
-                     const std::vector<float>& rowTarget = {}, const std::vector<char>& hidden = {},
-                     SourceState* scratch = nullptr);
+                     SourceState& scratch, const std::vector<float>& rowTarget = {},
+                     const std::vector<char>& hidden = {});
 
   const std::vector<HLink>& links() const { return m_links; }
   /// Hands the links over (for the next round's refinement); the system is unusable after.

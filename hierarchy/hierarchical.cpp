@@ -466,8 +466,8 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
     std::vector<float> closed = closedLeaves(h, *r.rays, settings.seed, leafClosed, tested, escape,
                                              hidden, escapeRays, emitted);
     r.system.reset();
-    r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, closed,
-                                                    hidden, &state);
+    r.system = std::make_unique<HierarchicalSystem>(h, std::move(links), settings.order, state,
+                                                    closed, hidden);
     if (elementDaylight) r.system->setEmission(&elementDaylight->emission());
     links.clear();  // moved from; the next round starts from the system's links
     r.system->setVisibleArea(state);

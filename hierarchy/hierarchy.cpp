@@ -33,7 +33,6 @@ void growVector(std::vector<T>& v, std::size_t n) {
 }
 template void growVector(std::vector<Vec3>&, std::size_t);
 template void growVector(std::vector<double>&, std::size_t);
-template void growVector(std::vector<std::array<Vec3, 3>>&, std::size_t);
 
 Hierarchy::Hierarchy(PatchMesh base, std::vector<SurfaceRadiometry> surfaces, bool byFace)
     : m_base(std::move(base)), m_surfaces(std::move(surfaces)), m_byFace(byFace) {

@@ -30,7 +30,7 @@ constexpr Preset kPresets[] = {
     // with the input faces, not their square (docs/hierarchical.md, "Cost and scaling").
     {"large", 0, 16, 1e-6,
      "hierarchical radiosity (--method hierarchical, epsilon 1e-4): Cornell box ~1.2 s, the "
-     "balanced preset's surface errors; a million input triangles ~45 s and 1.8 GiB",
+     "balanced preset's surface errors; a million input triangles ~50 s and 1.2 GiB",
      true},
 };
 
