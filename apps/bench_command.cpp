@@ -11,12 +11,12 @@
 #include "apps/common.h"
 #include "apps/options.h"
 #include "apps/report.h"
+#include "experiments/ff_benchmark.h"
+#include "experiments/path_benchmark.h"
+#include "experiments/sweep_benchmark.h"
 #include "geometry/ray_scene.h"
 #include "hierarchy/hierarchical.h"
-#include "radiosity/ff_benchmark.h"
 #include "render/camera.h"
-#include "render/path_benchmark.h"
-#include "solvers/sweep_benchmark.h"
 #include "util/process_memory.h"
 
 namespace radkit::app {

@@ -22,6 +22,7 @@
 #include "render/camera.h"
 #include "render/hdr_io.h"
 #include "util/canvas.h"
+#include "util/errors.h"
 #include "util/format.h"
 #include "util/output_folder.h"
 
@@ -93,10 +94,10 @@ void runClouds(CloudsCommand& cmd) {
   } else {
     cmd.layer.seed = std::uint32_t(cmd.seed);  // without a scene file --seed seeds the noise too
     medium = std::make_unique<media::CloudLayer>(
-        cmd.layer, media::makePhaseFunction(
-                       cmd.phase, cmd.phaseParams.empty() && cmd.phase == "henyey-greenstein"
-                                      ? "g=0.86"
-                                      : cmd.phaseParams));
+        cmd.layer,
+        makePhaseFunction(cmd.phase, cmd.phaseParams.empty() && cmd.phase == "henyey-greenstein"
+                                         ? "g=0.86"
+                                         : cmd.phaseParams));
   }
   const media::Medium& layer = *medium;
   {
@@ -108,14 +109,13 @@ void runClouds(CloudsCommand& cmd) {
     const double depth = layer.majorant() * extent;
     constexpr double kMaxOpticalExtent = 1e5;
     if (!(depth <= kMaxOpticalExtent))
-      throw InputError(
-          (scene ? cmd.scene + ": the medium's" : std::string("--extinction:")) +
-          " extinction " + fmt("%g", layer.majorant()) + " /m across a medium " +
-          fmt("%g", extent) + " m wide is an optical extent of " + fmt("%g", depth) +
-          ", and a path takes about that many tracking steps (the limit is " +
-          fmt("%g", kMaxOpticalExtent) + "). Fix: give an extinction below " +
-          fmt("%g", kMaxOpticalExtent / extent) +
-          " /m (dense cloud is 0.05-0.12 /m) or a smaller medium");
+      throw InputError((scene ? cmd.scene + ": the medium's" : std::string("--extinction:")) +
+                       " extinction " + fmt("%g", layer.majorant()) + " /m across a medium " +
+                       fmt("%g", extent) + " m wide is an optical extent of " + fmt("%g", depth) +
+                       ", and a path takes about that many tracking steps (the limit is " +
+                       fmt("%g", kMaxOpticalExtent) + "). Fix: give an extinction below " +
+                       fmt("%g", kMaxOpticalExtent / extent) +
+                       " /m (dense cloud is 0.05-0.12 /m) or a smaller medium");
   }
   const double groundAlbedo = scene ? scene->groundAlbedo : 0.0;
   const double layerSeconds =

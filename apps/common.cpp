@@ -2,8 +2,8 @@
 
 #include <cerrno>
 #include <chrono>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -12,12 +12,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "apps/report.h"
 #include "geometry/scene_loader.h"
 #include "render/camera.h"
-#include "apps/report.h"
 #include "util/format.h"
-#include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
 #include "util/output_folder.h"
+#include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
 
 namespace radkit::app {
 
@@ -100,7 +100,8 @@ std::string defaultOutFolder(const std::string& sceneName) {
   if (!name.empty() && name[0] == '.') name[0] = '_';  // no "..", no hidden folder
   if (name.size() > 200) {  // one path component's limit is 255 bytes; keep UTF-8 whole
     name.resize(200);
-    while (!name.empty() && (static_cast<unsigned char>(name.back()) & 0xC0) == 0x80) name.pop_back();
+    while (!name.empty() && (static_cast<unsigned char>(name.back()) & 0xC0) == 0x80)
+      name.pop_back();
     if (!name.empty() && static_cast<unsigned char>(name.back()) >= 0xC0) name.pop_back();
   }
   return "out/" + (name.empty() ? std::string("scene") : name);
@@ -155,8 +156,8 @@ void addImageSizeOptions(CLI::App& command, int& width, int& height, const std::
           "--image-size",
           [&width, &height](const int& n) {
             width = height = n;
-            std::cerr << "radkit: warning: --image-size is deprecated: use --size " << n << "x"
-                      << n << " (the spelling of render and view)\n";
+            std::cerr << "radkit: warning: --image-size is deprecated: use --size " << n << "x" << n
+                      << " (the spelling of render and view)\n";
           },
           "Deprecated: --size NxN")
       ->check(CLI::Range(16, 8192))

@@ -5,7 +5,7 @@
 #include <new>
 
 #include "apps/common.h"
-#include "geometry/scene_loader.h"
+#include "util/errors.h"
 #include "util/threads.h"
 
 namespace {
@@ -61,8 +61,9 @@ int main(int argc, char** argv) {
         leaf = subs.empty() ? nullptr : subs.front();
       }
     std::cerr << "radkit: error: out of memory. Fix: "
-              << (options.empty() ? std::string("use a smaller input")
-                                  : "use smaller values of " + options.substr(0, options.size() - 2))
+              << (options.empty()
+                      ? std::string("use a smaller input")
+                      : "use smaller values of " + options.substr(0, options.size() - 2))
               << ".\n";
     return 1;
   } catch (const radkit::InputError& e) {

@@ -12,12 +12,12 @@
 
 #include "apps/common.h"
 #include "apps/report.h"
+#include "experiments/photon_benchmark.h"
+#include "experiments/photon_comparison.h"
 #include "geometry/mesh_structure.h"
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
 #include "output/run_files.h"
-#include "photon/benchmark.h"
-#include "photon/comparison.h"
 #include "photon/estimate.h"
 #include "photon/image.h"
 #include "photon/tracer.h"
@@ -178,8 +178,7 @@ void checkCompareFolder(const std::string& folder, const Scene& scene, const Pat
   // tally has one estimate per surface (both sides): compare the surfaces themselves.
   std::size_t backs = 0;
   for (const Surface& s : scene.surfaces)
-    if (scene.materials[s.material].twoSided &&
-        scene.surfaces.size() + backs < theirs.size() &&
+    if (scene.materials[s.material].twoSided && scene.surfaces.size() + backs < theirs.size() &&
         theirs[scene.surfaces.size() + backs].name == s.name + " (back)")
       ++backs;
   if (theirs.size() != scene.surfaces.size() + backs)
@@ -299,8 +298,8 @@ json reportJson(const PhotonsCommand& cmd, const PhotonRun& r, const json& rates
                 {"view", viewName(r.view)},
                 {"gather_rays", ps.gatherRays},
                 {"direct_rays", ps.directRays},
-                {"image_size", cmd.noImage ? json(nullptr)
-                                           : json::array({cmd.imageWidth, cmd.imageHeight})}}},
+                {"image_size",
+                 cmd.noImage ? json(nullptr) : json::array({cmd.imageWidth, cmd.imageHeight})}}},
               {"photons", statsJson(r.trace)},
               {"rates", rates},
               {"seconds", r.seconds},

@@ -16,6 +16,7 @@
 #include "render/hdr_io.h"
 #include "render/radiosity_image.h"
 #include "util/canvas.h"
+#include "util/errors.h"
 #include "util/output_folder.h"
 
 namespace radkit::app {

@@ -14,6 +14,8 @@
 #include "radiosity/presets.h"
 #include "radiosity/surface_form_factors.h"
 #include "render/radiosity_image.h"
+#include "solvers/registry.h"
+#include "util/errors.h"
 #include "util/output_folder.h"
 
 namespace radkit::app {
@@ -370,8 +372,9 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
   // `solvers` runs past 1e-9 so report.json's table of iterations to 1e-3, 1e-6 and 1e-9 is whole.
   if (job == Job::Solvers) cmd->solver.stopping.tolerance = 1e-10;
   if (job != Job::FormFactors) {
-    addSolverOptions(*sub, cmd->solver,
-                     job == Job::Solvers ? "jacobi,gauss-seidel,sor,southwell,cg" : "gauss-seidel");
+    std::string every;  // `solvers` compares every registered solver by default
+    for (const std::string& solver : solverNames()) every += (every.empty() ? "" : ",") + solver;
+    addSolverOptions(*sub, cmd->solver, job == Job::Solvers ? every : "gauss-seidel");
     cmd->tolFlag = {sub->get_option("--tol")};
     cmd->maxIterationsFlag = {sub->get_option("--max-iterations")};
   }

@@ -15,26 +15,17 @@
 #include "apps/options.h"
 #include "apps/report.h"
 #include "geometry/scene_loader.h"
-#include "photon/image.h"
-#include "photon/map.h"
-#include "photon/tracer.h"
+#include "integrators/integrator.h"
 #include "render/camera.h"
 #include "render/exr_io.h"
-#include "render/final_gather.h"
 #include "render/hdr_io.h"
 #include "render/image_comparison.h"
-#include "render/path_tracer.h"
-#include "render/shading.h"
 #include "util/output_folder.h"
 #include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
 
 namespace radkit::app {
 
 namespace {
-
-/// The radiosity mesh of `render` when none is given: surface radiosities on the Cornell
-/// box lie within 0.1 % of a 2 000-patch run, in about 3 s on two cores.
-constexpr int kDefaultRenderPatches = 1000;
 
 struct RenderCommand {
   MeshOptions mesh;
@@ -43,9 +34,7 @@ struct RenderCommand {
   std::string shading = "path-trace", size = "512x512", tonemap = "srgb",
               masking = "height-correlated", out;
   std::string sampler = "sobol", report, camera;
-  /// Solid angle lowers the Cornell box's error by 3 % at equal samples but costs 30 % more
-  /// time (docs/images.md), so area stays the default.
-  std::string lightSampling = "area";
+  std::string lightSampling = "area";  ///< RenderSettings::light says why
   std::vector<std::string> references;
   int spp = 16;
   int rouletteDepth = PathTraceSettings{}.rouletteDepth, maxDepth = PathTraceSettings{}.maxDepth;
@@ -57,217 +46,48 @@ struct RenderCommand {
   SmoothSettings smoothing;
 };
 
-/// The surface each pixel centre sees, −1 where the ray escapes.
-std::vector<int> pixelSurfaces(const RadianceImage& img, const PatchMesh& mesh) {
-  std::vector<int> out(img.patch.size(), -1);
-  for (std::size_t k = 0; k < out.size(); ++k)
-    if (img.patch[k] >= 0) out[k] = mesh.patches[img.patch[k]].surface;
-  return out;
-}
-
-/// What every render mode reads.
-struct ModeInput {
-  const RenderCommand& cmd;
-  const Scene& scene;
-  Camera camera;
-  int width, height;
-  BsdfSettings bsdf;
-  SamplerType sampler;
-  LightSampling light;
-  std::uint64_t seed;
-};
-
-/// A mode's image, with the pixels that show an emitter and the surface at each pixel.
-struct ModeImage {
-  RadianceImage image;
-  std::string what;
-  std::vector<bool> emits;
-  std::vector<int> surfaces;
-  std::vector<std::string> warnings;  ///< what the mode found doubtful, for --report
-};
-
-ModeImage finish(RadianceImage img, const Scene& scene, const PatchMesh& mesh, std::string what) {
-  ModeImage out;
-  out.emits = emitterPixels(img, scene, mesh);
-  out.surfaces = pixelSurfaces(img, mesh);
-  out.image = std::move(img);
-  out.what = std::move(what);
-  return out;
-}
-
-/// The mesh of the modes that do not solve radiosity (their own --patches or --max-area).
-PatchMesh ownMesh(const ModeInput& in, bool defaultPatches) {
-  MeshOptions options = in.cmd.mesh;
-  if (defaultPatches && options.maxArea <= 0 && options.patches <= 0)
-    options.patches = kDefaultRenderPatches;
-  return meshScene(in.scene, options);
-}
-
-/// The radiosity solution the two-pass modes shade with.
-PipelineResult solveRadiosity(const ModeInput& in) {
-  PipelineSettings settings;
-  settings.mesh = {in.cmd.mesh.maxArea, in.cmd.mesh.patches};
-  if (settings.mesh.maxArea <= 0 && settings.mesh.targetPatches <= 0)
-    settings.mesh.targetPatches = kDefaultRenderPatches;
-  settings.formFactors = in.cmd.ff.settings;
-  settings.solvers = in.cmd.solver.choices;
-  settings.stopping = in.cmd.solver.stopping;
+/// The image of the chosen integrator (integrators/integrator.h), from the command's flags.
+RenderResult renderMode(const RenderCommand& cmd, const Scene& scene, int width, int height) {
+  RenderSettings s;
+  s.film.width = width, s.film.height = height, s.film.samplesPerPixel = cmd.spp;
+  s.film.seed = cmd.ff.settings.seed;
+  s.film.sampler = parseSamplerType(cmd.sampler);
+  s.camera = scene.camera ? *scene.camera : automaticCamera(scene);
+  s.bsdf.masking = parseMaskingShadowing(cmd.masking);
+  s.bsdf.compensated = cmd.compensated;
+  s.light = parseLightSampling(cmd.lightSampling);
+  s.mesh = {cmd.mesh.maxArea, cmd.mesh.patches};
+  s.formFactors = cmd.ff.settings;
+  s.solvers = cmd.solver.choices;
+  s.stopping = cmd.solver.stopping;
+  s.rouletteDepth = cmd.rouletteDepth, s.maxDepth = cmd.maxDepth;
+  s.photons = cmd.photons;
+  s.gatherRays = cmd.gatherRays;
+  // photon-map: one pass unless --spp is given, which asks for that many passes.
+  s.photonPasses = cmd.sppOption && cmd.sppOption->count() > 0 ? cmd.spp : 1;
+  s.smooth = cmd.smooth;
+  s.smoothing = cmd.smoothing;
+  s.guided = !cmd.unguided;
   Progress progress;
-  PipelineLog log;
-  log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
-  PipelineResult r = runPipeline(in.scene, settings, log);
-  progress.finish();
-  return r;
-}
-
-ModeImage renderPhotonMapMode(const ModeInput& in) {
-  // Final gathering over the global map plus the caustic map seen directly (Jensen 1996).
-  const PatchMesh mesh = ownMesh(in, true);
-  const RayScene rays(mesh);
-  const EmitterSampler emitters = photonEmitters(in.scene, mesh);
-  PhotonSettings ps;
-  ps.photons = in.cmd.photons;
-  ps.seed = in.seed;
-  ps.bsdf = in.bsdf;
-  ps.gatherRays = in.cmd.gatherRays;
-  PhotonMaps maps = buildPhotonMaps(mesh, tracePhotons(in.scene, mesh, rays, emitters, ps).photons);
-  maps.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
-  const PhotonScene photons{in.scene, mesh, rays, emitters, *maps.global, *maps.caustic};
-  RadianceImage img =
-      renderPhotonImage(photons, in.camera, in.width, in.height, PhotonView::FinalGather, ps);
-  // One jittered ray per pixel per pass; --spp given asks for more passes, averaged (each
-  // pass its own camera stream). Without it one pass: a pass costs its gathers.
-  const int passes = in.cmd.sppOption && in.cmd.sppOption->count() > 0 ? in.cmd.spp : 1;
-  for (int pass = 1; pass < passes; ++pass) {
-    PhotonSettings more = ps;
-    more.seed = in.seed + std::uint64_t(pass);
-    const RadianceImage next =
-        renderPhotonImage(photons, in.camera, in.width, in.height, PhotonView::FinalGather, more);
-    for (std::size_t k = 0; k < img.radiance.size(); ++k)
-      img.radiance[k] = img.radiance[k] + next.radiance[k];
+  s.log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
+  s.warning = [&](const std::string& w) {
+    progress.finish();
+    std::fprintf(stderr, "radkit: warning: %s\n", w.c_str());
+  };
+  try {
+    RenderResult r = renderImage(cmd.shading, scene, s);
+    progress.finish();
+    return r;
+  } catch (const TooManyPatches&) {
+    MeshOptions options = cmd.mesh;
+    if (options.maxArea <= 0 && options.patches <= 0) options.patches = kDefaultRenderPatches;
+    tooManyPatches(scene, options);
   }
-  for (Vec3& v : img.radiance) v = v / double(passes);
-  return finish(std::move(img), in.scene, mesh,
-                std::to_string(in.cmd.photons) + " photons, " +
-                    std::to_string(maps.global->size()) + " stored, " +
-                    std::to_string(ps.gatherRays) + " gather rays per pixel, " +
-                    std::to_string(passes) + " pass(es)");
-}
-
-ModeImage renderPathTraceMode(const ModeInput& in) {
-  const PatchMesh mesh = ownMesh(in, false);
-  // Embree's fast mode: about 15 % less time per ray, for a ray in 10⁷ that slips through a
-  // shared edge (geometry/ray_scene.h). Under a sky such a ray would fetch daylight inside a
-  // closed room, a firefly, so daylit scenes keep the robust mode.
-  const RayScene rays(mesh, 0, in.scene.sky ? RayRobustness::Robust : RayRobustness::Fast);
-  const ShadingScene shading(in.scene, mesh, rays, in.bsdf, GlossyModel::AsDeclared, in.light);
-  PathTraceSettings s;
-  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed,
-  s.sampler = in.sampler;
-  s.rouletteDepth = in.cmd.rouletteDepth, s.maxDepth = in.cmd.maxDepth;
-  MonteCarloImage img = renderPathTraced(shading, in.camera, s);
-  return finish(std::move(img.image), in.scene, mesh,
-                std::to_string(img.paths) + " paths, " + std::to_string(img.rays) + " rays in " +
-                    std::to_string(img.seconds) + " s");
-}
-
-ModeImage renderRadiosityMode(const ModeInput& in) {
-  const PipelineResult r = solveRadiosity(in);
-  ImageSettings s;
-  s.width = in.width, s.height = in.height, s.smooth = in.cmd.smooth,
-  s.smoothing = in.cmd.smoothing;
-  if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
-  const std::vector<bool> twoSided = in.scene.twoSidedSurfaces();
-  RadianceImage img = renderRadiosity(r.mesh, *r.rays, in.camera, r.radiosity, twoSided, s);
-  return finish(std::move(img), in.scene, r.mesh, std::to_string(r.mesh.size()) + " patches");
-}
-
-ModeImage renderFinalGatherMode(const ModeInput& in) {
-  const PipelineResult r = solveRadiosity(in);
-  const ShadingScene shading(in.scene, r.mesh, *r.rays, in.bsdf, GlossyModel::AsDeclared, in.light);
-  FinalGatherSettings s;
-  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed,
-  s.sampler = in.sampler;
-  s.smoothing = in.cmd.smoothing;
-  const RadiosityLighting lighting = radiosityLighting(r);
-  std::optional<GatherGuide> guide;
-  if (!in.cmd.unguided) guide.emplace(r.formFactors->matrix, lighting);
-  MonteCarloImage img =
-      renderFinalGather(shading, in.camera, lighting, s, guide ? &*guide : nullptr);
-  return finish(std::move(img.image), in.scene, r.mesh,
-                std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) +
-                    " gathers in " + std::to_string(img.seconds) + " s");
-}
-
-ModeImage renderTwoPassMode(const ModeInput& in, GlossyModel glossy) {
-  const PipelineResult r = solveRadiosity(in);
-  const ShadingScene shading(in.scene, r.mesh, *r.rays, in.bsdf, glossy, in.light);
-  TwoPassSettings s;
-  s.width = in.width, s.height = in.height, s.samplesPerPixel = in.cmd.spp, s.seed = in.seed,
-  s.sampler = in.sampler;
-  MonteCarloImage img = renderTwoPass(shading, in.camera, radiosityLighting(r), s);
-  ModeImage out = finish(std::move(img.image), in.scene, r.mesh,
-                         std::to_string(r.mesh.size()) + " patches, " + std::to_string(img.paths) +
-                             " camera samples in " + std::to_string(img.seconds) + " s");
-  out.warnings = r.warnings;
-  // The two modes differ only in how glossy materials are shaded.
-  if (!hasGlossyMaterial(in.scene, in.bsdf)) {
-    out.warnings.push_back(
-        in.scene.file +
-        ": no surface has a glossy (phong or cook-torrance) material, so "
-        "--shading phong and --shading cook-torrance give the same image. Fix: give materials "
-        "\"brdf\": \"phong\" or \"cook-torrance\" (data/cornell-box-glossy.json has both)");
-    std::fprintf(stderr, "radkit: warning: %s\n", out.warnings.back().c_str());
-  }
-  return out;
-}
-
-ModeImage renderPhongMode(const ModeInput& in) { return renderTwoPassMode(in, GlossyModel::Phong); }
-ModeImage renderCookTorranceMode(const ModeInput& in) {
-  return renderTwoPassMode(in, GlossyModel::CookTorrance);
-}
-
-/// The one table of image modes (as solvers/registry.cpp): --shading's choices and help.
-struct RenderMode {
-  const char* name;
-  ModeImage (*render)(const ModeInput&);
-  const char* help;
-};
-
-constexpr RenderMode kRenderModes[] = {
-    {"radiosity", renderRadiosityMode,
-     "the radiosity solution seen by the camera (flat, or --smooth)"},
-    {"phong", renderPhongMode,
-     "two-pass: radiosity for diffuse light, glossy materials shaded as Phong"},
-    {"cook-torrance", renderCookTorranceMode, "two-pass: glossy materials shaded as Cook-Torrance"},
-    {"path-trace", renderPathTraceMode, "unidirectional path tracing with MIS (the reference)"},
-    {"photon-map", renderPhotonMapMode,
-     "photon mapping with final gathering (--photons, --gather-rays)"},
-    {"final-gather", renderFinalGatherMode, "one gather bounce over the radiosity solution"},
-};
-
-/// Radiance image of the chosen mode.
-ModeImage renderMode(const RenderCommand& cmd, const Scene& scene, int width, int height) {
-  BsdfSettings bsdf;
-  bsdf.masking = parseMaskingShadowing(cmd.masking);
-  bsdf.compensated = cmd.compensated;
-  const ModeInput in{cmd,
-                     scene,
-                     scene.camera ? *scene.camera : automaticCamera(scene),
-                     width,
-                     height,
-                     bsdf,
-                     parseSamplerType(cmd.sampler),
-                     parseLightSampling(cmd.lightSampling),
-                     cmd.ff.settings.seed};
-  for (const RenderMode& mode : kRenderModes)
-    if (cmd.shading == mode.name) return mode.render(in);
-  throw InputError("unknown --shading " + cmd.shading);
 }
 
 /// Region errors against the reference renders: printed, and written as JSON with --report.
 void compareWithReference(const RenderCommand& cmd, const Scene& scene, const LoadReport& loaded,
-                          const ModeImage& mode, double seconds,
+                          const RenderResult& mode, double seconds,
                           const std::vector<RadianceImage>& refs) {
   const RadianceImage& img = mode.image;
   const std::vector<int>& surfaces = mode.surfaces;
@@ -362,7 +182,7 @@ void runRender(RenderCommand& cmd) {
   LoadReport loaded;
   const Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded, cmd.camera);
   const auto start = std::chrono::steady_clock::now();
-  ModeImage mode = renderMode(cmd, scene, width, height);
+  RenderResult mode = renderMode(cmd, scene, width, height);
   const RadianceImage& img = mode.image;
   const std::string& what = mode.what;
   const std::vector<bool>& emits = mode.emits;
@@ -397,7 +217,7 @@ void addRenderCommand(CLI::App& app) {
   addSolverOptions(*sub, cmd->solver, "gauss-seidel");
   std::vector<std::string> modes;
   std::string modeHelp = "Image mode:";
-  for (const RenderMode& mode : kRenderModes) {
+  for (const auto& mode : integratorRegistry().entries()) {
     modes.emplace_back(mode.name);
     modeHelp += std::string("\n  ") + mode.name + ": " + mode.help;
   }

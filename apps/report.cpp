@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 #include "output/run_files.h"
 #include "render/hdr_io.h"

@@ -15,12 +15,13 @@
 #include "apps/common.h"
 #include "apps/report.h"
 #include "atmosphere/atmosphere.h"
-#include "atmosphere/comparison.h"
 #include "atmosphere/sky_image.h"
+#include "experiments/sky_comparison.h"
 #include "render/exr_io.h"
 #include "render/hdr_io.h"
 #include "render/radiosity_image.h"
 #include "util/canvas.h"
+#include "util/errors.h"
 #include "util/output_folder.h"
 
 namespace radkit::app {

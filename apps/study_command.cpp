@@ -1,4 +1,4 @@
-// radkit study: the speed-accuracy sweep of radiosity/study.h and its files: study.csv,
+// radkit study: the speed-accuracy sweep of experiments/study.h and its files: study.csv,
 // study.md, one error-versus-seconds chart per knob and the Pareto fronts.
 #include <algorithm>
 #include <chrono>
@@ -11,10 +11,10 @@
 
 #include "apps/common.h"
 #include "apps/report.h"
+#include "experiments/study.h"
 #include "geometry/scene_loader.h"
 #include "hierarchy/hierarchical.h"
 #include "output/run_files.h"
-#include "radiosity/study.h"
 #include "util/format.h"
 #include "util/line_chart.h"
 #include "util/output_folder.h"
@@ -189,7 +189,8 @@ void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& s
     << " MiB). Its own error, estimated: surface " << fmt("%.2e", r.reference.surfaceErrorEstimate)
     << ", patch " << fmt("%.2e", r.reference.patchErrorEstimate) << ". " << r.reference.errorMethod
     << "\n\n"
-    << "Errors are relative to the reference (radiosity/study.h): surface = max over surfaces and "
+    << "Errors are relative to the reference (experiments/study.h): surface = max over surfaces "
+       "and "
        "channels; patch = "
        "area-weighted L1 of patch means; field = area-weighted L1 of the piecewise-constant "
        "picture. P = on the Pareto "

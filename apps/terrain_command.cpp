@@ -172,7 +172,7 @@ void runTerrain(TerrainCommand& cmd) {
   scene["sky"] = ordered(skyJson(cmd));
   writeFileAtomically(folder.path("terrain.json"), scene.dump(1) + "\n");
   writeHeightMap(folder.path("heightmap.png"), field, s.height);
-  const terrain::FractalSettings& f = s.fractal;
+  const FractalSettings& f = s.fractal;
   json report{{"radkit", RADKIT_VERSION},
               {"command", "terrain"},
               {"settings",

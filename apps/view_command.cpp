@@ -3,8 +3,8 @@
 #include <memory>
 
 #include "apps/common.h"
-#include "geometry/scene_loader.h"
 #include "render/camera.h"
+#include "util/errors.h"
 #include "viewer/viewer.h"
 
 namespace radkit::app {

@@ -7,22 +7,13 @@
 #include <cstdint>
 #include <memory>
 
-#include "geometry/vec3.h"
+#include "phase/closed_form.h"
+#include "util/vec3.h"
 
 namespace radkit::atmosphere {
 
 /// The channels' wavelengths in metres (R, G, B).
 constexpr double kWavelengths[3] = {680e-9, 550e-9, 440e-9};
-
-/// \name Phase functions: densities over the sphere of directions (1/sr), of cos θ between the
-/// light's direction of travel and the scattered direction.
-/// \{
-double isotropicPhase();
-double rayleighPhase(double cosTheta);  ///< 3(1 + cos²θ)/(16π)
-/// (3(1−g²)/(2(2+g²))) (1+cos²θ)/(1+g²−2g cosθ)^{3/2} / (4π): Cornette and Shanks 1992.
-double cornetteShanksPhase(double cosTheta, double g);
-double henyeyGreensteinPhase(double cosTheta, double g);
-/// \}
 
 /// \brief Rayleigh volume scattering coefficient (1/m) of air whose refractive index at standard
 /// density is `refractiveIndex` and whose number density is `numberDensity` (1/m³) times

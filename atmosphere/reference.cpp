@@ -24,11 +24,11 @@
 #include <vector>
 
 #include "atmosphere/atmosphere.h"
-#include "atmosphere/phase_sampling.h"
 #include "atmosphere/reference.h"
 #include "atmosphere/shell.h"
-#include "geometry/frame.h"
-#include "geometry/sampling.h"
+#include "phase/closed_form.h"
+#include "util/frame.h"
+#include "util/sampling.h"
 
 namespace radkit::atmosphere {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/vec3.h"
+#include "util/vec3.h"
 
 namespace radkit::atmosphere {
 

@@ -15,9 +15,10 @@
 #include <vector>
 
 #include "bsdf/microfacet.h"
-#include "geometry/sampling.h"  // powerHeuristic, which every BSDF user weighs with
-#include "geometry/scene.h"
-#include "geometry/vec3.h"
+#include "util/params.h"
+#include "util/registry.h"
+#include "util/sampling.h"  // powerHeuristic, which every BSDF user weighs with
+#include "util/vec3.h"
 
 namespace radkit {
 
@@ -69,10 +70,19 @@ class Bsdf {
   /// One line for reports: the model and its parameters.
   virtual std::string describe() const = 0;
 
-  /// The same lobes as another family, for shading modes that draw every glossy material with
-  /// one model (--shading phong | cook-torrance); nothing when there is no such equivalent.
-  virtual std::unique_ptr<Bsdf> asPhong() const { return nullptr; }
-  virtual std::unique_ptr<Bsdf> asCookTorrance(const BsdfSettings&) const { return nullptr; }
+  /// A diffuse lobe plus one glossy lobe, described without its model's formulas, so that a
+  /// renderer can draw it with another model (render/shading_context.h); nothing for other
+  /// BSDFs.
+  struct GlossyLobe {
+    enum class Family { Phong, Microfacet };
+    Family family;
+    Vec3 diffuse;   ///< ρ_d
+    Vec3 specular;  ///< the glossy lobe's reflectance at normal incidence (Phong's ks, F0)
+    /// GGX roughness α; Phong's exponent n maps to α = √(2/(n + 2)) (Walter et al. 2007,
+    /// eq. 35, Beckmann ↔ Phong, used for GGX).
+    double alpha;
+  };
+  virtual std::optional<GlossyLobe> glossyLobe() const { return std::nullopt; }
 
  protected:
   /// \brief The sample of direction wi drawn by a mixture of non-delta lobes: its density is
@@ -91,17 +101,13 @@ class Bsdf {
 
 /// \brief The BSDF `name` with its parameters (bsdf/registry.cpp); each BSDF reads its own
 ///        keys and the registry rejects the rest.
-/// \throws BsdfParamError for an unknown name (listing the known ones), a key the BSDF does
+/// \throws ParamError for an unknown name (listing the known ones), a key the BSDF does
 ///         not read, or a value out of range.
-std::unique_ptr<Bsdf> makeBsdf(const std::string& name, BsdfParams params,
+std::unique_ptr<Bsdf> makeBsdf(const std::string& name, Params params,
                                const BsdfSettings& settings = {});
 
-/// One registered BSDF: its name, one line of help and parameters its tests use.
-struct BsdfInfo {
-  std::string name, help, example;
-};
-/// \brief Every registered BSDF, in table order.
-std::vector<BsdfInfo> bsdfTable();
+/// \brief Every registered BSDF (bsdf/registry.cpp), in table order: names, help, examples.
+const Registry<Bsdf, const BsdfSettings&>& bsdfRegistry();
 
 // The built-in models by value, for tests and for the substitutions of the shading modes.
 std::unique_ptr<Bsdf> makeLambertBsdf(const Vec3& albedo);

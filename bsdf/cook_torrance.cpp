@@ -10,7 +10,7 @@
 
 #include "bsdf/bsdf.h"
 #include "bsdf/specular.h"
-#include "geometry/frame.h"
+#include "util/frame.h"
 
 namespace radkit {
 
@@ -57,10 +57,8 @@ class CookTorranceBsdf final : public Bsdf {
 
   Vec3 diffuseAlbedo() const override { return m_diffuse; }
 
-  std::unique_ptr<Bsdf> asPhong() const override {
-    // Walter et al. 2007, eq. 35 (Beckmann ↔ Phong), used for GGX: n = 2/α² − 2, ks = F0.
-    const double alpha = std::max(m_ggx.alpha(), 1e-3);
-    return makePhongBsdf(m_diffuse, m_f0, std::max(0.0, 2 / (alpha * alpha) - 2));
+  std::optional<GlossyLobe> glossyLobe() const override {
+    return GlossyLobe{GlossyLobe::Family::Microfacet, m_diffuse, m_f0, m_ggx.alpha()};
   }
 
   std::string describe() const override {
@@ -98,15 +96,14 @@ std::unique_ptr<Bsdf> makeCookTorranceBsdf(const Vec3& base, double metallic, do
   return std::make_unique<CookTorranceBsdf>(base, metallic, roughness, f0, settings);
 }
 
-std::unique_ptr<Bsdf> createCookTorrance(BsdfParams& p, const BsdfSettings& settings) {
+std::unique_ptr<Bsdf> createCookTorrance(Params& p, const BsdfSettings& settings) {
   const Vec3 base = p.rgb({"base_color", "reflectance"}, {0.5, 0.5, 0.5});
-  BsdfParams::checkAlbedo("base_color", base);
+  Params::checkAlbedo("base_color", base);
   const double metallic = p.number("metallic", 0, 0, 1);
   const double roughness =
       p.number("roughness", 0.5, 0, 1, true, false,
                "use a small value such as 0.01 for a near-mirror, or brdf \"mirror\"");
-  if (p.has("f0") && p.has("ior"))
-    throw BsdfParamError("gives both \"f0\" and \"ior\". Fix: give one");
+  if (p.has("f0") && p.has("ior")) throw ParamError("gives both \"f0\" and \"ior\". Fix: give one");
   Vec3 f0{0.04, 0.04, 0.04};
   if (p.has("ior")) {
     const double ior = p.number("ior", 1.5, 1, 10, true, true);
@@ -114,7 +111,7 @@ std::unique_ptr<Bsdf> createCookTorrance(BsdfParams& p, const BsdfSettings& sett
     f0 = Vec3{1, 1, 1} * (r * r);
   }
   f0 = p.rgb("f0", f0);
-  BsdfParams::checkUnit("f0", f0);
+  Params::checkUnit("f0", f0);
   return makeCookTorranceBsdf(base, metallic, roughness, f0, settings);
 }
 

@@ -47,7 +47,7 @@ class GlassBsdf final : public Bsdf {
 
 std::unique_ptr<Bsdf> makeGlassBsdf(double eta) { return std::make_unique<GlassBsdf>(eta); }
 
-std::unique_ptr<Bsdf> createGlass(BsdfParams& p, const BsdfSettings&) {
+std::unique_ptr<Bsdf> createGlass(Params& p, const BsdfSettings&) {
   return makeGlassBsdf(p.number("ior", 1.5, 1, 10, true, true));
 }
 

@@ -2,7 +2,7 @@
 #include <cstdio>
 
 #include "bsdf/bsdf.h"
-#include "geometry/frame.h"
+#include "util/frame.h"
 
 namespace radkit {
 
@@ -53,9 +53,9 @@ std::unique_ptr<Bsdf> makeLambertBsdf(const Vec3& albedo) {
   return std::make_unique<LambertBsdf>(albedo);
 }
 
-std::unique_ptr<Bsdf> createLambert(BsdfParams& p, const BsdfSettings&) {
+std::unique_ptr<Bsdf> createLambert(Params& p, const BsdfSettings&) {
   const Vec3 albedo = p.rgb("reflectance", {0.5, 0.5, 0.5});
-  BsdfParams::checkAlbedo("reflectance", albedo);
+  Params::checkAlbedo("reflectance", albedo);
   return makeLambertBsdf(albedo);
 }
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/vec3.h"
+#include "util/vec3.h"
 
 namespace radkit {
 

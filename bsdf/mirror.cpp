@@ -38,9 +38,9 @@ std::unique_ptr<Bsdf> makeMirrorBsdf(const Vec3& colour) {
   return std::make_unique<MirrorBsdf>(colour);
 }
 
-std::unique_ptr<Bsdf> createMirror(BsdfParams& p, const BsdfSettings&) {
+std::unique_ptr<Bsdf> createMirror(Params& p, const BsdfSettings&) {
   const Vec3 colour = p.rgb("specular", {1, 1, 1});
-  BsdfParams::checkUnit("specular", colour);
+  Params::checkUnit("specular", colour);
   return makeMirrorBsdf(colour);
 }
 

@@ -9,7 +9,7 @@
 #include <cstdio>
 
 #include "bsdf/bsdf.h"
-#include "geometry/frame.h"
+#include "util/frame.h"
 
 namespace radkit {
 
@@ -85,9 +85,9 @@ class OrenNayarBsdf final : public Bsdf {
 
 }  // namespace
 
-std::unique_ptr<Bsdf> createOrenNayar(BsdfParams& p, const BsdfSettings&) {
+std::unique_ptr<Bsdf> createOrenNayar(Params& p, const BsdfSettings&) {
   const Vec3 r = p.rgb("reflectance", {0.5, 0.5, 0.5});
-  BsdfParams::checkAlbedo("reflectance", r);
+  Params::checkAlbedo("reflectance", r);
   return std::make_unique<OrenNayarBsdf>(r, p.number("sigma", 20, 0, 90, false, true));
 }
 

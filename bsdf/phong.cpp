@@ -9,7 +9,7 @@
 #include <string>
 
 #include "bsdf/bsdf.h"
-#include "geometry/frame.h"
+#include "util/frame.h"
 
 namespace radkit {
 
@@ -48,10 +48,8 @@ class PhongBsdf final : public Bsdf {
 
   Vec3 diffuseAlbedo() const override { return m_kd; }
 
-  std::unique_ptr<Bsdf> asCookTorrance(const BsdfSettings& settings) const override {
-    // Walter et al. 2007, eq. 35 read backwards: α = √(2/(n + 2)), roughness = √α, F0 = ks.
-    const double alpha = std::sqrt(2 / (m_n + 2));
-    return makeCookTorranceBsdf(m_kd, 0, std::sqrt(alpha), m_ks, settings);
+  std::optional<GlossyLobe> glossyLobe() const override {
+    return GlossyLobe{GlossyLobe::Family::Phong, m_kd, m_ks, std::sqrt(2 / (m_n + 2))};
   }
 
   std::string describe() const override {
@@ -79,14 +77,14 @@ std::unique_ptr<Bsdf> makePhongBsdf(const Vec3& kd, const Vec3& ks, double shini
   return std::make_unique<PhongBsdf>(kd, ks, shininess);
 }
 
-std::unique_ptr<Bsdf> createPhong(BsdfParams& p, const BsdfSettings&) {
+std::unique_ptr<Bsdf> createPhong(Params& p, const BsdfSettings&) {
   const Vec3 kd = p.rgb({"kd", "reflectance"}, {0.5, 0.5, 0.5}), ks = p.rgb("ks", {0, 0, 0});
   const double n = p.number("shininess", 32, 0, 1e6);
-  BsdfParams::checkAlbedo("kd", kd);
-  BsdfParams::checkUnit("ks", ks);
+  Params::checkAlbedo("kd", kd);
+  Params::checkUnit("ks", ks);
   for (int c = 0; c < 3; ++c)
     if (!(kd[c] + ks[c] < 1))
-      throw BsdfParamError(
+      throw ParamError(
           "kd + ks = " + std::to_string(kd[c] + ks[c]) + " (channel " + std::to_string(c) +
           ") must stay below 1 for an energy-conserving Phong material. Fix: lower kd or ks.");
   return makePhongBsdf(kd, ks, n);

@@ -22,9 +22,9 @@
 #include <string_view>
 
 #include "fuzz/work_dir.h"
-#include "geometry/scene_loader.h"
 #include "render/camera.h"
 #include "render/smooth_radiosity.h"
+#include "util/errors.h"
 #include "viewer/run_folder.h"
 #include "viewer/view_settings.h"
 

@@ -13,8 +13,8 @@
 #include <utility>
 
 #include "geometry/mesh_structure.h"  // requireRegularFile
-#include "geometry/scene_loader.h"
-#include "geometry/vec3.h"
+#include "util/errors.h"
+#include "util/vec3.h"
 
 namespace radkit {
 

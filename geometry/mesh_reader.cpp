@@ -4,14 +4,14 @@
 #include "geometry/mesh_reader.h"
 #include "util/format.h"
 
+#include <stb/stb_image.h>
 #include <tiny_obj_loader.h>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
-#include <stb/stb_image.h>
 
 #include <algorithm>
-#include <cctype>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -365,7 +365,7 @@ Material mtlMaterial(const tinyobj::material_t& m, const std::string& path,
   if (maxComponent(ka) > 0 && !mat.emits()) ambientOnly.push_back(m.name);
   try {
     resolveMaterial(mat);
-  } catch (const BsdfParamError& e) {
+  } catch (const ParamError& e) {
     throw InputError(path + ": MTL material \"" + m.name + "\": " + e.what());
   }
   return mat;
@@ -384,8 +384,7 @@ Scene loadObjScene(const std::string& path, std::vector<std::string>* warnings,
   scene.file = path;
   scene.name = fs::path(path).stem().string();
   const std::string& mtlWarning = reader.Warning();
-  if (reader.GetMaterials().empty() && mtlWarning.find("not found") != std::string::npos)
-  {
+  if (reader.GetMaterials().empty() && mtlWarning.find("not found") != std::string::npos) {
     bool whole = false;
     std::string looked;
     for (const std::string& f : mtlFilesTinyobjWouldSplit(path, whole))

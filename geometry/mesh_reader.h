@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/scene.h"
+#include "util/errors.h"
 
 namespace radkit {
 

@@ -31,8 +31,8 @@
 
 #include "geometry/mesh_structure.h"
 #include "geometry/positions.h"
-#include "geometry/scene_loader.h"
 #include "geometry/structure_text.h"
+#include "util/errors.h"
 
 namespace radkit {
 

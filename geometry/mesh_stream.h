@@ -7,6 +7,7 @@
 #include <string>
 
 #include "geometry/mesh_reader.h"
+#include "util/errors.h"
 
 namespace radkit {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/scene_loader.h"
 #include "geometry/structure_text.h"
+#include "util/errors.h"
 
 namespace radkit {
 
@@ -28,8 +28,7 @@ std::string readAll(const std::string& path) {
                      "). Fix: check the file's permissions.");
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad())
-    throw InputError(path + ": reading failed (" + std::strerror(errno) + ").");
+  if (in.bad()) throw InputError(path + ": reading failed (" + std::strerror(errno) + ").");
   return text.str();
 }
 
@@ -60,8 +59,8 @@ struct OffHeader {
   std::string key;                  ///< empty when the file starts with its counts
   std::vector<std::string> counts;  ///< "vertices faces [edges]" as written
   long long vertices = 0, faces = 0;
-  long line = 0;                    ///< the counts' line
-  bool binary = false;              ///< "OFF BINARY": nothing after the key line was read
+  long line = 0;        ///< the counts' line
+  bool binary = false;  ///< "OFF BINARY": nothing after the key line was read
 };
 
 /// Reads the header from `lines`, leaving them after the counts.

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "util/errors.h"
+
 namespace radkit {
 
 /// Throws InputError naming path unless it is a regular file (FIFOs and devices hang readers).

@@ -29,9 +29,12 @@ class CapturedOpenMeshErrors {
     for (std::string line; std::getline(lines, line);) {
       while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
       if (line.empty()) continue;
-      auto it = std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == line; });
-      if (it == seen.end()) seen.emplace_back(line, 1);
-      else ++it->second;
+      auto it =
+          std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == line; });
+      if (it == seen.end())
+        seen.emplace_back(line, 1);
+      else
+        ++it->second;
     }
     std::string out;
     for (const auto& [line, count] : seen)

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "geometry/scene.h"
-#include "geometry/vec3.h"
+#include "util/vec3.h"
 
 namespace radkit {
 

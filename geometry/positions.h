@@ -5,7 +5,7 @@
 #include <cstring>
 #include <vector>
 
-#include "geometry/vec3.h"
+#include "util/vec3.h"
 
 namespace radkit {
 

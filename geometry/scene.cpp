@@ -19,7 +19,7 @@ Material makeMaterial(const std::string& name, const std::string& bsdf, const st
   Material m;
   m.name = name;
   m.bsdf = bsdf;
-  m.params = BsdfParams::parse(params);
+  m.params = Params::parse(params);
   m.emission = emission;
   resolveMaterial(m);
   return m;

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "bsdf/params.h"
 #include "geometry/face_indices.h"
-#include "geometry/vec3.h"
+#include "util/params.h"
+#include "util/vec3.h"
 
 namespace radkit {
 
@@ -19,7 +19,7 @@ struct Material {
   Vec3 emission{0, 0, 0};
   bool twoSided = false;
   std::string bsdf = "lambert";
-  BsdfParams params;  ///< the BSDF's own keys, as given
+  Params params;  ///< the BSDF's own keys, as given
 
   // Set by resolveMaterial() from the BSDF:
   Vec3 albedo{0.5, 0.5, 0.5};  ///< diffuse albedo ρ_d, what the radiosity system uses
@@ -34,7 +34,7 @@ struct Material {
 };
 
 /// \brief Checks material.params with its BSDF (unknown keys, ranges) and caches albedo, delta
-///        and description. \throws BsdfParamError with the BSDF's message (no file or name).
+///        and description. \throws ParamError with the BSDF's message (no file or name).
 void resolveMaterial(Material& material);
 
 /// \brief A checked material of BSDF `bsdf` (tests, generated scenes); params as "key=v, ...".

@@ -76,7 +76,7 @@ Material readMaterial(const std::string& name, const json& j, const std::string&
   }
   try {
     resolveMaterial(m);
-  } catch (const BsdfParamError& e) {
+  } catch (const ParamError& e) {
     const std::string what = e.what();
     r.fail(what.rfind("has unknown", 0) == 0 ? what : "(brdf \"" + m.bsdf + "\"): " + what);
   }
@@ -499,7 +499,8 @@ bool fromUnitlessMesh(const Scene& scene, const Surface& s) {
   std::transform(source.begin(), source.end(), source.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   std::string ext = fs::path(scene.file).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext == ".obj" || (source.find("(mesh ") != std::string::npos &&
                            (endsWith(source, ".stl)") || endsWith(source, ".obj)")));
 }
@@ -532,9 +533,9 @@ bool warnOnUnitlessGiants(const Scene& scene, LoadReport& report) {
     if (others && !(room <= kRoomMetres && extent[k] > room)) continue;
     char text[200];
     std::snprintf(text, sizeof text, " spans %.4g m", extent[k]);
-    std::string where = others ? std::string(text) + " in a room " + formatNumber(room, 3) +
-                                     " m across"
-                               : std::string(text) + ", alone in the scene";
+    std::string where =
+        others ? std::string(text) + " in a room " + formatNumber(room, 3) + " m across"
+               : std::string(text) + ", alone in the scene";
     report.warnings.push_back(
         s.source + where + ", read in " + scene.units +
         ". STL and OBJ files carry no unit, and CAD exports are often in millimetres. Fix: if it "
@@ -606,7 +607,10 @@ Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& 
           "MODEL --out SCENE.json.");
   } else if (ext == ".stl" || ext == ".ply" || ext == ".off")
     // A bare mesh has neither materials nor a light: say how to give it both.
-    throw InputError(path + ": this " + std::string(ext == ".ply" ? "PLY" : ext == ".off" ? "OFF" : "STL") +
+    throw InputError(path + ": this " +
+                     std::string(ext == ".ply"   ? "PLY"
+                                 : ext == ".off" ? "OFF"
+                                                 : "STL") +
                      " file is a mesh without materials or lights, not a scene. Fix: name it "
                      "as a surface's \"mesh\" in a JSON scene, with a material and a lamp "
                      "(docs/formats.md), or stand it in a lit room with "

@@ -8,14 +8,9 @@
 #include <vector>
 
 #include "geometry/scene.h"
+#include "util/errors.h"
 
 namespace radkit {
-
-/// A problem with the user's input: the message names the file, the element and the fix.
-class InputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// What the mesh repair (LoadOptions::repair) changed in one surface.
 struct MeshRepair {

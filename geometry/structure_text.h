@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/scene_loader.h"
+#include "util/errors.h"
 
 namespace radkit::structure {
 

@@ -16,7 +16,7 @@
 #include <stdexcept>
 
 #include "geometry/openmesh_errors.h"
-#include "geometry/scene_loader.h"
+#include "util/errors.h"
 
 namespace radkit {
 

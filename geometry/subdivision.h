@@ -7,6 +7,7 @@
 
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
+#include "util/errors.h"
 
 namespace radkit {
 

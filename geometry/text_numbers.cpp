@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "geometry/mesh_structure.h"
-#include "geometry/scene_loader.h"
 #include "geometry/structure_text.h"
+#include "util/errors.h"
 
 namespace radkit {
 

@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "util/errors.h"
+
 namespace radkit {
 
 /// \brief Throws InputError naming path, line and token when a number field of a text OBJ, MTL

@@ -4,6 +4,7 @@
 
 #include "geometry/patch_mesh.h"
 #include "geometry/positions.h"
+#include "util/errors.h"
 #include "util/format.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -113,18 +114,19 @@ void warnOnCoincidentFaces(const Scene& scene, LoadReport& report) {
   std::size_t first = 0;
   for (std::size_t si = 0; si < scene.surfaces.size(); ++si) {
     const Surface& s = scene.surfaces[si];
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.faces.size(), 4096),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t f = range.begin(); f != range.end(); ++f)
-                          keys[first + f] = {cornerHash(s, s.faces[f]), std::uint32_t(si),
-                                             std::uint32_t(f)};
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, s.faces.size(), 4096),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t f = range.begin(); f != range.end(); ++f)
+            keys[first + f] = {cornerHash(s, s.faces[f]), std::uint32_t(si), std::uint32_t(f)};
+        });
     first += s.faces.size();
   }
   // The keys are distinct (surface, face), so the order is the same however the sort splits.
   tbb::parallel_sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
-    return a.hash != b.hash ? a.hash < b.hash
-                            : a.surface != b.surface ? a.surface < b.surface : a.face < b.face;
+    return a.hash != b.hash         ? a.hash < b.hash
+           : a.surface != b.surface ? a.surface < b.surface
+                                    : a.face < b.face;
   });
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::array<std::size_t, 3>> pairs;
   for (std::size_t a = 0; a < keys.size(); ++a)
@@ -135,8 +137,9 @@ void warnOnCoincidentFaces(const Scene& scene, LoadReport& report) {
       const Face& fb = sb.faces[keys[b].face];
       if (sortedCorners(sa, fa) != sortedCorners(sb, fb)) continue;  // a hash collision
       if (dot(newellNormal(facePoints(sa, fa)), newellNormal(facePoints(sb, fb))) <= 0) continue;
-      auto [it, added] = pairs.try_emplace({keys[a].surface, keys[b].surface},
-                                           std::array<std::size_t, 3>{0, keys[a].face, keys[b].face});
+      auto [it, added] =
+          pairs.try_emplace({keys[a].surface, keys[b].surface},
+                            std::array<std::size_t, 3>{0, keys[a].face, keys[b].face});
       ++it->second[0];
     }
   for (const auto& [surfaces, found] : pairs) {
@@ -868,14 +871,13 @@ void validateScene(Scene& scene, LoadReport& report, bool repair,
     progress(checking, 0.8);
     normaliseFaces(s, report);
     progress(checking, 1.0);
-    const bool selfCheck = settings.selfIntersections &&
-                           (si >= settings.surfaceSelfIntersections.size() ||
-                            settings.surfaceSelfIntersections[si]);
+    const bool selfCheck =
+        settings.selfIntersections &&
+        (si >= settings.surfaceSelfIntersections.size() || settings.surfaceSelfIntersections[si]);
     if (selfCheck) {
       const std::string stage = "self-intersections " + s.name;
       progress(stage, 0.0);
-      const std::size_t n =
-          countSelfIntersections(s, [&](double f) { progress(stage, f); });
+      const std::size_t n = countSelfIntersections(s, [&](double f) { progress(stage, f); });
       progress("self-intersections " + s.name, 1.0);
       if (n)
         report.warnings.push_back(

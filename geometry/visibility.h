@@ -6,7 +6,7 @@
 #include <limits>
 #include <optional>
 
-#include "geometry/vec3.h"
+#include "util/vec3.h"
 
 namespace radkit {
 

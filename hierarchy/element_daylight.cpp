@@ -8,8 +8,8 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/frame.h"
-#include "geometry/sampling.h"
+#include "util/frame.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

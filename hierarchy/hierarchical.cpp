@@ -10,10 +10,10 @@
 
 #include <tbb/parallel_for.h>
 
-#include "geometry/sampling.h"
 #include "geometry/subdivision.h"
 #include "hierarchy/element_daylight.h"
 #include "hierarchy/refine.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

@@ -77,8 +77,8 @@ struct HierarchicalResult {
   std::unique_ptr<HierarchicalSystem> system;
   /// Over the input faces; only with HierarchicalSettings::keepGatherArrays (else null).
   std::unique_ptr<RayScene> rays;
-  PatchMesh leaves;                ///< leaf elements in output order (grouped by surface)
-  std::vector<int> leafNodes;      ///< node of each leaf patch
+  PatchMesh leaves;              ///< leaf elements in output order (grouped by surface)
+  std::vector<int> leafNodes;    ///< node of each leaf patch
   SourceState state;             ///< every node's radiosity (leaves solved, inner nodes pulled up)
   std::vector<Vec3> radiosity;   ///< B per leaf, W/m²
   std::vector<Vec3> irradiance;  ///< H per leaf, W/m²

@@ -7,7 +7,7 @@
 
 #include <tbb/task_group.h>
 
-#include "geometry/sampling.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

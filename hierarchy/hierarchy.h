@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "geometry/patch_mesh.h"
-#include "geometry/vec3.h"
 #include "util/check.h"
+#include "util/vec3.h"
 
 namespace radkit {
 

@@ -5,7 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "geometry/sampling.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

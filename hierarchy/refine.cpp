@@ -6,8 +6,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "geometry/sampling.h"
 #include "radiosity/contour.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

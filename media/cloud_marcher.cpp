@@ -13,12 +13,7 @@ namespace radkit::media {
 
 double scaledPhase(const PhaseFunction& phase, double cosTheta, double scale) {
   if (scale == 1) return phase.eval(cosTheta);
-  if (const auto* dhg = dynamic_cast<const DoubleHenyeyGreensteinPhase*>(&phase))
-    return dhg->w() * atmosphere::henyeyGreensteinPhase(cosTheta, scale * dhg->g1()) +
-           (1 - dhg->w()) * atmosphere::henyeyGreensteinPhase(cosTheta, scale * dhg->g2());
-  if (dynamic_cast<const IsotropicPhase*>(&phase) || dynamic_cast<const RayleighPhase*>(&phase))
-    return phase.eval(cosTheta);
-  return atmosphere::henyeyGreensteinPhase(cosTheta, scale * phase.meanCosine());
+  return phase.evalAnisotropyScaled(cosTheta, scale);
 }
 
 Vec3 marchCloud(const Medium& medium, const Lighting& light, const Vec3& o, const Vec3& d,

@@ -24,9 +24,9 @@ struct MarchSettings {
   Vec3 ambientBottom{0, 0, 0};       ///< mean radiance arriving from below (the ground)
 };
 
-/// \brief The phase function with its asymmetry scaled by `scale` (an octave's c^i): HG and
-/// double HG scale their g; isotropic and Rayleigh stay; others are replaced by HG with the
-/// scaled mean cosine (the octaves' approximation of a Mie table).
+/// \brief The phase function with its asymmetry scaled by `scale` (an octave's c^i): each phase
+/// function's evalAnisotropyScaled (HG and double HG scale their g; isotropic and Rayleigh
+/// stay; a table becomes HG with the scaled mean cosine).
 double scaledPhase(const PhaseFunction& phase, double cosTheta, double scale);
 
 /// \brief Radiance arriving at o along −d (d the camera ray) by the real-time model; `offset`

@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/vec3.h"
-#include "media/noise.h"
-#include "media/phase.h"
+#include "noise/noise3d.h"
+#include "phase/phase_function.h"
+#include "util/vec3.h"
 
 namespace radkit::media {
 

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "geometry/json_reader.h"
+#include "util/errors.h"
 #include "util/format.h"
 
 namespace radkit::media {
@@ -61,8 +62,9 @@ std::unique_ptr<PhaseFunction> readPhase(const json& parent, const std::string& 
       ObjectReader r(j, "medium's \"phase\"", file);
       const json& n = r.get("name");
       if (!n.is_string())
-        r.fail("\"name\" must be a string. Fix: name a phase function, e.g. "
-               "\"henyey-greenstein\"");
+        r.fail(
+            "\"name\" must be a string. Fix: name a phase function, e.g. "
+            "\"henyey-greenstein\"");
       name = n.get<std::string>(), params.clear();
       for (auto it = j.begin(); it != j.end(); ++it) {
         if (it.key() == "name") continue;
@@ -197,13 +199,15 @@ VolumeScene loadVolumeScene(const std::string& path) {
   if (r.has("camera")) scene.camera = readVolumeCamera(root.at("camera"), path);
   scene.groundAlbedo = inRange(r, "ground_albedo", r.number("ground_albedo", 0), 0, 1, false, true);
   if (scene.groundAlbedo > 0 && scene.camera && !(scene.camera->position.z > 0))
-    r.fail("\"camera\" stands at or below the ground (z = 0) that \"ground_albedo\" puts there. "
-           "Fix: give the camera a position with z > 0");
+    r.fail(
+        "\"camera\" stands at or below the ground (z = 0) that \"ground_albedo\" puts there. "
+        "Fix: give the camera a position with z > 0");
   // The medium last: a cloud layer's noise takes seconds to build, after every cheap check.
   scene.medium = parseMedium(medium, path, &scene.kind, &scene.phaseName, &scene.phaseParams);
   if (scene.groundAlbedo > 0 && scene.medium->bounds().lo.z < 0)
-    r.fail("\"medium\" reaches below the ground (z = 0) that \"ground_albedo\" puts there. "
-           "Fix: keep the medium at z >= 0, or set \"ground_albedo\" to 0");
+    r.fail(
+        "\"medium\" reaches below the ground (z = 0) that \"ground_albedo\" puts there. "
+        "Fix: keep the medium at z >= 0, or set \"ground_albedo\" to 0");
   return scene;
 }
 

@@ -11,6 +11,7 @@
 
 #include "geometry/scene.h"
 #include "media/medium.h"
+#include "util/errors.h"
 
 namespace radkit::media {
 

@@ -13,7 +13,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "geometry/sampling.h"
+#include "util/sampling.h"
 
 namespace radkit::media {
 

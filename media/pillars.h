@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/vec3.h"
+#include "util/vec3.h"
 
 namespace radkit::media {
 

@@ -9,8 +9,8 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/sampling.h"
 #include "media/medium.h"
+#include "util/sampling.h"
 
 namespace radkit::media {
 

@@ -15,9 +15,9 @@
 
 #include <tbb/parallel_for.h>
 
-#include "geometry/scene_loader.h"  // InputError
 #include "radiosity/form_factor_storage.h"
 #include "radiosity/surface_form_factors.h"
+#include "util/errors.h"         // InputError
 #include "util/output_folder.h"  // writeFileAtomically, writeFileStreaming, csvField
 
 namespace radkit {
@@ -429,35 +429,6 @@ void writeFormFactorBinary(const std::string& path, const FormFactorMatrix& f) {
     });
     while (row < n) flush();
   });
-}
-
-void writeStudyCsv(const std::string& path, const StudyResult& r) {
-  std::ostringstream o;
-  o << "knob,config,status,patches,ff_method,ff_samples,solver,tolerance,mesh_s,ray_scene_s,"
-       "formfactors_s,solve_s,"
-       "results_s,total_s,estimated_s,ff_bytes,peak_bytes,iterations,converged,surface_error,patch_"
-       "error,field_error,"
-       "pareto_surface,pareto_patch,needed_s,left_s\n";
-  auto line = [&](const StudyRow& w, const std::string& knob) {
-    const PipelineSettings& s = w.config.settings;
-    o << knob << ",\"" << w.config.label() << "\"," << (w.ran ? "ran" : "skipped") << ','
-      << w.patches << ',' << s.formFactors.method << ',' << s.formFactors.samples << ','
-      << s.solvers.front().name << ',' << s.stopping.tolerance << ',' << w.seconds.mesh << ','
-      << w.seconds.rayScene << ',' << w.seconds.formFactors << ',' << w.seconds.solve << ','
-      << w.seconds.results << ',' << w.totalSeconds << ',' << w.estimatedSeconds << ','
-      << w.formFactorBytes << ',' << w.peakBytes << ',' << w.iterations << ',' << w.converged << ','
-      << w.surfaceError << ',' << w.patchError << ',' << w.fieldError << ',' << w.paretoSurface
-      << ',' << w.paretoPatch << ',';
-    if (!std::isnan(w.neededSeconds))
-      o << w.neededSeconds << ',' << w.secondsLeft;
-    else
-      o << ',';
-    o << '\n';
-  };
-  o.precision(6);
-  for (const StudyRow& w : r.rows) line(w, studyKnobName(w.config.knob));
-  line(r.reference.row, "reference");
-  writeFileAtomically(path, o.str());
 }
 
 }  // namespace radkit

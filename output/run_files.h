@@ -1,5 +1,5 @@
-// The data files of a run folder (and of a study folder), every writer in one place, with the
-// one reader of surfaces.csv; the viewer reads convergence.csv and surfaces.csv by the column
+// The data files of a run folder, every writer in one place, with the one reader of
+// surfaces.csv; the viewer reads convergence.csv and surfaces.csv by the column
 // names below. docs/formats.md describes each file.
 //
 // Units are part of the column names. Lengths and areas are in metres whatever the scene's
@@ -18,9 +18,9 @@
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
 #include "radiosity/radiosity_solution.h"
-#include "radiosity/study.h"
 #include "solvers/matrix.h"
 #include "solvers/solver.h"
+#include "util/errors.h"
 
 namespace radkit {
 
@@ -147,11 +147,5 @@ constexpr char kFormFactorBinaryMagic[9] = "RADKITF1";
 /// k and either (k >= 0) k uint32 columns ascending and k float32 values, or (k = −1, when
 /// that is smaller) n float32 values. At most 4n² + 4n + 24 bytes.
 void writeFormFactorBinary(const std::string& path, const FormFactorMatrix& f);
-
-// --- study.csv (radkit study) -----------------------------------------------------------------
-/// One row per configuration and one for the reference; times in seconds, memory in bytes,
-/// errors relative to the reference (radiosity/study.h), needed_s and left_s what the
-/// planner weighed (empty for rows that came with another run).
-void writeStudyCsv(const std::string& path, const StudyResult& result);
 
 }  // namespace radkit

@@ -6,9 +6,9 @@
 #include <optional>
 
 #include "geometry/ray_scene.h"
-#include "geometry/sampling.h"
 #include "render/camera.h"
 #include "render/shading_context.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "geometry/patch_mesh.h"
-#include "geometry/vec3.h"
+#include "util/vec3.h"
 
 namespace radkit {
 

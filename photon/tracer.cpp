@@ -11,9 +11,9 @@
 
 #include "daylight/sky.h"
 #include "geometry/ray_scene.h"
-#include "geometry/sampling.h"
-#include "geometry/scene_loader.h"
 #include "render/shading_context.h"
+#include "util/errors.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

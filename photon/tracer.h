@@ -13,6 +13,7 @@
 #include "geometry/visibility.h"
 #include "photon/map.h"
 #include "render/emitters.h"
+#include "util/errors.h"
 
 namespace radkit {
 

@@ -172,8 +172,9 @@ PyFormFactors formFactorsPy(const PyMesh& mesh, const std::string& method, int s
     throw py::value_error("form_factors: precision '" + precision +
                           "' is not known. Fix: 'double' (default) or 'float'");
   if (pairLevels < 0 || pairLevels > kMaxPairLevel)
-    throw py::value_error("form_factors: pair_levels must be in 0..8. Fix: 0 (adaptive contour "
-                          "for every pair) to 8 (default)");
+    throw py::value_error(
+        "form_factors: pair_levels must be in 0..8. Fix: 0 (adaptive contour "
+        "for every pair) to 8 (default)");
   settings.quadrature.pairLevels = pairLevels;
   const RayScene& rays = mesh.rayScene();
   std::shared_ptr<FormFactorResult> result;
@@ -255,8 +256,8 @@ IndexArray indexArray(const py::handle& object, const std::string& what) {
     const auto u = py::array_t<std::uint64_t, py::array::c_style>::ensure(a);
     for (py::ssize_t k = 0; k < u.size(); ++k)
       if (u.data()[k] > std::uint64_t(INT64_MAX))
-        throw py::value_error(what + "[" + std::to_string(k) + "] = " +
-                              std::to_string(u.data()[k]) +
+        throw py::value_error(what + "[" + std::to_string(k) +
+                              "] = " + std::to_string(u.data()[k]) +
                               " is beyond int64. Fix: indices of an n x n matrix are 0 .. n - 1");
   }
   IndexArray out = IndexArray::ensure(a);
@@ -360,8 +361,7 @@ class PythonSolver final : public Solver {
                                          : std::string("python");
   }
   std::string describe() const override {
-    return "Python solver " +
-           py::str(m_object.get_type().attr("__name__")).cast<std::string>();
+    return "Python solver " + py::str(m_object.get_type().attr("__name__")).cast<std::string>();
   }
   void start(const RadiositySystem& system, const SolverSettings& settings) override {
     system.validate();
@@ -430,42 +430,43 @@ py::dict resultDict(const SolveResult& r) {
 }
 
 /// A built-in solver's parameters: "key=value,..." text or a dict {key: value} of numbers,
-/// bools (1 or 0) or number texts. A dict's texts go through the text parser, so both forms
-/// refuse the same values with the same message; unknown keys are left for makeSolver.
-SolverParams solverParams(const py::object& params) {
-  if (py::isinstance<py::str>(params)) return SolverParams::parse(params.cast<std::string>());
+/// bools (1 or 0) or number texts. A dict's texts go through the text parser and its values
+/// are checked by the solver as the text form's are, so both forms refuse the same values with
+/// the same message; unknown keys are left for makeSolver.
+Params solverParams(const py::object& params) {
+  if (py::isinstance<py::str>(params)) return Params::parse(params.cast<std::string>());
   if (!py::isinstance<py::dict>(params))
     throw py::type_error("params: expected text \"key=value,...\" or a dict {key: value}, got " +
                          py::str(params.get_type().attr("__name__")).cast<std::string>() +
                          ". Fix: e.g. params={\"omega\": 1.2}");
-  std::map<std::string, double> values;
+  Params result;
   for (const auto& [k, v] : params.cast<py::dict>()) {
     if (!py::isinstance<py::str>(k))
       throw py::value_error("params: key " + py::repr(k).cast<std::string>() +
                             " is not a string. Fix: the parameter's name, e.g. \"omega\"");
     const std::string key = k.cast<std::string>();
     // The text form separates items by ',' and key from value by '=': either inside a key or
-    // a text value would be read as another parameter.
-    if (key.empty() || key.find_first_of(",=") != std::string::npos)
+    // a text value would be read as another parameter (and it trims spaces around keys).
+    if (key.empty() || key.find_first_of(",= \t") != std::string::npos)
       throw py::value_error("params: key '" + key +
                             "' is not a parameter name. Fix: a name such as \"omega\"");
     if (py::isinstance<py::bool_>(v)) {
-      values[key] = v.cast<bool>() ? 1.0 : 0.0;
+      result.set(key, v.cast<bool>() ? 1.0 : 0.0);
     } else if (py::isinstance<py::str>(v)) {
       const std::string item = key + "=" + v.cast<std::string>();
       if (item.find(',') != std::string::npos)
         throw py::value_error("solver parameter '" + item +
                               "': expected key=number, e.g. omega=1.5");
-      values[key] = SolverParams::parse(item).get(key, 0.0);
+      result.set(key, Params::parse(item).values().at(key));
     } else {
       const py::object number = py::module_::import("numbers").attr("Real");
       if (!py::isinstance(v, number))
         throw py::value_error("solver parameter '" + key + "=" + py::repr(v).cast<std::string>() +
                               "': expected a number, e.g. {\"omega\": 1.5}");
-      values[key] = py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
+      result.set(key, py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>());
     }
   }
-  return SolverParams(std::move(values));
+  return result;
 }
 
 py::dict solvePy(const py::object& pySystem, const py::object& solver, const py::object& params,
@@ -478,8 +479,7 @@ py::dict solvePy(const py::object& pySystem, const py::object& solver, const py:
   settings.norm = parseNorm(norm);
   if (!(tolerance > 0)) throw py::value_error("tolerance must be > 0");
   if (py::isinstance<py::str>(solver)) {
-    std::unique_ptr<Solver> builtIn =
-        makeSolver(solver.cast<std::string>(), solverParams(params));
+    std::unique_ptr<Solver> builtIn = makeSolver(solver.cast<std::string>(), solverParams(params));
     SolveResult r;
     {
       py::gil_scoped_release release;
@@ -676,8 +676,8 @@ std::vector<Vec3> toPoints(const Array& a, const char* what) {
   return v;
 }
 
-py::dict photonIrradiancePy(const PyPhotonMap& pm, const Array& points, const Array& normals,
-                            int k, const std::string& filterName) {
+py::dict photonIrradiancePy(const PyPhotonMap& pm, const Array& points, const Array& normals, int k,
+                            const std::string& filterName) {
   if (k < 2) throw py::value_error("irradiance: k must be >= 2 (the k-th photon has weight 0)");
   const IrradianceFilter filter = parseFilterPy(filterName);
   const std::vector<Vec3> x = toPoints(points, "points");
@@ -791,28 +791,30 @@ PYBIND11_MODULE(radkit, mod) {
             return readOnly(a);
           },
           "(n,) patch areas in m^2 (as System.area), whatever the scene's units")
-      .def_property_readonly("centroid",
-                             [](const PyMesh& m) {
-                               std::vector<Vec3> v;
-                               for (const Patch& p : m.mesh->patches) v.push_back(p.centroid);
-                               return readOnly(vec3Array(v));
-                             },
-                             "(n, 3) patch centroids, scene units")
-      .def_property_readonly("normal",
-                             [](const PyMesh& m) {
-                               std::vector<Vec3> v;
-                               for (const Patch& p : m.mesh->patches) v.push_back(p.normal);
-                               return readOnly(vec3Array(v));
-                             },
-                             "(n, 3) unit normals of the patches' front sides")
-      .def_property_readonly("surface",
-                             [](const PyMesh& m) {
-                               py::array_t<int> a(m.mesh->size());
-                               for (int i = 0; i < m.mesh->size(); ++i)
-                                 a.mutable_at(i) = m.mesh->patches[i].surface;
-                               return readOnly(a);
-                             },
-                             "index into scene.surface_names per patch")
+      .def_property_readonly(
+          "centroid",
+          [](const PyMesh& m) {
+            std::vector<Vec3> v;
+            for (const Patch& p : m.mesh->patches) v.push_back(p.centroid);
+            return readOnly(vec3Array(v));
+          },
+          "(n, 3) patch centroids, scene units")
+      .def_property_readonly(
+          "normal",
+          [](const PyMesh& m) {
+            std::vector<Vec3> v;
+            for (const Patch& p : m.mesh->patches) v.push_back(p.normal);
+            return readOnly(vec3Array(v));
+          },
+          "(n, 3) unit normals of the patches' front sides")
+      .def_property_readonly(
+          "surface",
+          [](const PyMesh& m) {
+            py::array_t<int> a(m.mesh->size());
+            for (int i = 0; i < m.mesh->size(); ++i) a.mutable_at(i) = m.mesh->patches[i].surface;
+            return readOnly(a);
+          },
+          "index into scene.surface_names per patch")
       .def_property_readonly(
           "vertices", [](const PyMesh& m) { return readOnly(vec3Array(m.mesh->vertices)); },
           "(V, 3) vertex positions, scene units")
@@ -849,18 +851,20 @@ PYBIND11_MODULE(radkit, mod) {
       .def_property_readonly("mesh", [](const PyFormFactors& f) { return f.mesh; })
       .def_property_readonly("storage",
                              [](const PyFormFactors& f) { return storageName(f.result->matrix); })
-      .def("dense", [](const PyFormFactors& f) { return denseArray(f.result->matrix); },
-           "F as an (n, n) numpy array (a copy)")
-      .def("sparse", [](const PyFormFactors& f) { return sparseMatrix(f.result->matrix); },
-           "F as scipy.sparse.csr_matrix (a copy, zeros left out)")
+      .def(
+          "dense", [](const PyFormFactors& f) { return denseArray(f.result->matrix); },
+          "F as an (n, n) numpy array (a copy)")
+      .def(
+          "sparse", [](const PyFormFactors& f) { return sparseMatrix(f.result->matrix); },
+          "F as scipy.sparse.csr_matrix (a copy, zeros left out)")
       .def_property_readonly(
           "diagnostics",
           [](const PyFormFactors& f) { return jsonToPython(toJson(f.result->diagnostics)); },
           "report.json's form_factors object: rays, seconds, row sums, reciprocity")
       .def("__repr__", [](const PyFormFactors& f) {
         return "<radkit.FormFactors " + std::to_string(matrixSize(f.result->matrix)) + "x" +
-               std::to_string(matrixSize(f.result->matrix)) + " " +
-               storageName(f.result->matrix) + ">";
+               std::to_string(matrixSize(f.result->matrix)) + " " + storageName(f.result->matrix) +
+               ">";
       });
 
   py::class_<PySystem>(mod, "System", "The radiosity system B = E + rho F B, three channels")
@@ -948,8 +952,7 @@ PYBIND11_MODULE(radkit, mod) {
           py::arg("camera") = py::none(),
           "Path-traced reference image and the variance of each pixel's mean, both "
           "(height, width, 3)");
-  mod.def("photons", &photonsPy, py::arg("mesh"), py::arg("photons") = 200000,
-          py::arg("seed") = 1,
+  mod.def("photons", &photonsPy, py::arg("mesh"), py::arg("photons") = 200000, py::arg("seed") = 1,
           "Photon tracing tallied per patch: radiosity, radiosity_error (standard errors), "
           "irradiance as (n, 3) and per-surface estimates (area in m^2)");
   py::class_<PyPhotonMap>(mod, "PhotonMap",

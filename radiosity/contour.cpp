@@ -32,10 +32,10 @@ namespace {
 /// 200 Chebyshev nodes of (atan √t/√t − 1)/t in 40-digit arithmetic, relative error of the
 /// reduced atan 1.1e-16. The reductions (π/4 +, π/2 −, π −) add about an ulp of π.
 inline double atan2Upper(double y, double x) {
-  constexpr double kP[11] = {-0.33333333333333331, 0.19999999999995652, -0.14285714284691381,
-                             0.11111111017100327,  -0.090909046476956801, 0.076921846993717777,
-                             -0.066645313698050088, 0.058583118105011531, -0.050862548858231431,
-                             0.039253696320618564, -0.019202529268412281};
+  constexpr double kP[11] = {-0.33333333333333331,  0.19999999999995652,   -0.14285714284691381,
+                             0.11111111017100327,   -0.090909046476956801, 0.076921846993717777,
+                             -0.066645313698050088, 0.058583118105011531,  -0.050862548858231431,
+                             0.039253696320618564,  -0.019202529268412281};
   const double ax = std::fabs(x);
   const double hi = y > ax ? y : ax, lo = y > ax ? ax : y;  // atan(lo/hi) in [0, π/4]
   // Above tan(π/8): atan(a) = π/4 + atan((a − 1)/(a + 1)), a = lo/hi, one division.
@@ -50,8 +50,7 @@ inline double atan2Upper(double y, double x) {
 }
 
 RADKIT_TARGET_CLONES
-double contourSum(const double* px, const double* py, const double* pz, const Vec3& n,
-                  int edges) {
+double contourSum(const double* px, const double* py, const double* pz, const Vec3& n, int edges) {
   // Edge k runs from point k to point k + 1 (relative to x); padding edges are degenerate.
   double sum = 0;
   for (int k = 0; k < edges; ++k) {

@@ -85,6 +85,27 @@ std::unique_ptr<FormFactorMethod> makeFormFactorMethod(const PatchMesh& mesh,
                                                        const Visibility& visibility,
                                                        const FormFactorSettings& settings);
 
+/// What the rest of radkit knows of a method without building it: its registry row's
+/// behaviour, so that no caller compares method names.
+struct FormFactorMethodTraits {
+  /// K when --ff-samples is not given.
+  int defaultSamples = 16;
+  /// The K the study tries (radkit study's form-factor knob).
+  std::vector<int> studySamples;
+  /// The study's cost model: work in the method's own units for n patches at K samples, and
+  /// the rate of those units per second before any run of the method is measured.
+  double (*work)(double n, int samples) = nullptr;
+  double workPerSecond = 5e6;
+  /// K is the whole row's ray budget rather than per pair, so F's rows carry sampling noise
+  /// that the run estimates from the gathered light and warns about.
+  bool rowBudget = false;
+  /// The method integrates pairs by the cubature rules of pair_rule.h and counts them.
+  bool countsPairRules = false;
+};
+
+/// \brief The traits of a registered method; throws std::invalid_argument for an unknown name.
+const FormFactorMethodTraits& formFactorTraits(const std::string& method);
+
 /// \brief The registered names, default first.
 std::vector<std::string> formFactorMethodNames();
 /// \brief K for a method when --ff-samples is not given (each method has its own).

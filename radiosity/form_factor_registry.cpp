@@ -15,30 +15,50 @@ std::unique_ptr<FormFactorMethod> createHemisphere(const PatchMesh&, const Visib
                                                    const FormFactorSettings&);
 
 namespace {
+
+// Work units of the study's cost model: point-polygon does its cubature (about 8 rays' worth)
+// and K rays per facing pair, monte-carlo K rays per pair, hemisphere K rays per patch.
+double pointPolygonWork(double n, int k) { return n * n * (8.0 + k); }
+double pairSampleWork(double n, int k) { return n * n * double(k); }
+double rowBudgetWork(double n, int k) { return n * k; }
+
 struct MethodEntry {
   const char* name;
   const char* help;
-  /// K when --ff-samples is not given. hemisphere's K rays are a whole row's budget, so it
-  /// needs far more than the per-pair methods: 16 384 keeps the median patch's gathered light
-  /// within 5 % standard error on the 4 000-patch Cornell box (16 gave 39 %, a patchwork).
-  int defaultSamples;
   std::unique_ptr<FormFactorMethod> (*create)(const PatchMesh&, const Visibility&,
                                               const FormFactorSettings&);
+  FormFactorMethodTraits traits;
 };
 
-constexpr MethodEntry kMethods[] = {
+// hemisphere's K rays are a whole row's budget, so it needs far more than the per-pair
+// methods: 16 384 keeps the median patch's gathered light within 5 % standard error on the
+// 4 000-patch Cornell box (16 gave 39 %, a patchwork).
+const MethodEntry kMethods[] = {
     {"point-polygon",
      "Gauss-Legendre points on patch i, exact contour formula to patch j, visibility "
      "fraction from K rays (default)",
-     16, createPointPolygon},
-    {"monte-carlo", "K uniform point pairs per patch pair (area-to-area), slow reference", 16,
-     createMonteCarlo},
+     createPointPolygon,
+     {16, {1, 4, 16, 64}, pointPolygonWork, 2.4e7, false, true}},
+    {"monte-carlo",
+     "K uniform point pairs per patch pair (area-to-area), slow reference",
+     createMonteCarlo,
+     {16, {4, 16, 64, 256}, pairSampleWork, 5e6, false, false}},
     {"hemisphere",
      "K cosine-distributed rays per patch, counting first hits (ray-traced "
      "hemicube)",
-     16384, createHemisphere},
+     createHemisphere,
+     {16384, {256, 1024, 4096, 16384}, rowBudgetWork, 5e6, true, false}},
 };
+
 }  // namespace
+
+const FormFactorMethodTraits& formFactorTraits(const std::string& method) {
+  for (const MethodEntry& m : kMethods)
+    if (method == m.name) return m.traits;
+  std::string known;
+  for (const MethodEntry& m : kMethods) known += std::string(" ") + m.name;
+  throw std::invalid_argument("unknown form-factor method '" + method + "' (--ff); known:" + known);
+}
 
 void validateFormFactorSettings(const FormFactorSettings& s) {
   if (s.samples < 1)
@@ -73,7 +93,7 @@ std::vector<std::string> formFactorMethodNames() {
 
 int defaultFormFactorSamples(const std::string& method) {
   for (const MethodEntry& m : kMethods)
-    if (method == m.name) return m.defaultSamples;
+    if (method == m.name) return m.traits.defaultSamples;
   return FormFactorSettings{}.samples;  // unknown names are refused by makeFormFactorMethod
 }
 
@@ -81,7 +101,7 @@ std::vector<std::string> formFactorMethodHelp() {
   std::vector<std::string> lines;
   for (const MethodEntry& m : kMethods)
     lines.push_back(std::string(m.name) + ": " + m.help +
-                    " (default K = " + std::to_string(m.defaultSamples) + ")");
+                    " (default K = " + std::to_string(m.traits.defaultSamples) + ")");
   return lines;
 }
 

@@ -24,7 +24,9 @@ class MemoryBudgetError : public std::runtime_error {
  public:
   MemoryBudgetError(const std::string& message, int patches, std::size_t smallestBytes = 0,
                     std::size_t budget = 0)
-      : std::runtime_error(message), patches(patches), smallestBytes(smallestBytes),
+      : std::runtime_error(message),
+        patches(patches),
+        smallestBytes(smallestBytes),
         budget(budget) {}
   int patches;                ///< the mesh's patch count
   std::size_t smallestBytes;  ///< the least any storage needs for them (float, dense or sparse)

@@ -1,7 +1,7 @@
 // The form-factor driver: plan storage, compute rows in parallel, assemble, measure.
 #include "radiosity/form_factors.h"
-#include "util/threads.h"
 #include "util/format.h"
+#include "util/threads.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
@@ -127,21 +127,21 @@ FormFactorMatrix computeDense(const FormFactorMethod& method, const PatchMesh& m
   constexpr int kTile = 64;
   tbb::parallel_for(tbb::blocked_range<int>(0, (n + kTile - 1) / kTile, 1),
                     [&](const tbb::blocked_range<int>& r) {
-    for (int tile = r.begin(); tile < r.end(); ++tile) {
-      const int j0 = tile * kTile, j1 = std::min(n, j0 + kTile);  // rows written
-      for (int i0 = 0; i0 < j1; i0 += kTile) {                      // columns written
-        const int i1 = std::min(j1, i0 + kTile);
-        for (int j = j0; j < j1; ++j) {
-          const double aj = mesh.patches[j].area;
-          T* out = f.row(j);
-          for (int i = i0; i < std::min(i1, j); ++i) {
-            const double fij = double(f(i, j));
-            out[i] = fij == 0 ? T(0) : T(fij * mesh.patches[i].area / aj);
-          }
-        }
-      }
-    }
-  });
+                      for (int tile = r.begin(); tile < r.end(); ++tile) {
+                        const int j0 = tile * kTile, j1 = std::min(n, j0 + kTile);  // rows written
+                        for (int i0 = 0; i0 < j1; i0 += kTile) {  // columns written
+                          const int i1 = std::min(j1, i0 + kTile);
+                          for (int j = j0; j < j1; ++j) {
+                            const double aj = mesh.patches[j].area;
+                            T* out = f.row(j);
+                            for (int i = i0; i < std::min(i1, j); ++i) {
+                              const double fij = double(f(i, j));
+                              out[i] = fij == 0 ? T(0) : T(fij * mesh.patches[i].area / aj);
+                            }
+                          }
+                        }
+                      }
+                    });
   return f;
 }
 
@@ -292,7 +292,7 @@ FormFactorResult computeFormFactors(const PatchMesh& mesh, const Visibility& vis
   d.raysSaved = totals.raysSaved;
   d.quadraturePoints = totals.quadraturePoints;
   d.kernelPoints = totals.kernelPoints;
-  if (method->name() == "point-polygon")
+  if (formFactorTraits(method->name()).countsPairRules)
     d.pairsByRule.assign(std::begin(totals.pairsByRule), std::end(totals.pairsByRule));
   d.threads = activeThreads();
   d.rayThreadSeconds = totals.raySeconds;

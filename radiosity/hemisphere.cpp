@@ -9,9 +9,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "geometry/sampling.h"
 #include "radiosity/form_factor_method.h"
 #include "radiosity/patch_pairs.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

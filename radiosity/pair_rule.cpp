@@ -175,11 +175,11 @@ double pairRuleFormFactor(const PatchInfo& a, const PointSet& pa, const PatchInf
   // separate: n_a·(y − x) = n_a·y − offset_a depends on y alone, −n_b·(y − x) on x alone.
   alignas(32) double u[PatchPoints::kCapacity], v[PatchPoints::kCapacity];
   for (int p = 0; p < pa.count; ++p)
-    u[p] = pa.w[p] * (b.normal.x * pa.x[p] + b.normal.y * pa.y[p] + b.normal.z * pa.z[p] -
-                      b.planeOffset);
+    u[p] = pa.w[p] *
+           (b.normal.x * pa.x[p] + b.normal.y * pa.y[p] + b.normal.z * pa.z[p] - b.planeOffset);
   for (int q = 0; q < pb.padded; ++q)
-    v[q] = pb.w[q] * (a.normal.x * pb.x[q] + a.normal.y * pb.y[q] + a.normal.z * pb.z[q] -
-                      a.planeOffset);
+    v[q] = pb.w[q] *
+           (a.normal.x * pb.x[q] + a.normal.y * pb.y[q] + a.normal.z * pb.z[q] - a.planeOffset);
   return kernelSum(pa, pb, u, v) / (M_PI * a.area);
 }
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/sampling.h"
 #include "radiosity/contour.h"
+#include "util/sampling.h"
 
 namespace radkit {
 
@@ -21,9 +21,8 @@ void finishInfo(PatchInfo& info) {
   for (int k = 0; k < info.count; ++k)
     info.sphereRadius = std::max(info.sphereRadius, length(info.v[k] - info.centroid));
   // v0 − v1 + v2 − v3 is the bilinear map's twist: zero exactly for a parallelogram.
-  info.parallelogram =
-      info.count == 4 &&
-      length(info.v[0] - info.v[1] + info.v[2] - info.v[3]) <= 1e-12 * info.sphereRadius;
+  info.parallelogram = info.count == 4 && length(info.v[0] - info.v[1] + info.v[2] - info.v[3]) <=
+                                              1e-12 * info.sphereRadius;
 }
 }  // namespace
 

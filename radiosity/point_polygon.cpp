@@ -10,13 +10,13 @@
 #include <cmath>
 #include <sstream>
 
-#include "geometry/sampling.h"
 #include "radiosity/contour.h"
 #include "radiosity/form_factor_method.h"
 #include "radiosity/occluder_culling.h"
 #include "radiosity/pair_rule.h"
 #include "radiosity/patch_pairs.h"
 #include "util/format.h"
+#include "util/sampling.h"
 
 namespace radkit {
 
@@ -44,10 +44,9 @@ class PointPolygon final : public FormFactorMethod {
       << m_settings.quadrature.farRatio << ")";
     if (m_settings.quadrature.pairLevels > 0)
       d << ", or for pairs in front of each other the cheapest tensor Gauss-Legendre rule of "
-        << "level <= " << m_settings.quadrature.pairLevels << " whose error bound is <= "
-        << m_settings.quadrature.tolerance << " relative";
-    d << ", visibility from K=" << m_settings.samples
-      << " stratified rays per pair"
+        << "level <= " << m_settings.quadrature.pairLevels
+        << " whose error bound is <= " << m_settings.quadrature.tolerance << " relative";
+    d << ", visibility from K=" << m_settings.samples << " stratified rays per pair"
       << (m_settings.cullUnblockable ? " (none for unblockable pairs)" : "")
       << ", F_ji by reciprocity, seed " << m_settings.seed;
     return d.str();

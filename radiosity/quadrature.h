@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/vec3.h"
 #include "radiosity/contour.h"
+#include "util/vec3.h"
 
 namespace radkit {
 
@@ -36,8 +36,9 @@ class PatchChart {
 
 /// How finely point-polygon integrates over patch i.
 struct QuadratureSettings {
-  int order = 4;  ///< Gauss–Legendre points per axis per cell (1: midpoint, no refinement);
-                  ///< 4, not 2: |Q4 − Q3| bounds the kept rule far more tightly (docs/formfactors.md)
+  int order =
+      4;  ///< Gauss–Legendre points per axis per cell (1: midpoint, no refinement);
+          ///< 4, not 2: |Q4 − Q3| bounds the kept rule far more tightly (docs/formfactors.md)
   double tolerance = 1e-6;  ///< accept a cell when |Q_order − Q_order−1| <= its share (in F)
   int maxDepth = 10;        ///< quadtree depth limit per cell
   /// A cell farther than farRatio × its diameter from the target's bounding sphere takes the

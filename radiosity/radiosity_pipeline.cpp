@@ -90,7 +90,7 @@ std::vector<SolverChoice> parseSolverList(const std::string& text) {
       for (char& ch : c.parameters)
         if (ch == ';') ch = ',';
     }
-    makeSolver(c.name, SolverParams::parse(c.parameters));  // validates name and keys now
+    makeSolver(c.name, Params::parse(c.parameters));  // validates name and keys now
     out.push_back(c);
   }
   if (out.empty()) throw std::invalid_argument("--solvers: give at least one solver name");
@@ -176,7 +176,7 @@ void addDaylightToSurfaces(const PatchMesh& mesh, const Daylight& d,
 
 SolveResult runSolver(const SolverChoice& choice, const RadiositySystem& system,
                       const SolverSettings& stopping, const PipelineLog& log) {
-  std::unique_ptr<Solver> solver = makeSolver(choice.name, SolverParams::parse(choice.parameters));
+  std::unique_ptr<Solver> solver = makeSolver(choice.name, Params::parse(choice.parameters));
   SolveResult result = solve(*solver, system, stopping);
   if (log.progress) log.progress("solve " + choice.name, 1.0);
   return result;
@@ -252,7 +252,7 @@ PipelineResult runPipeline(const Scene& scene, PatchMesh mesh, const PipelineSet
   if (r.daylight) addDaylightToSurfaces(r.mesh, *r.daylight, r.surfaces);
   r.energy =
       energyBalance(scene, r.mesh, r.formFactors->matrix, r.radiosity, r.irradiance, daylight);
-  if (settings.formFactors.method == "hemisphere") {
+  if (formFactorTraits(settings.formFactors.method).rowBudget) {
     r.formFactorNoise = gatheredLightNoise(r.formFactors->matrix, r.mesh, r.radiosity,
                                            settings.formFactors.samples);
     if (r.formFactorNoise > kHemisphereNoiseLimit) {

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "geometry/scene_loader.h"  // InputError
+#include "util/errors.h"  // InputError
 
 namespace radkit {
 

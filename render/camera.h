@@ -7,7 +7,8 @@
 
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
-#include "geometry/vec3.h"
+#include "util/errors.h"
+#include "util/vec3.h"
 
 namespace radkit {
 

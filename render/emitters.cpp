@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "geometry/sampling.h"
 #include "render/spherical_rectangle.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

@@ -78,8 +78,8 @@ RadianceImage readPfm(const std::string& path) {
         // One NaN made every comparison with the image meaningless (max(NaN, x) is x).
         if (!(f >= 0 && f <= std::numeric_limits<float>::max()))
           throw std::runtime_error(path + ": pixel (" + std::to_string(x) + ", " +
-                                   std::to_string(y) + ") channel " +
-                                   std::to_string(c) + " is " + std::to_string(f) +
+                                   std::to_string(y) + ") channel " + std::to_string(c) + " is " +
+                                   std::to_string(f) +
                                    "; radiance is finite and >= 0. Fix: repair or re-render "
                                    "the reference");
         img.radiance[std::size_t(y) * img.width + x][c] = f;  // |scale| is conventionally 1

@@ -11,7 +11,7 @@
 #include <memory>
 #include <string>
 
-#include "geometry/sampling.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

@@ -18,20 +18,38 @@ LightSampling parseLightSampling(const std::string& name) {
   throw std::invalid_argument("unknown light sampling \"" + name + "\" (area or solid-angle)");
 }
 
+namespace {
+
+/// The glossy lobe of `bsdf` drawn with the model `glossy` asks for, by Walter et al. 2007,
+/// eq. 35 (Beckmann ↔ Phong, used for GGX): n = 2/α² − 2 and back, the specular reflectance
+/// kept (ks = F0). Nothing when the BSDF has no such lobe or is of that model already.
+std::unique_ptr<Bsdf> substitute(const Bsdf& bsdf, GlossyModel glossy,
+                                 const BsdfSettings& settings) {
+  using Family = Bsdf::GlossyLobe::Family;
+  const std::optional<Bsdf::GlossyLobe> lobe = bsdf.glossyLobe();
+  if (!lobe) return nullptr;
+  if (glossy == GlossyModel::Phong && lobe->family == Family::Microfacet) {
+    const double alpha = std::max(lobe->alpha, 1e-3);
+    return makePhongBsdf(lobe->diffuse, lobe->specular, std::max(0.0, 2 / (alpha * alpha) - 2));
+  }
+  if (glossy == GlossyModel::CookTorrance && lobe->family == Family::Phong)
+    return makeCookTorranceBsdf(lobe->diffuse, 0, std::sqrt(lobe->alpha), lobe->specular, settings);
+  return nullptr;
+}
+
+}  // namespace
+
 std::unique_ptr<Bsdf> makeShadingBsdf(const Material& m, const BsdfSettings& settings,
                                       GlossyModel glossy) {
   std::unique_ptr<Bsdf> bsdf = makeBsdf(m.bsdf, m.params, settings);
-  std::unique_ptr<Bsdf> substitute;
-  if (glossy == GlossyModel::Phong) substitute = bsdf->asPhong();
-  if (glossy == GlossyModel::CookTorrance) substitute = bsdf->asCookTorrance(settings);
-  return substitute ? std::move(substitute) : std::move(bsdf);
+  std::unique_ptr<Bsdf> other = substitute(*bsdf, glossy, settings);
+  return other ? std::move(other) : std::move(bsdf);
 }
 
 bool hasGlossyMaterial(const Scene& scene, const BsdfSettings& settings) {
   for (const Surface& s : scene.surfaces) {
     const Material& m = scene.materials[s.material];
-    const std::unique_ptr<Bsdf> bsdf = makeBsdf(m.bsdf, m.params, settings);
-    if (bsdf->asPhong() || bsdf->asCookTorrance(settings)) return true;
+    if (makeBsdf(m.bsdf, m.params, settings)->glossyLobe()) return true;
   }
   return false;
 }

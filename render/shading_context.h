@@ -15,12 +15,12 @@
 #include "daylight/sky.h"
 #include "geometry/patch_mesh.h"
 #include "geometry/ray_scene.h"
-#include "geometry/sampling.h"
 #include "geometry/visibility.h"
 #include "render/emitters.h"
 #include "render/radiosity_image.h"
 #include "render/sampler.h"
 #include "render/spherical_rectangle.h"
+#include "util/sampling.h"
 
 namespace radkit {
 

@@ -10,8 +10,8 @@ namespace radkit {
 Vec3 panoramaDirection(const SkyModel& sky, double u, double v) {
   const double bearing = 2 * M_PI * u, elevation = (0.5 - v) * M_PI;
   const double horizontal = std::cos(elevation);
-  return sky.toScene({horizontal * std::sin(bearing), horizontal * std::cos(bearing),
-                      std::sin(elevation)});
+  return sky.toScene(
+      {horizontal * std::sin(bearing), horizontal * std::cos(bearing), std::sin(elevation)});
 }
 
 RadianceImage skyPanorama(const SkyModel& sky, int width) {

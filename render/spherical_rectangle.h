@@ -4,7 +4,7 @@
 // the estimator: only the receiver's cosine, the BSDF and visibility vary over the light.
 #pragma once
 
-#include "geometry/vec3.h"
+#include "util/vec3.h"
 
 namespace radkit {
 

@@ -1,7 +1,7 @@
 # Mie theory a second way, for the numbers tests/media checks (docs/media.md): coefficients from
 # scipy's spherical Bessel functions (complex argument, no logarithmic-derivative recurrence),
 # angular functions from scipy's associated Legendre functions; a different code path from
-# media/mie.cpp. Run: /usr/bin/python3 scripts/mie-crosscheck.py
+# phase/mie.cpp. Run: /usr/bin/python3 scripts/mie-crosscheck.py
 import numpy as np
 from scipy.special import spherical_jn, spherical_yn
 import sys

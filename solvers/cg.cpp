@@ -154,10 +154,9 @@ class ConjugateGradientSolver final : public Solver {
 
 }  // namespace
 
-std::unique_ptr<Solver> makeConjugateGradientSolver(SolverParams& params) {
-  const double replaceEvery = params.get("replace_every", 50);
-  if (!(replaceEvery >= 0))
-    throw std::invalid_argument("cg: replace_every must be >= 0 (0: never)");
+std::unique_ptr<Solver> makeConjugateGradientSolver(Params& params) {
+  // 0: never replace the recursive residual by the true one.
+  const long replaceEvery = params.integer("replace_every", 50, 0, 1000000000);
   return std::make_unique<ConjugateGradientSolver>(static_cast<int>(replaceEvery));
 }
 

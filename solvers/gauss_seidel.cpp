@@ -21,7 +21,7 @@ class GaussSeidelSolver final : public SorIterationSolver {
 
 }  // namespace
 
-std::unique_ptr<Solver> makeGaussSeidelSolver(SolverParams&) {
+std::unique_ptr<Solver> makeGaussSeidelSolver(Params&) {
   return std::make_unique<GaussSeidelSolver>();
 }
 

@@ -73,6 +73,6 @@ class JacobiSolver final : public Solver {
 
 }  // namespace
 
-std::unique_ptr<Solver> makeJacobiSolver(SolverParams&) { return std::make_unique<JacobiSolver>(); }
+std::unique_ptr<Solver> makeJacobiSolver(Params&) { return std::make_unique<JacobiSolver>(); }
 
 }  // namespace radkit

@@ -6,13 +6,17 @@
 #include <vector>
 
 #include "solvers/solver.h"
+#include "util/registry.h"
 
 namespace radkit {
 
+/// \brief Every registered solver, in table order: names, help, examples.
+const Registry<Solver>& solverRegistry();
+
 /// \brief A new solver; params are read by the solver and unknown keys rejected.
-/// \throws std::invalid_argument for an unknown name (the message lists the known names) or
-///         an unknown or out-of-range parameter.
-std::unique_ptr<Solver> makeSolver(const std::string& name, SolverParams params = {});
+/// \throws ParamError (a std::invalid_argument) for an unknown name (the message lists the
+///         known names) or an unknown or out-of-range parameter.
+std::unique_ptr<Solver> makeSolver(const std::string& name, Params params = {});
 
 /// \brief Registered names in table order: jacobi, gauss-seidel, sor, southwell, cg.
 std::vector<std::string> solverNames();

@@ -9,45 +9,6 @@
 
 namespace radkit {
 
-SolverParams SolverParams::parse(const std::string& text) {
-  std::map<std::string, double> values;
-  std::istringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    if (item.empty()) continue;
-    const auto eq = item.find('=');
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-      if (eq == std::string::npos) throw std::invalid_argument("no '='");
-      v = std::stod(item.substr(eq + 1), &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (eq == std::string::npos || eq == 0 || used == 0 || eq + 1 + used != item.size())
-      throw std::invalid_argument("solver parameter '" + item +
-                                  "': expected key=number, e.g. omega=1.5");
-    values[item.substr(0, eq)] = v;
-  }
-  return SolverParams(std::move(values));
-}
-
-double SolverParams::get(const std::string& key, double defaultValue) {
-  m_read.insert(key);
-  const auto it = m_values.find(key);
-  return it == m_values.end() ? defaultValue : it->second;
-}
-
-void SolverParams::rejectUnused(const std::string& solverName) const {
-  std::string unknown, known;
-  for (const auto& kv : m_values)
-    if (!m_read.count(kv.first)) unknown += (unknown.empty() ? "" : ", ") + kv.first;
-  if (unknown.empty()) return;
-  for (const auto& k : m_read) known += (known.empty() ? "" : ", ") + k;
-  throw std::invalid_argument("solver '" + solverName + "' has no parameter " + unknown +
-                              " (known: " + (known.empty() ? "none" : known) + ")");
-}
-
 namespace {
 
 std::string number(double v) { return formatNumber(v, 3); }

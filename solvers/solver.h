@@ -12,6 +12,7 @@
 
 #include "solvers/kernels.h"
 #include "solvers/radiosity_system.h"
+#include "util/params.h"
 
 namespace radkit {
 
@@ -21,24 +22,6 @@ struct SolverSettings {
   long maxIterations = 100000000;  ///< steps (sweeps, or shots for Southwell)
   double maxSeconds = std::numeric_limits<double>::infinity();  ///< wall clock, start included
   ResidualNorm norm = ResidualNorm::Relative;
-};
-
-/// Per-solver parameters (pbrt's ParameterDictionary): the solver reads each key once with its
-/// default beside it; keys nobody read are rejected by the registry.
-class SolverParams {
- public:
-  SolverParams() = default;
-  SolverParams(std::map<std::string, double> values) : m_values(std::move(values)) {}
-  /// \brief Parses "key=value,key=value" (empty text: no parameters); throws on bad syntax.
-  static SolverParams parse(const std::string& text);
-  /// \brief The value of key, or defaultValue when absent; marks key as read.
-  double get(const std::string& key, double defaultValue);
-  /// \brief Throws std::invalid_argument naming every key that no get() read.
-  void rejectUnused(const std::string& solverName) const;
-
- private:
-  std::map<std::string, double> m_values;
-  std::set<std::string> m_read;
 };
 
 /// An iterative solver for B = E + ρFB, all three channels at once.

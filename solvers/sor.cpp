@@ -75,13 +75,10 @@ class SorSolver final : public SorIterationSolver {
 
 }  // namespace
 
-std::unique_ptr<Solver> makeSorSolver(SolverParams& params) {
-  const double omega = params.get("omega", 0.0);
-  const double powerIterations = params.get("power_iterations", 30);
-  if (!(omega == 0.0 || (omega > 0.0 && omega < 2.0)))
-    throw std::invalid_argument("sor: omega = " + std::to_string(omega) +
-                                " must be in (0, 2), or 0 to estimate it");
-  if (!(powerIterations >= 1)) throw std::invalid_argument("sor: power_iterations must be >= 1");
+std::unique_ptr<Solver> makeSorSolver(Params& params) {
+  const double omega =
+      params.number("omega", 0.0, 0.0, 2.0, false, true, "use 0 < omega < 2, or 0 to estimate it");
+  const long powerIterations = params.integer("power_iterations", 30, 1, 1000000);
   return std::make_unique<SorSolver>(omega, static_cast<int>(powerIterations));
 }
 

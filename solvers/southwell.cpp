@@ -122,8 +122,6 @@ class SouthwellSolver final : public Solver {
 
 }  // namespace
 
-std::unique_ptr<Solver> makeSouthwellSolver(SolverParams&) {
-  return std::make_unique<SouthwellSolver>();
-}
+std::unique_ptr<Solver> makeSouthwellSolver(Params&) { return std::make_unique<SouthwellSolver>(); }
 
 }  // namespace radkit

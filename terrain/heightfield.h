@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/vec3.h"
-#include "terrain/noise.h"
+#include "noise/noise2d.h"
+#include "util/vec3.h"
 
 namespace radkit::terrain {
 

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/frame.h"
 #include "geometry/ray_scene.h"
-#include "geometry/sampling.h"
+#include "util/frame.h"
+#include "util/sampling.h"
 
 namespace radkit::terrain {
 
@@ -247,8 +247,8 @@ LandscapeImage renderLandscape(const TerrainSurface& s, const atmosphere::Atmosp
           // each sample by the atmosphere (not by the terrain: no volumetric shadows).
           const int k = settings.aerialSamples;
           const double ds = hit->t / k, mu = dot(d, sun);
-          const double pr = atmosphere::rayleighPhase(mu);
-          const double pm = atmosphere::cornetteShanksPhase(mu, ap.mieG);
+          const double pr = rayleighPhase(mu);
+          const double pm = cornetteShanksPhase(mu, ap.mieG);
           Vec3 depth{0, 0, 0}, inscatter{0, 0, 0};
           for (int i = 0; i < k; ++i) {
             const Vec3 q = eye + d * ((i + 0.5) * ds);

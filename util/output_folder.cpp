@@ -59,8 +59,7 @@ std::string notReplaceable(const fs::path& dir) {
   if (fs::is_empty(dir)) return "";
   const auto listed = markedEntries(dir);
   if (!listed)
-    return dir.string() +
-           " exists and radkit did not mark it as its output (no valid " +
+    return dir.string() + " exists and radkit did not mark it as its output (no valid " +
            std::string(kOutputMarker) +
            " file), and an output folder is replaced whole. Fix: choose another --out, or "
            "empty or remove that folder (an output of an older radkit has no marker: remove it).";
@@ -187,12 +186,12 @@ void checkRegularOutput(const std::string& option, const std::string& path) {
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);  // follows symlinks
   if (ec || !fs::exists(st) || fs::is_regular_file(st)) return;
-  const char* kind = fs::is_directory(st)           ? "a folder"
-                     : fs::is_fifo(st)              ? "a named pipe (FIFO)"
-                     : fs::is_character_file(st)    ? "a character device"
-                     : fs::is_block_file(st)        ? "a block device"
-                     : fs::is_socket(st)            ? "a socket"
-                                                    : "not a regular file";
+  const char* kind = fs::is_directory(st)        ? "a folder"
+                     : fs::is_fifo(st)           ? "a named pipe (FIFO)"
+                     : fs::is_character_file(st) ? "a character device"
+                     : fs::is_block_file(st)     ? "a block device"
+                     : fs::is_socket(st)         ? "a socket"
+                                                 : "not a regular file";
   throw std::runtime_error(
       (option.empty() ? "" : option + " ") + path + " is " + kind +
       (fs::is_symlink(fs::symlink_status(path, ec)) ? " (through a symlink)" : "") +

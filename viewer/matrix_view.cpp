@@ -14,7 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/scene_loader.h"
+#include "util/errors.h"
 #include "viewer/colour_maps.h"
 
 namespace radkit::viewer {

@@ -18,8 +18,8 @@
 #include <memory>
 #include <type_traits>
 
-#include "geometry/scene_loader.h"
 #include "geometry/validation.h"  // kMaxCoordinate
+#include "util/errors.h"
 #include "util/format.h"
 #include "viewer/run_folder.h"
 

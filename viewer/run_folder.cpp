@@ -14,10 +14,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/scene_loader.h"
 #include "geometry/validation.h"  // kMaxCoordinate
 #include "output/run_files.h"
 #include "render/hdr_io.h"
+#include "util/errors.h"
 #include "util/format.h"
 
 namespace radkit::viewer {
@@ -189,8 +189,10 @@ RunReport readRunReport(const std::string& path) {
     if (std::fabs(length(f.up) - 1) > tolerance || std::fabs(length(f.north) - 1) > tolerance ||
         std::fabs(dot(f.up, f.north)) > tolerance ||
         length(cross(f.north, f.up) - f.east) > tolerance)
-      fail(path, "sky_panorama's up, north and east are not a right-handed orthonormal frame "
-                 "(east = north × up). Fix: " + std::string(kRewrite));
+      fail(path,
+           "sky_panorama's up, north and east are not a right-handed orthonormal frame "
+           "(east = north × up). Fix: " +
+               std::string(kRewrite));
     r.skyFrame = f;
   }
   return r;

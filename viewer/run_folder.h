@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "geometry/scene.h"
-#include "geometry/vec3.h"
+#include "util/errors.h"
+#include "util/vec3.h"
 
 namespace radkit::viewer {
 
@@ -111,9 +112,9 @@ struct RunFolder {
 };
 
 /// \brief Reads radiosity.vtp and report.json (required), formfactors.bin or .mtx, links.png,
-/// convergence.csv, surfaces.csv and sky.pfm (optional), and checks they agree (patch count, surface
-/// indices). Each must be a regular file (a FIFO would block the read).
-/// \throws radkit::InputError naming the file, the line or element and the fix.
+/// convergence.csv, surfaces.csv and sky.pfm (optional), and checks they agree (patch count,
+/// surface indices). Each must be a regular file (a FIFO would block the read). \throws
+/// radkit::InputError naming the file, the line or element and the fix.
 RunFolder readRunFolder(const std::string& folder);
 
 /// \brief The parsers behind readRunFolder, one file each (`path` names the file in errors).

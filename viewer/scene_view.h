@@ -32,9 +32,9 @@ class SceneView {
   vtkRenderer* renderer() { return m_renderer; }
 
   /// \brief Recolours the patches: settings.mode Radiosity (true colour, with the run's sky
-  /// behind them at the same exposure), FalseColour, or FormFactorRow (row settings.picked of F, log scale; falls back to true colour with a
-  /// note when the run has no matrix or nothing is picked). Updates title, scalar bar, the
-  /// picked patch's outline and its info panel.
+  /// behind them at the same exposure), FalseColour, or FormFactorRow (row settings.picked of F,
+  /// log scale; falls back to true colour with a note when the run has no matrix or nothing is
+  /// picked). Updates title, scalar bar, the picked patch's outline and its info panel.
   void show(const ViewSettings& settings);
 
   /// \brief The patch under display point (x, y) (VTK display pixels, origin bottom-left),

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "geometry/scene_loader.h"
 #include "render/radiosity_image.h"
+#include "util/errors.h"
 
 namespace radkit::viewer {
 

@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/vec3.h"
+#include "util/errors.h"
+#include "util/vec3.h"
 #include "viewer/run_folder.h"
 
 namespace radkit::viewer {

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <thread>
 
-#include "geometry/scene_loader.h"
+#include "util/errors.h"
 #include "util/output_folder.h"
 #include "viewer/viewer_window.h"
 

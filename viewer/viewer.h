@@ -6,6 +6,7 @@
 #include <string>
 
 #include "geometry/scene.h"
+#include "util/errors.h"
 
 namespace radkit::viewer {
 

@@ -31,11 +31,12 @@ bool mentions(const json& lines, const std::string& text) {
 TEST(FirstRun, HemisphereHasItsOwnSamplesAndWarnsWhenNoisy) {
   test::TempDir dir;
   const std::string scene = "'" + dataPath("cornell-box.json") + "' --patches 150 --no-render";
-  auto r = runRadkit("run " + scene + " --ff hemisphere --ff-samples 16 --out '" +
-                     dir.path("k16") + "'");
+  auto r = runRadkit("run " + scene + " --ff hemisphere --ff-samples 16 --out '" + dir.path("k16") +
+                     "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const json noisy = readJson(dir.path("k16/report.json"));
-  EXPECT_TRUE(mentions(noisy["warnings"], "hemisphere form factors are noisy")) << noisy["warnings"];
+  EXPECT_TRUE(mentions(noisy["warnings"], "hemisphere form factors are noisy"))
+      << noisy["warnings"];
   EXPECT_TRUE(mentions(noisy["warnings"], "Fix: --ff-samples"));
   EXPECT_GT(noisy["form_factors"]["gathered_light_noise"].get<double>(), 0.05);
 
@@ -61,8 +62,8 @@ TEST(FirstRun, HemisphereHasItsOwnSamplesAndWarnsWhenNoisy) {
 TEST(FirstRun, TwoPassModesSayWhenNoMaterialIsGlossy) {
   test::TempDir dir;
   const std::string common = " --size 8x8 --spp 1 --patches 60";
-  auto r = runRadkit("render '" + dataPath("cornell-box.json") + "' --shading path-trace" +
-                     common + " --out '" + dir.path("ref.pfm") + "'");
+  auto r = runRadkit("render '" + dataPath("cornell-box.json") + "' --shading path-trace" + common +
+                     " --out '" + dir.path("ref.pfm") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   r = runRadkit("render '" + dataPath("cornell-box.json") + "' --shading phong" + common +
                 " --out '" + dir.path("p.pfm") + "' --reference '" + dir.path("ref.pfm") +

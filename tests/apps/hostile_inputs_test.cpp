@@ -47,8 +47,8 @@ TEST(HostileInputs, AFolderWithAReportJsonIsNotRadkitsToDelete) {
   fs::create_directories(dir.path("thesis"));
   dir.file("thesis/report.json", "{}");
   dir.file("thesis/thesis.tex", "three years of work");
-  const auto r = runRadkit("run '" + scene + "' --patches 8 --no-render --out '" +
-                           dir.path("thesis") + "'");
+  const auto r =
+      runRadkit("run '" + scene + "' --patches 8 --no-render --out '" + dir.path("thesis") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("did not mark"), std::string::npos) << r.output;
   EXPECT_EQ(fileText(dir.path("thesis/thesis.tex")), "three years of work");
@@ -65,8 +65,7 @@ TEST(HostileInputs, ASceneNameStaysOnePathComponentUnderOut) {
   test::TempDir dir;
   const std::string work = dir.path("a/b");
   fs::create_directories(work);
-  const std::string scene =
-      dir.file("room.json", "{\"name\": \"../../x\", " + room().substr(1));
+  const std::string scene = dir.file("room.json", "{\"name\": \"../../x\", " + room().substr(1));
   const std::string cmd = "cd '" + work + "' && '" + RADKIT_BINARY + "' run '" + scene +
                           "' --patches 8 --no-render >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
@@ -83,7 +82,8 @@ TEST(HostileInputs, OutputsOntoDevicesAndPipesAreRefused) {
   EXPECT_NE(r.output.find("character device"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::is_character_file("/dev/null"));
   ASSERT_EQ(::mkfifo(dir.path("pipe.png").c_str(), 0600), 0);
-  r = runRadkitWithin(60, "render '" + scene + "' --patches 8 --out '" + dir.path("pipe.png") + "'");
+  r = runRadkitWithin(60,
+                      "render '" + scene + "' --patches 8 --out '" + dir.path("pipe.png") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("named pipe"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::is_fifo(dir.path("pipe.png")));
@@ -99,8 +99,8 @@ TEST(HostileInputs, PipesGivenAsInputsAreRefusedNotWaitedOn) {
   EXPECT_NE(r.exitCode, 124) << "waited on the pipe";
   EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
   ASSERT_EQ(::mkfifo(dir.path("clouds.json").c_str(), 0600), 0);
-  r = runRadkitWithin(60, "clouds --scene '" + dir.path("clouds.json") + "' --out '" +
-                              dir.path("c") + "'");
+  r = runRadkitWithin(
+      60, "clouds --scene '" + dir.path("clouds.json") + "' --out '" + dir.path("c") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.exitCode, 124) << "waited on the pipe";
   EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
@@ -170,9 +170,8 @@ TEST(HostileInputs, AnUnreadableMeshIsNotCalledEmpty) {
 TEST(HostileInputs, DenseCloudsBeyondTheTrackingBoundAreRefused) {
   test::TempDir dir;
   for (const char* extinction : {"1e300", "1e6"}) {
-    const auto r = runRadkitWithin(
-        60, std::string("clouds --extinction ") + extinction + " --samples 1 --out '" +
-                dir.path("c") + "'");
+    const auto r = runRadkitWithin(60, std::string("clouds --extinction ") + extinction +
+                                           " --samples 1 --out '" + dir.path("c") + "'");
     EXPECT_NE(r.exitCode, 0) << r.output;
     EXPECT_NE(r.exitCode, 124) << "delta tracking ran";
     EXPECT_NE(r.output.find("optical extent"), std::string::npos) << r.output;
@@ -190,7 +189,7 @@ TEST(HostileInputs, CoincidentFacesOfTwoSurfacesAreNamed) {
     const auto r = runRadkit("run '" + scene + "' --method " + method +
                              (std::string(method) == "dense" ? " --patches 8" : "") +
                              " --no-render --out '" + dir.path("o") + "'");
-    EXPECT_NE(r.output.find("\"floor\"") , std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("\"floor\""), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"floor copy\""), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("coincident face"), std::string::npos) << r.output;
   }

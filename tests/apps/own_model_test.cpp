@@ -9,13 +9,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <utility>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "tests/common/test_util.h"
-#include "geometry/vec3.h"
 #include "util/canvas.h"
+#include "util/vec3.h"
 
 namespace radkit {
 namespace {
@@ -42,8 +42,8 @@ TEST(OwnModel, AnMtlNameWithASpaceIsRead) {
   dir.file("247_House 15_obj.mtl",
            "newmtl wall\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
   const std::string obj = dir.file(
-      "247_House 15_obj.obj", "mtllib 247_House 15_obj.mtl\no house\nusemtl wall\n" +
-                                  objBox(1, 0) + "o lamp\nusemtl lamp\nv 0.4 0.4 0.9\n" +
+      "247_House 15_obj.obj", "mtllib 247_House 15_obj.mtl\no house\nusemtl wall\n" + objBox(1, 0) +
+                                  "o lamp\nusemtl lamp\nv 0.4 0.4 0.9\n" +
                                   "v 0.6 0.4 0.9\nv 0.6 0.6 0.9\nv 0.4 0.6 0.9\nf 9 10 11 12\n");
   auto r = runRadkit("mesh '" + obj + "' --out '" + dir.path("o") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -110,15 +110,16 @@ TEST(OwnModel, ADenseRunAtItsPatchFloorNamesTheHierarchicalMethod) {
       off << "3 " << a << " " << b << " " << c << "\n3 " << a << " " << c << " " << d << "\n";
     }
   dir.file("grid.off", off.str());
-  const std::string scene = dir.file(
-      "s.json", R"({"materials": {"grey": {"reflectance": [0.5,0.5,0.5]},
+  const std::string scene =
+      dir.file("s.json", R"({"materials": {"grey": {"reflectance": [0.5,0.5,0.5]},
                                   "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}},
         "surfaces": [{"name": "floor", "material": "grey", "mesh": "grid.off"},
           {"name": "ceiling", "material": "grey", "mesh": "grid.off", "reverse": true,
            "transform": {"translate": [0, 0, 1]}},
           {"name": "lamp", "material": "lamp", "polygon": [[0.4,0.4,0.5],[0.6,0.4,0.5],[0.6,0.6,0.5],[0.4,0.6,0.5]]}]})");
-  const auto r = runRadkit("run '" + scene + "' --patches 10 --memory-budget 1MiB --no-render --out '" +
-                           dir.path("o") + "'");
+  const auto r =
+      runRadkit("run '" + scene + "' --patches 10 --memory-budget 1MiB --no-render --out '" +
+                dir.path("o") + "'");
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("at its floor"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("--method hierarchical"), std::string::npos) << r.output;
@@ -158,8 +159,8 @@ std::string stlBox(double w) {
 TEST(OwnModel, ACadStlInMillimetresIsNamedWhenReadAsMetres) {
   test::TempDir dir;
   dir.file("bolt.stl", stlBox(31));  // 31 × 8 × 8 mm
-  const std::string room = dir.file(
-      "room.json", R"({"materials": {"steel": {"reflectance": [0.5,0.5,0.5]},
+  const std::string room =
+      dir.file("room.json", R"({"materials": {"steel": {"reflectance": [0.5,0.5,0.5]},
                                      "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}},
         "surfaces": [{"name": "bolt", "material": "steel", "mesh": "bolt.stl"},
           {"name": "lamp", "material": "lamp", "polygon": [[0,0,3],[0,4,3],[4,4,3],[4,0,3]]},
@@ -168,8 +169,8 @@ TEST(OwnModel, ACadStlInMillimetresIsNamedWhenReadAsMetres) {
   EXPECT_NE(r.output.find("bolt.stl"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\"scale\": 0.001"), std::string::npos) << r.output;
   // Scaled to millimetres it is a bolt, and nothing is said.
-  const std::string fixedRoom = dir.file(
-      "fixed.json", R"({"materials": {"steel": {"reflectance": [0.5,0.5,0.5]},
+  const std::string fixedRoom =
+      dir.file("fixed.json", R"({"materials": {"steel": {"reflectance": [0.5,0.5,0.5]},
                                      "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}},
         "surfaces": [{"name": "bolt", "material": "steel", "mesh": "bolt.stl", "transform": {"scale": 0.001}},
           {"name": "lamp", "material": "lamp", "polygon": [[0,0,3],[0,4,3],[4,4,3],[4,0,3]]},
@@ -198,8 +199,8 @@ TEST(OwnModel, FacesOpenMeshCannotJoinAreReportedInRadkitsWords) {
   dir.file("fan.obj",
            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nv 0 0.3 1\nv 0.3 0 1\n"
            "f 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 2\nf 1 7 6\n");
-  const std::string scene = dir.file(
-      "s.json", R"({"materials": {"grey": {"reflectance": [0.5,0.5,0.5]},
+  const std::string scene =
+      dir.file("s.json", R"({"materials": {"grey": {"reflectance": [0.5,0.5,0.5]},
                                   "lamp": {"reflectance": [0,0,0], "emission": [1,1,1]}},
         "surfaces": [{"name": "fan", "material": "grey", "mesh": "fan.obj"},
           {"name": "lamp", "material": "lamp", "polygon": [[-1,-1,4],[-1,1,4],[1,1,4],[1,-1,4]]}]})");
@@ -220,8 +221,9 @@ TEST(OwnModel, ADiffuseTextureGivesItsMeanLinearColour) {
            "newmtl painted\nKd 0.5 0.5 0.5\nmap_Kd tex.ppm\n"
            "newmtl lost\nKd 0.25 0.25 0.25\nmap_Kd textures\\missing.png\n"
            "newmtl lamp\nKd 0 0 0\nKe 1 1 1\n");
-  const std::string obj = dir.file(
-      "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 3 0 0\nv 3 1 0\n"
+  const std::string obj =
+      dir.file("m.obj",
+               "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 3 0 0\nv 3 1 0\n"
                "v 0 0 1\nv 0 1 1\nv 1 1 1\n"
                "o painted\nusemtl painted\nf 1 2 3 4\no lost\nusemtl lost\nf 5 6 7\n"
                "o lamp\nusemtl lamp\nf 8 10 9\n");
@@ -318,8 +320,8 @@ TEST(OwnModel, TransformTurnsAZUpModelAndRotates) {
 
 TEST(OwnModel, AClosedRoomIsDrawnFromInsideAndABlackPictureIsNamed) {
   test::TempDir dir;
-  const std::string scene = dir.file(
-      "room.json", R"({"materials": {"wall": {"reflectance": [0.6,0.6,0.6]},
+  const std::string scene =
+      dir.file("room.json", R"({"materials": {"wall": {"reflectance": [0.6,0.6,0.6]},
                                      "lamp": {"reflectance": [0,0,0], "emission": [10,10,10]}},
         "surfaces": [
           {"name": "floor", "material": "wall", "polygon": [[0,0,0],[0,0,5],[4,0,5],[4,0,0]]},
@@ -329,7 +331,8 @@ TEST(OwnModel, AClosedRoomIsDrawnFromInsideAndABlackPictureIsNamed) {
           {"name": "south", "material": "wall", "polygon": [[0,0,0],[4,0,0],[4,3,0],[0,3,0]]},
           {"name": "north", "material": "wall", "polygon": [[0,0,5],[0,3,5],[4,3,5],[4,0,5]]},
           {"name": "lamp", "material": "lamp", "polygon": [[1.5,2.9,2],[2.5,2.9,2],[2.5,2.9,3],[1.5,2.9,3]]}]})");
-  auto r = runRadkit("run '" + scene + "' --patches 200 --size 32x24 --out '" + dir.path("a") + "'");
+  auto r =
+      runRadkit("run '" + scene + "' --patches 200 --size 32x24 --out '" + dir.path("a") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(r.output.find("is black"), std::string::npos) << r.output;
   const Canvas png = readPng(dir.path("a/render.png"));
@@ -338,7 +341,8 @@ TEST(OwnModel, AClosedRoomIsDrawnFromInsideAndABlackPictureIsNamed) {
     for (int x = 0; x < png.width(); ++x) sum += png.at(x, y).r;
   EXPECT_GT(sum / (png.width() * png.height()), 20) << "a dark picture of the room";
   // A camera outside, looking away: black, and said.
-  r = runRadkit("run '" + scene + "' --patches 200 --size 32x24 --camera 2,1.5,-10,2,1.5,-20 --out '" +
+  r = runRadkit("run '" + scene +
+                "' --patches 200 --size 32x24 --camera 2,1.5,-10,2,1.5,-20 --out '" +
                 dir.path("b") + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("render.png is black"), std::string::npos) << r.output;
@@ -349,7 +353,9 @@ std::pair<int, int> pngSize(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   unsigned char h[24] = {};
   in.read(reinterpret_cast<char*>(h), 24);
-  auto be = [&](int at) { return (h[at] << 24) | (h[at + 1] << 16) | (h[at + 2] << 8) | h[at + 3]; };
+  auto be = [&](int at) {
+    return (h[at] << 24) | (h[at + 1] << 16) | (h[at + 2] << 8) | h[at + 3];
+  };
   return {be(16), be(20)};
 }
 

@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "atmosphere/phase_sampling.h"
 #include "atmosphere/reference.h"
 #include "atmosphere/shell.h"
 #include "atmosphere/sky_image.h"
-#include "geometry/frame.h"
-#include "geometry/sampling.h"
+#include "phase/closed_form.h"
 #include "tests/common/statistics.h"
+#include "util/frame.h"
+#include "util/sampling.h"
 
 namespace radkit::atmosphere {
 namespace {

@@ -10,8 +10,8 @@
 
 #include "bsdf/bsdf.h"
 #include "bsdf/specular.h"
-#include "geometry/sampling.h"
 #include "tests/common/statistics.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {

@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "bsdf/specular.h"
-#include "geometry/sampling.h"
 #include "tests/common/statistics.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {
@@ -23,8 +23,8 @@ struct NamedBsdf {
 
 std::vector<NamedBsdf> glossyModels() {
   std::vector<NamedBsdf> out;
-  for (const BsdfInfo& info : bsdfTable()) {
-    std::unique_ptr<Bsdf> bsdf = makeBsdf(info.name, BsdfParams::parse(info.example));
+  for (const auto& info : bsdfRegistry().entries()) {
+    std::unique_ptr<Bsdf> bsdf = makeBsdf(info.name, Params::parse(info.example));
     if (!bsdf->isDelta()) out.push_back({info.name, std::move(bsdf)});
   }
   out.push_back({"phong", makePhongBsdf({0.3, 0.3, 0.3}, {0.6, 0.6, 0.6}, 20)});
@@ -45,9 +45,9 @@ std::vector<NamedBsdf> glossyModels() {
 
 TEST(Bsdf, Construct) {
   EXPECT_NE(makeBsdf("lambert", {})->describe().find("lambert"), std::string::npos);
-  EXPECT_NE(makeBsdf("phong", BsdfParams::parse("ks=0.2, shininess=10"))->describe().find("phong"),
+  EXPECT_NE(makeBsdf("phong", Params::parse("ks=0.2, shininess=10"))->describe().find("phong"),
             std::string::npos);
-  auto ct = makeBsdf("cook-torrance", BsdfParams::parse("metallic=0.25"),
+  auto ct = makeBsdf("cook-torrance", Params::parse("metallic=0.25"),
                      {MaskingShadowing::SchlickGgx, true, 16});
   EXPECT_NE(ct->describe().find("schlick"), std::string::npos);
   EXPECT_NE(ct->describe().find("Kulla-Conty"), std::string::npos);

@@ -5,27 +5,27 @@
 #include <cmath>
 
 #include "bsdf/bsdf.h"
-#include "geometry/sampling.h"
 #include "geometry/scene.h"
 #include "tests/common/statistics.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {
 
 std::string errorOf(const std::string& name, const std::string& params) {
   try {
-    makeBsdf(name, BsdfParams::parse(params));
-  } catch (const BsdfParamError& e) {
+    makeBsdf(name, Params::parse(params));
+  } catch (const ParamError& e) {
     return e.what();
   }
   return "";
 }
 
 TEST(BsdfRegistry, ConstructEveryEntryFromItsExample) {
-  const std::vector<BsdfInfo> table = bsdfTable();
+  const auto& table = bsdfRegistry().entries();
   ASSERT_GE(table.size(), 6u);
-  for (const BsdfInfo& info : table) {
-    std::unique_ptr<Bsdf> bsdf = makeBsdf(info.name, BsdfParams::parse(info.example));
+  for (const auto& info : table) {
+    std::unique_ptr<Bsdf> bsdf = makeBsdf(info.name, Params::parse(info.example));
     ASSERT_TRUE(bsdf) << info.name;
     // Radiosity needs a diffuse albedo in [0, 1) from every model.
     for (int c = 0; c < 3; ++c) {
@@ -65,7 +65,7 @@ TEST(BsdfRegistry, ExactMaterialsCacheTheDiffuseAlbedo) {
 TEST(OrenNayar, ExactLimits) {
   // Oren & Nayar 1994, eq. 30: σ = 0 gives A = 1, B = 0, the Lambertian R/π; seen from the
   // normal (θo = 0, so β = 0 and tan β = 0) any σ gives A R/π, A = 1 − σ²/(2(σ² + 0.33)).
-  auto smooth = makeBsdf("oren-nayar", BsdfParams::parse("reflectance=0.6, sigma=0"));
+  auto smooth = makeBsdf("oren-nayar", Params::parse("reflectance=0.6, sigma=0"));
   auto lambert = makeLambertBsdf({0.6, 0.6, 0.6});
   Rng rng(1, 2, 3);
   for (int k = 0; k < 100; ++k) {
@@ -75,7 +75,7 @@ TEST(OrenNayar, ExactLimits) {
   }
   EXPECT_NEAR(smooth->diffuseAlbedo().x, 0.6, 1e-12);
   const double s2 = std::pow(30 * M_PI / 180, 2), A = 1 - s2 / (2 * (s2 + 0.33));
-  auto rough = makeBsdf("oren-nayar", BsdfParams::parse("reflectance=0.6, sigma=30"));
+  auto rough = makeBsdf("oren-nayar", Params::parse("reflectance=0.6, sigma=30"));
   EXPECT_NEAR(rough->eval({0, 0, 1}, localDirection(0.3, 1.0)).x, 0.6 * A / M_PI, 1e-15);
 }
 
@@ -83,8 +83,8 @@ TEST(OrenNayar, StatisticalAlbedoMatchesMonteCarlo) {
   // The albedo radiosity sees is ρ_bh = (1/π) ∫∫ f cos θi cos θo dωi dωo (quadrature in
   // oren_nayar.cpp); estimate it with cosine-distributed pairs: ρ_bh = E[π f].
   for (double sigma : {20.0, 60.0}) {
-    auto f = makeBsdf("oren-nayar",
-                      BsdfParams::parse("reflectance=0.7, sigma=" + std::to_string(sigma)));
+    auto f =
+        makeBsdf("oren-nayar", Params::parse("reflectance=0.7, sigma=" + std::to_string(sigma)));
     Rng rng(9, int(sigma), 0);
     const int n = 400000;
     double sum = 0, sumSq = 0;

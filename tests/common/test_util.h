@@ -45,9 +45,10 @@ class TempDir {
 inline std::string lampMeshScene(const TempDir& dir, const std::string& mesh,
                                  const std::string& transform = "",
                                  const std::string& name = "s.json") {
-  return dir.file(name, R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
-      "surfaces": [{"name": "m", "material": "lamp", "mesh": ")" + mesh + "\"" +
-                            (transform.empty() ? "" : ", \"transform\": " + transform) + "}]}");
+  return dir.file(
+      name, R"({"materials": {"lamp": {"reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}},
+      "surfaces": [{"name": "m", "material": "lamp", "mesh": ")" +
+                mesh + "\"" + (transform.empty() ? "" : ", \"transform\": " + transform) + "}]}");
 }
 
 struct RunResult {

@@ -15,7 +15,7 @@
 
 namespace radkit {
 
-std::unique_ptr<Solver> makeDampedJacobiSolver(SolverParams& params);
+std::unique_ptr<Solver> makeDampedJacobiSolver(Params& params);
 std::unique_ptr<FormFactorMethod> createCentroid(const PatchMesh&, const Visibility&,
                                                  const FormFactorSettings&);
 
@@ -27,14 +27,14 @@ TEST(ExtendingExamples, ExactDampedJacobiSolvesTheSphereInterior) {
   const std::vector<double> area{1, 2, 3, 4};
   test::Problem p = test::makeProblem(test::sphereFormFactors(area), area,
                                       test::grey({0.6, 0.6, 0.6, 0.6}), test::grey({1, 1, 1, 1}));
-  SolverParams params({{"omega", 0.7}});
+  Params params({{"omega", 0.7}});
   std::unique_ptr<Solver> solver = makeDampedJacobiSolver(params);
   params.rejectUnused("damped-jacobi");
   SolverSettings settings;
   settings.tolerance = 1e-13;
   solve(*solver, p.system, settings);
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(solver->radiosity()[0][i], 1 / (1 - 0.6), 1e-11);
-  SolverParams bad({{"omega", 1.5}});
+  Params bad({{"omega", 1.5}});
   EXPECT_THROW(makeDampedJacobiSolver(bad), std::invalid_argument);
 }
 

@@ -295,7 +295,8 @@ TEST(SceneLoader, MtlSemanticsAreWarnedNotSilent) {
   report = {};
   loadScene(dir.file("box.obj", kBox), &report);
   int ambient = 0;
-  for (const std::string& w : report.warnings) ambient += w.find("Ka (ambient") != std::string::npos;
+  for (const std::string& w : report.warnings)
+    ambient += w.find("Ka (ambient") != std::string::npos;
   EXPECT_EQ(ambient, 1);
   all.clear();
   for (const std::string& w : report.warnings) all += w + "\n";

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <iterator>
 #include <map>
-#include <tuple>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include <string>
 #include <vector>
@@ -124,9 +124,9 @@ TEST(HierarchicalCli, StudyMeasuresTheEpsilonLadder) {
   std::vector<std::map<std::string, std::string>> ladder;
   for (int budget : {20, 60}) {
     std::string out = dir.path("study" + std::to_string(budget));
-    RunResult r = runRadkit("study " + dataPath("cube-one-emitter.json") + " --max-seconds " +
-                            std::to_string(budget) + " --knob-patches 250 --epsilons 1e-2 1e-3 --out " +
-                            out);
+    RunResult r =
+        runRadkit("study " + dataPath("cube-one-emitter.json") + " --max-seconds " +
+                  std::to_string(budget) + " --knob-patches 250 --epsilons 1e-2 1e-3 --out " + out);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     ladder.clear();
     bool skippedForTime = false;
@@ -150,7 +150,6 @@ TEST(HierarchicalCli, StudyMeasuresTheEpsilonLadder) {
   ASSERT_EQ(ran, 2);
   EXPECT_LT(errors[1], errors[0]) << "a smaller epsilon is closer to the reference";
 }
-
 
 /// Both sides of a two-sided sheet between two facing lamps receive ρ E F, F = 0.19982 for
 /// unit squares one apart (Howell's catalogue, C-11), in the dense and the hierarchical method;
@@ -200,10 +199,12 @@ TEST(HierarchicalCli, TwoSidedSurfacesExchangeLightOnBothSides) {
 /// "reverse": true it gives the numbers of the cube wound outward, to the last digit.
 TEST(HierarchicalCli, InwardMeshIsNamedAndReverseRestoresIt) {
   TempDir dir;
-  const char* outward = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-                        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
-  const char* inward = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-                       "f 2 3 4 1\nf 8 7 6 5\nf 5 6 2 1\nf 6 7 3 2\nf 7 8 4 3\nf 8 5 1 4\n";
+  const char* outward =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+      "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  const char* inward =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+      "f 2 3 4 1\nf 8 7 6 5\nf 5 6 2 1\nf 6 7 3 2\nf 7 8 4 3\nf 8 5 1 4\n";
   dir.file("out.obj", outward);
   dir.file("in.obj", inward);
   auto scene = [&](const std::string& name, const std::string& mesh, bool reverse) {
@@ -213,9 +214,10 @@ TEST(HierarchicalCli, InwardMeshIsNamedAndReverseRestoresIt) {
      "surfaces": [
       {"name": "floor", "material": "grey", "polygon": [[-2,-2,0],[3,-2,0],[3,3,0],[-2,3,0]]},
       {"name": "lamp", "material": "lamp", "polygon": [[0,0,3],[0,1,3],[1,1,3],[1,0,3]]},
-      {"name": "cube", "material": "grey", "mesh": ")" + mesh + R"(",
-       "transform": {"translate": [0, 0, 0.001]})" + (reverse ? R"(, "reverse": true)" : "") +
-                                  "}]}");
+      {"name": "cube", "material": "grey", "mesh": ")" +
+                              mesh + R"(",
+       "transform": {"translate": [0, 0, 0.001]})" +
+                              (reverse ? R"(, "reverse": true)" : "") + "}]}");
   };
   RunResult r = runRadkit("run " + scene("inward.json", "in.obj", false) +
                           " --method hierarchical --no-render --out " + dir.path("inward"));
@@ -225,8 +227,8 @@ TEST(HierarchicalCli, InwardMeshIsNamedAndReverseRestoresIt) {
   EXPECT_NE(r.output.find("\"reverse\": true"), std::string::npos) << r.output;
   std::string csv[2];
   int k = 0;
-  for (auto [name, mesh, reverse] : {std::tuple{"a.json", "out.obj", false},
-                                     std::tuple{"b.json", "in.obj", true}}) {
+  for (auto [name, mesh, reverse] :
+       {std::tuple{"a.json", "out.obj", false}, std::tuple{"b.json", "in.obj", true}}) {
     const std::string out = dir.path(std::string("run-") + name);
     RunResult run = runRadkit("run " + scene(name, mesh, reverse) + " --no-render --out " + out);
     ASSERT_EQ(run.exitCode, 0) << run.output;
@@ -237,7 +239,6 @@ TEST(HierarchicalCli, InwardMeshIsNamedAndReverseRestoresIt) {
   EXPECT_FALSE(csv[0].empty());
   EXPECT_EQ(csv[0], csv[1]);
 }
-
 
 /// --check-links: sampled links against a Monte Carlo reference of A_r F_rs. On the Cornell box
 /// the element-element links (contour-integrated F, unbiased visibility) carry their

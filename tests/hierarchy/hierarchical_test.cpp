@@ -9,15 +9,15 @@
 #include <map>
 
 #include "geometry/ray_scene.h"
-#include "geometry/sampling.h"
+#include "geometry/scene_loader.h"
 #include "hierarchy/hierarchical.h"
 #include "hierarchy/link_matrix.h"
 #include "hierarchy/refine.h"
 #include "radiosity/contour.h"
 #include "radiosity/radiosity_pipeline.h"
-#include "geometry/scene_loader.h"
 #include "tests/common/test_util.h"
 #include "tests/radiosity/test_scenes.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {

@@ -48,7 +48,7 @@ TEST(CloudMarcher, OneOctaveIsSingleScattering) {
   s.primarySteps = 2048, s.lightSteps = 1;
   const Vec3 l = marchCloud(box, overheadSun(e), {0, 0, -1}, {0, 0, 1}, s, 0.5);
   const double expected =
-      albedo * sigmaT * d * atmosphere::henyeyGreensteinPhase(1, 0.6) * e * std::exp(-sigmaT * d);
+      albedo * sigmaT * d * henyeyGreensteinPhase(1, 0.6) * e * std::exp(-sigmaT * d);
   EXPECT_NEAR(l.x / expected, 1, 1e-6);
 }
 
@@ -68,7 +68,7 @@ TEST(CloudMarcher, OctavesFollowWrenninge) {
     const double integral =
         i == 0 ? d * std::exp(-sigmaT * d) : std::exp(-ai * sigmaT * d) * (std::exp(k * d) - 1) / k;
     expected += std::pow(s.b, i) * albedo * sigmaT *
-                atmosphere::henyeyGreensteinPhase(1, std::pow(s.c, i) * g) * e * integral;
+                henyeyGreensteinPhase(1, std::pow(s.c, i) * g) * e * integral;
   }
   EXPECT_NEAR(l.y / expected, 1, 1e-6);
   // One octave fewer is a different answer: the test sees the octaves.

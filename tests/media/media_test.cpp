@@ -4,7 +4,7 @@
 // independent NumPy code built on scipy.special.spherical_jn/yn with complex argument, whose
 // π_n come from scipy's associated Legendre functions (lpmv), not from recurrences. Numbers
 // marked "two ways" agreed to ≥ 6 significant digits between the two.
-#include "media/phase.h"
+#include "phase/phase_function.h"
 
 #include <gtest/gtest.h>
 
@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/sampling.h"
-#include "geometry/vec3.h"
-#include "media/mie.h"
+#include "phase/mie.h"
 #include "tests/common/statistics.h"
+#include "util/sampling.h"
+#include "util/vec3.h"
 
 namespace radkit::media {
 namespace {
@@ -141,7 +141,8 @@ TEST(Phase, RegistryRejectsUnknownNamesKeysAndRanges) {
   EXPECT_NE(range.find("(-1, 1)"), std::string::npos) << range;
   EXPECT_NE(message("double-henyey-greenstein", "w=1.5").find("[0, 1]"), std::string::npos);
   EXPECT_NE(message("mie-cloud", "v_eff=0.6").find("v_eff"), std::string::npos);
-  EXPECT_NE(message("rayleigh", "g=0.5").find("takes none"), std::string::npos);
+  EXPECT_NE(message("rayleigh", "g=0.5").find("rayleigh has no parameters"), std::string::npos);
+  EXPECT_EQ(range.rfind("phase function \"henyey-greenstein\": ", 0), 0u) << range;
   EXPECT_NE(message("henyey-greenstein", "g=abc").find("finite number"), std::string::npos);
 }
 

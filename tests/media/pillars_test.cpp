@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/sampling.h"
 #include "media/pillars.h"
 #include "tests/common/statistics.h"
 #include "tests/common/test_util.h"
+#include "util/sampling.h"
 
 namespace radkit::media {
 namespace {

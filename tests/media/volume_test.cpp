@@ -14,12 +14,12 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/sampling.h"
 #include "media/medium.h"
-#include "media/noise.h"
-#include "media/phase.h"
 #include "media/volume_tracer.h"
+#include "noise/noise3d.h"
+#include "phase/phase_function.h"
 #include "tests/common/statistics.h"
+#include "util/sampling.h"
 
 namespace radkit::media {
 namespace {
@@ -70,6 +70,9 @@ class VolumeCountingPhase final : public PhaseFunction {
   }
   double meanCosine() const override { return m_inner->meanCosine(); }
   std::string name() const override { return m_inner->name(); }
+  double evalAnisotropyScaled(double c, double scale) const override {
+    return m_inner->evalAnisotropyScaled(c, scale);
+  }
   long long count() const { return m_count; }
 
  private:

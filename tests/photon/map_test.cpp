@@ -9,12 +9,12 @@
 #include <cmath>
 
 #include "geometry/ray_scene.h"
-#include "geometry/sampling.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
 #include "photon/tracer.h"
 #include "render/radiosity_image.h"
 #include "tests/common/test_util.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {

@@ -10,12 +10,12 @@
 
 #include "daylight/sky.h"
 #include "geometry/ray_scene.h"
-#include "geometry/sampling.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
 #include "photon/image.h"
 #include "tests/common/statistics.h"
 #include "tests/common/test_util.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {

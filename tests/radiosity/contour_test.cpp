@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "geometry/sampling.h"
 #include "radiosity/contour.h"
 #include "test_scenes.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {

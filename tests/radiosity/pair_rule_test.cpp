@@ -6,14 +6,14 @@
 #include <cmath>
 #include <cstdio>
 
-#include "geometry/sampling.h"
+#include "geometry/ray_scene.h"
 #include "radiosity/contour.h"
+#include "radiosity/form_factors.h"
 #include "radiosity/pair_rule.h"
 #include "radiosity/quadrature.h"
-#include "radiosity/form_factors.h"
 #include "radiosity/surface_form_factors.h"
-#include "geometry/ray_scene.h"
 #include "test_scenes.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {
@@ -118,7 +118,8 @@ double rule(const PatchInfo& a, const PatchInfo& b, int n) {
 double linearPowerOverTriangle(double area, double l0, double l1, double l2, int k) {
   double h = 0;
   for (int a = 0; a <= k; ++a)
-    for (int b = 0; a + b <= k; ++b) h += std::pow(l0, a) * std::pow(l1, b) * std::pow(l2, k - a - b);
+    for (int b = 0; a + b <= k; ++b)
+      h += std::pow(l0, a) * std::pow(l1, b) * std::pow(l2, k - a - b);
   return 2 * area * std::tgamma(k + 1) / std::tgamma(k + 3) * h;
 }
 
@@ -132,14 +133,17 @@ TEST(PairRule, PointsIntegratePolynomialsExactly) {
     const PatchInfo& patch = p.a;
     ++shapes[patch.count == 3 ? 0 : patch.parallelogram ? 1 : 2];
     Vec3 e = randomUnit(rng);
-    auto L = [&](double x, double y, double z) { return dot(e, Vec3{x, y, z} - patch.centroid) + 0.7; };
+    auto L = [&](double x, double y, double z) {
+      return dot(e, Vec3{x, y, z} - patch.centroid) + 0.7;
+    };
     for (int n = 1; n <= kMaxPairLevel; ++n) {
       PatchPoints pts;
       patchPoints(patch, n, pts);
       ASSERT_EQ(pts.padded % 4, 0);
       for (int k = 0; k <= 2 * n - 1; ++k) {
         double sum = 0;
-        for (int q = 0; q < pts.padded; ++q) sum += pts.w[q] * std::pow(L(pts.x[q], pts.y[q], pts.z[q]), k);
+        for (int q = 0; q < pts.padded; ++q)
+          sum += pts.w[q] * std::pow(L(pts.x[q], pts.y[q], pts.z[q]), k);
         double exact = 0;
         for (int t = 1; t + 1 < patch.count; ++t) {
           const Vec3 &v0 = patch.v[0], &v1 = patch.v[t], &v2 = patch.v[t + 1];
@@ -173,8 +177,9 @@ TEST(PairRule, BoundHoldsOnRandomPairs) {
       if (bound < 1e-10) continue;
       ++checked[n];
       worst[n] = std::max(worst[n], err / bound);
-      EXPECT_LE(err, bound + 1e-11) << "level " << n << " rho " << p.sep.rho << " cos " << p.sep.cosA << " " << p.sep.cosB << " count "
-                                    << p.a.count << "/" << p.b.count;
+      EXPECT_LE(err, bound + 1e-11)
+          << "level " << n << " rho " << p.sep.rho << " cos " << p.sep.cosA << " " << p.sep.cosB
+          << " count " << p.a.count << "/" << p.b.count;
     }
   }
   for (int n = 1; n <= kMaxPairLevel; ++n) {
@@ -239,10 +244,10 @@ TEST(PairRule, CubeWithSelector) {
   ASSERT_EQ(r.diagnostics.pairsByRule.size(), std::size_t(kMaxPairLevel + 1));
   long long tensor = 0;
   for (int n = 1; n <= kMaxPairLevel; ++n) tensor += r.diagnostics.pairsByRule[n];
-  EXPECT_GT(r.diagnostics.pairsByRule[0], 0);               // shared edges
+  EXPECT_GT(r.diagnostics.pairsByRule[0], 0);           // shared edges
   EXPECT_GT(tensor, 5 * r.diagnostics.pairsByRule[0]);  // most pairs
-  std::printf("cube 6 x 100 patches: worst face error %.2e; pairs adaptive %lld, levels 1-8",
-              worst, r.diagnostics.pairsByRule[0]);
+  std::printf("cube 6 x 100 patches: worst face error %.2e; pairs adaptive %lld, levels 1-8", worst,
+              r.diagnostics.pairsByRule[0]);
   for (int n = 1; n <= kMaxPairLevel; ++n) std::printf(" %lld", r.diagnostics.pairsByRule[n]);
   std::printf("\n");
 }

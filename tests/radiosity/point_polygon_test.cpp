@@ -256,8 +256,12 @@ TEST(PointPolygon, SurfaceCullingImpliesPairCulling) {
   const Vec3 lo{0.3, 0.3, 0}, e{0.3, 0, 0}, f{0, 0.3, 0}, up{0, 0, 0.4};
   builder.addRectangle("box side", lo, e, up, 2, 2);
   builder.addRectangle("box top", lo + up, e, f, 2, 2);
-  builder.addTriangles("sheet", {{0.7, 0.7, 0.5}, {0.9, 0.7, 0.6}, {0.7, 0.9, 0.6},
-                                 {0.9, 0.7, 0.6}, {0.9, 0.9, 0.5}, {0.7, 0.9, 0.6}});
+  builder.addTriangles("sheet", {{0.7, 0.7, 0.5},
+                                 {0.9, 0.7, 0.6},
+                                 {0.7, 0.9, 0.6},
+                                 {0.9, 0.7, 0.6},
+                                 {0.9, 0.9, 0.5},
+                                 {0.7, 0.9, 0.6}});
   const PatchMesh& mesh = builder.mesh();
   PatchTable table(mesh);
   OccluderCulling culling(mesh, table);

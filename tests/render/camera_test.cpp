@@ -89,12 +89,12 @@ TEST(AutomaticCamera, DoesNotLookIntoTheLampUnderWhichAModelStands) {
   // A unit cube under a large lamp facing down: from below the lamp filled the view and won.
   std::vector<Triangle> t;
   std::vector<char> emitting;
-  quad(t, emitting, {0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1});  // bottom, facing -y
-  quad(t, emitting, {0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0});  // top, +y
-  quad(t, emitting, {0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0});  // -x
-  quad(t, emitting, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1});  // +x
-  quad(t, emitting, {0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0});  // -z
-  quad(t, emitting, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1});  // +z
+  quad(t, emitting, {0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1});            // bottom, facing -y
+  quad(t, emitting, {0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0});            // top, +y
+  quad(t, emitting, {0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0});            // -x
+  quad(t, emitting, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1});            // +x
+  quad(t, emitting, {0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0});            // -z
+  quad(t, emitting, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1});            // +z
   quad(t, emitting, {-3, 3, -3}, {4, 3, -3}, {4, 3, 4}, {-3, 3, 4}, true);  // lamp, facing -y
   EXPECT_LT(automaticCamera(t).position.y, 0) << "without the lamp flags: from below";
   const Camera c = automaticCamera(t, &emitting);

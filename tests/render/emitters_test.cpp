@@ -3,11 +3,11 @@
 #include <gtest/gtest.h>
 
 #include "bsdf/specular.h"
-#include "geometry/sampling.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
 #include "tests/common/statistics.h"
 #include "tests/common/test_util.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {

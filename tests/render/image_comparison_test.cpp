@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "geometry/sampling.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {

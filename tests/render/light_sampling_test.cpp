@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "geometry/ray_scene.h"
-#include "geometry/sampling.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
 #include "render/shading_context.h"
 #include "tests/common/test_util.h"
+#include "util/sampling.h"
 
 namespace radkit {
 namespace {

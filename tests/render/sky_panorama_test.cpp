@@ -16,7 +16,6 @@
 namespace radkit {
 namespace {
 
-
 /// Irradiance on a plane facing `normal`, summed over the panorama's pixels (cos⁺ dω).
 Vec3 panoramaIrradiance(const RadianceImage& p, const SkyModel& sky, const Vec3& normal) {
   Vec3 sum;
@@ -53,7 +52,7 @@ TEST(SkyPanorama, ColumnsFollowTheCompassAndRowsTheElevation) {
   EXPECT_TRUE(near(panoramaDirection(sky, 0.25, 0.5), {1, 0, 0}));   // east
   EXPECT_TRUE(near(panoramaDirection(sky, 0.5, 0.5), {0, 0, 1}));    // south
   EXPECT_TRUE(near(panoramaDirection(sky, 0.75, 0.5), {-1, 0, 0}));  // west
-  EXPECT_TRUE(near(panoramaDirection(sky, 0.3, 0.0), {0, 1, 0}));  // the zenith: top row
+  EXPECT_TRUE(near(panoramaDirection(sky, 0.3, 0.0), {0, 1, 0}));    // the zenith: top row
   EXPECT_TRUE(near(panoramaDirection(sky, 0.3, 1.0), {0, -1, 0}));
   const Vec3 up30 = panoramaDirection(sky, 0.25, 1.0 / 3);  // east, 30° up
   EXPECT_NEAR(up30.y, 0.5, 1e-12);
@@ -79,13 +78,15 @@ TEST(SkyPanorama, UniformSkyGivesPiLAndTheSunKeepsItsIrradianceAndPlace) {
   const Vec3 e = panoramaIrradiance(p, sky, {0, 0, 1});
   const double rowHalf = M_PI / p.height / 2;
   for (int c = 0; c < 3; ++c)
-    EXPECT_NEAR(e[c], M_PI * d.radiance[c] + d.sunIrradiance[c] * 0.5,
-                1e-4 * M_PI * d.radiance[c] + d.sunIrradiance[c] * std::cos(30 * M_PI / 180) * rowHalf);
+    EXPECT_NEAR(
+        e[c], M_PI * d.radiance[c] + d.sunIrradiance[c] * 0.5,
+        1e-4 * M_PI * d.radiance[c] + d.sunIrradiance[c] * std::cos(30 * M_PI / 180) * rowHalf);
   // The brightest pixel lies at the sun's bearing and elevation, within a pixel (0.7°).
   std::size_t brightest = 0;
   for (std::size_t i = 0; i < p.radiance.size(); ++i)
     if (p.radiance[i].x > p.radiance[brightest].x) brightest = i;
-  const double u = (brightest % p.width + 0.5) / p.width, v = (brightest / p.width + 0.5) / p.height;
+  const double u = (brightest % p.width + 0.5) / p.width,
+               v = (brightest / p.width + 0.5) / p.height;
   EXPECT_NEAR(360 * u, 120, 360.0 / p.width);
   EXPECT_NEAR(90 - 180 * v, 30, 180.0 / p.height);
   // Towards the sun: its normal irradiance plus the sky's half space, πL.
@@ -104,7 +105,8 @@ TEST(SkyPanorama, CieOvercastSkyGivesSevenPiLzOverNineAndItsGroundGlow) {
   const SkyModel sky(d);
   const RadianceImage p = skyPanorama(sky, 1024);
   EXPECT_NEAR(panoramaIrradiance(p, sky, {0, 0, 1}).x, 7 * M_PI * 3 / 9, 1e-4 * 7 * M_PI * 3 / 9);
-  EXPECT_NEAR(panoramaIrradiance(p, sky, {0, 0, -1}).x, 0.2 * 7 * M_PI * 3 / 9, 1e-4 * 7 * M_PI * 3 / 9);
+  EXPECT_NEAR(panoramaIrradiance(p, sky, {0, 0, -1}).x, 0.2 * 7 * M_PI * 3 / 9,
+              1e-4 * 7 * M_PI * 3 / 9);
   // No sun: nothing is added anywhere.
   EXPECT_NEAR(p.radiance[0].x, 3.0, 1e-4);  // the top row sits within 0.18° of the zenith
 }
@@ -137,9 +139,10 @@ TEST(SkyPanorama, RunWritesTheScenesSkyForTheViewer) {
     EXPECT_EQ(p.at("north"), nlohmann::json::array({0.0, 1.0, 0.0})) << method;
     EXPECT_EQ(p.at("east"), nlohmann::json::array({1.0, 0.0, 0.0})) << method;
   }
-  const test::RunResult r = test::runRadkit("run " + test::dataPath("parallel-squares.json") +
-                                                " --patches 50 --no-render --out " + dir.path("none"),
-                                            300);
+  const test::RunResult r =
+      test::runRadkit("run " + test::dataPath("parallel-squares.json") +
+                          " --patches 50 --no-render --out " + dir.path("none"),
+                      300);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir.path("none") + "/sky.pfm"));
 }

@@ -56,7 +56,7 @@ double relativeError(const Channels& a, const Channels& b);
 /// \brief solve() with the named registry solver.
 inline SolveResult runSolver(const std::string& name, const RadiositySystem& system,
                              double tolerance, ResidualNorm norm = ResidualNorm::Relative,
-                             long maxIterations = 10000000, SolverParams params = {}) {
+                             long maxIterations = 10000000, Params params = {}) {
   SolverSettings settings;
   settings.tolerance = tolerance;
   settings.norm = norm;

@@ -9,8 +9,8 @@ using namespace radkit::test;
 
 TEST(ConjugateGradientSolver, Construct) {
   EXPECT_EQ(makeSolver("cg")->name(), "cg");
-  EXPECT_NO_THROW(makeSolver("cg", SolverParams({{"replace_every", 0}})));
-  EXPECT_THROW(makeSolver("cg", SolverParams({{"replace_every", -1}})), std::invalid_argument);
+  EXPECT_NO_THROW(makeSolver("cg", Params({{"replace_every", 0}})));
+  EXPECT_THROW(makeSolver("cg", Params({{"replace_every", -1}})), std::invalid_argument);
 }
 
 TEST(ConjugateGradientSolver, ExactSphereUnequalAreas) {

@@ -9,7 +9,7 @@ using namespace radkit::test;
 
 TEST(GaussSeidelSolver, Construct) {
   EXPECT_EQ(makeSolver("gauss-seidel")->name(), "gauss-seidel");
-  EXPECT_THROW(makeSolver("gauss-seidel", SolverParams({{"omega", 1.2}})), std::invalid_argument);
+  EXPECT_THROW(makeSolver("gauss-seidel", Params({{"omega", 1.2}})), std::invalid_argument);
 }
 
 TEST(GaussSeidelSolver, ExactParallelPlates) {

@@ -26,7 +26,7 @@ TEST(Registry, Construct) {
               std::string::npos)
         << e.what();
   }
-  EXPECT_THROW(makeSolver("jacobi", SolverParams({{"omega", 1.0}})), std::invalid_argument);
+  EXPECT_THROW(makeSolver("jacobi", Params({{"omega", 1.0}})), std::invalid_argument);
 }
 
 // Same inputs, same bits, whatever the thread count: rows are summed by one thread in a fixed

@@ -10,17 +10,24 @@
 namespace radkit {
 using namespace radkit::test;
 
-TEST(SolverParams, Construct) {
-  SolverParams p = SolverParams::parse("omega=1.5,power_iterations=10");
-  EXPECT_EQ(p.get("omega", 0.0), 1.5);
-  EXPECT_EQ(p.get("missing", 7.0), 7.0);
-  EXPECT_THROW(p.rejectUnused("sor"), std::invalid_argument);  // power_iterations unread
-  EXPECT_EQ(p.get("power_iterations", 30), 10.0);
-  EXPECT_NO_THROW(p.rejectUnused("sor"));
-  EXPECT_THROW(SolverParams::parse("omega"), std::invalid_argument);
-  EXPECT_THROW(SolverParams::parse("omega=fast"), std::invalid_argument);
-  EXPECT_THROW(SolverParams::parse("omega=1.5x"), std::invalid_argument);
-  EXPECT_NO_THROW(SolverParams::parse(""));
+TEST(SolverRegistry, ParameterErrorsNameTheSolverAndTheKeys) {
+  try {
+    makeSolver("sor", Params::parse("omega=1.5, power_iteration=10"));
+    ADD_FAILURE();
+  } catch (const ParamError& e) {
+    EXPECT_NE(std::string(e.what()).find("solver \"sor\": gives \"power_iteration\""),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("sor reads omega, power_iterations"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(makeSolver("sor", Params::parse("power_iterations=2.5")), ParamError);
+  EXPECT_THROW(makeSolver("cg", Params::parse("replace_every=-1")), ParamError);
+  EXPECT_THROW(makeSolver("sor", Params::parse("omega=fast")), ParamError);
+  // Every entry builds from its example, and the registry lists what the help shows.
+  for (const auto& entry : solverRegistry().entries())
+    EXPECT_NO_THROW(makeSolver(entry.name, Params::parse(entry.example))) << entry.name;
+  EXPECT_EQ(solverNames(), solverRegistry().names());
 }
 
 TEST(Solve, ExactMaxIterationsSaysNotConvergedAndWhy) {

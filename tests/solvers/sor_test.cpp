@@ -9,16 +9,16 @@ using namespace radkit::test;
 
 TEST(SorSolver, Construct) {
   EXPECT_EQ(makeSolver("sor")->name(), "sor");
-  EXPECT_NO_THROW(makeSolver("sor", SolverParams({{"omega", 1.1}})));
-  EXPECT_THROW(makeSolver("sor", SolverParams({{"omega", 2.0}})), std::invalid_argument);
-  EXPECT_THROW(makeSolver("sor", SolverParams({{"omega", -1.0}})), std::invalid_argument);
-  EXPECT_THROW(makeSolver("sor", SolverParams({{"omgea", 1.1}})), std::invalid_argument);
+  EXPECT_NO_THROW(makeSolver("sor", Params({{"omega", 1.1}})));
+  EXPECT_THROW(makeSolver("sor", Params({{"omega", 2.0}})), std::invalid_argument);
+  EXPECT_THROW(makeSolver("sor", Params({{"omega", -1.0}})), std::invalid_argument);
+  EXPECT_THROW(makeSolver("sor", Params({{"omgea", 1.1}})), std::invalid_argument);
 }
 
 TEST(SorSolver, ExactParallelPlatesGivenOmega) {
   Problem p = makeProblem(platesFormFactors(), {1.0, 1.0}, grey({0.5, 0.5}), grey({1.0, 0.0}));
-  const SolveResult r = runSolver("sor", p.system, 1e-14, ResidualNorm::Relative, 10000,
-                                  SolverParams({{"omega", 1.1}}));
+  const SolveResult r =
+      runSolver("sor", p.system, 1e-14, ResidualNorm::Relative, 10000, Params({{"omega", 1.1}}));
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_NEAR(r.radiosity[0][0], 4.0 / 3.0, 1e-13);
   EXPECT_NE(r.description.find("1.1"), std::string::npos);
@@ -56,7 +56,7 @@ TEST(SorSolver, ExactResidualAtEveryStep) {
   for (Storage s : {Storage::DenseDouble, Storage::CsrFloat}) {
     Problem p = randomReciprocal(300, 5, s);
     const int n = p.system.size();
-    auto solver = makeSolver("sor", SolverParams({{"omega", 1.4}}));
+    auto solver = makeSolver("sor", Params({{"omega", 1.4}}));
     SolverSettings settings;
     settings.norm = ResidualNorm::Relative;
     solver->start(p.system, settings);

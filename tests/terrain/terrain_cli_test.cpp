@@ -24,7 +24,9 @@ TEST(TerrainCli, GeneratesASceneThatRadiosityRunsUnderItsSky) {
   const std::string out = dir.path("land");
   test::RunResult r = test::runRadkit(
       "terrain --resolution 33 --seed 4 --sky cie-overcast --sky-samples 16 --format ply "
-      "--image --image-width 32 --image-height 16 --out " + out, 300);
+      "--image --image-width 32 --image-height 16 --out " +
+          out,
+      300);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const char* f : {"terrain.json", "heightmap.png", "report.json", "landscape-march.pfm",
                         "landscape-embree.png", "landscape-difference.png"})
@@ -34,15 +36,21 @@ TEST(TerrainCli, GeneratesASceneThatRadiosityRunsUnderItsSky) {
   EXPECT_EQ(report["landscape"]["hit_mismatch_pixels"].get<double>(), 0.0);
   // The same seed gives the same meshes, byte for byte.
   ASSERT_EQ(test::runRadkit("terrain --resolution 33 --seed 4 --sky cie-overcast --format ply "
-                            "--sky-samples 16 --out " + dir.path("again"), 300).exitCode, 0);
+                            "--sky-samples 16 --out " +
+                                dir.path("again"),
+                            300)
+                .exitCode,
+            0);
   for (const char* part : {"terrain-grass.ply", "terrain-rock.ply", "terrain-snow.ply"}) {
     if (!fs::exists(out + "/" + part)) continue;
     std::ifstream a(out + "/" + part), b(dir.path("again") + "/" + part);
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}),
-              std::string(std::istreambuf_iterator<char>(b), {})) << part;
+              std::string(std::istreambuf_iterator<char>(b), {}))
+        << part;
   }
-  r = test::runRadkit("run " + out + "/terrain.json --method hierarchical --no-render --out " +
-                          dir.path("run"), 300);
+  r = test::runRadkit(
+      "run " + out + "/terrain.json --method hierarchical --no-render --out " + dir.path("run"),
+      300);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const auto rows = test::readCsv(dir.path("run") + "/surfaces.csv");
   ASSERT_FALSE(rows.empty());
@@ -59,8 +67,8 @@ TEST(TerrainCli, GeneratesASceneThatRadiosityRunsUnderItsSky) {
 TEST(TerrainCli, RefusesBadOptionsAndWritesNothing) {
   test::TempDir dir;
   for (const char* bad : {"--resolution 1", "--type perlin", "--lacunarity nan", "--format stl"}) {
-    const test::RunResult r = test::runRadkit(std::string("terrain ") + bad + " --out " +
-                                              dir.path("x"), 60);
+    const test::RunResult r =
+        test::runRadkit(std::string("terrain ") + bad + " --out " + dir.path("x"), 60);
     EXPECT_NE(r.exitCode, 0) << bad;
     EXPECT_FALSE(fs::exists(dir.path("x"))) << bad;
   }

@@ -9,12 +9,12 @@
 
 #include "geometry/mesh_reader.h"
 #include "geometry/ray_scene.h"
-#include "geometry/sampling.h"
+#include "noise/noise2d.h"
 #include "terrain/heightfield.h"
 #include "terrain/landscape.h"
-#include "terrain/noise.h"
 #include "tests/common/statistics.h"
 #include "tests/common/test_util.h"
+#include "util/sampling.h"
 
 namespace radkit::terrain {
 namespace {

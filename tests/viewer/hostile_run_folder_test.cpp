@@ -14,11 +14,11 @@
 #include <future>
 #include <sstream>
 
-#include "geometry/scene_loader.h"
 #include "output/run_files.h"
 #include "tests/common/test_util.h"
 #include "tests/viewer/test_run.h"
 #include "util/canvas.h"
+#include "util/errors.h"
 #include "util/output_folder.h"  // csvField: how radkit quotes names
 #include "viewer/run_folder.h"
 

@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "geometry/scene_loader.h"
 #include "output/run_files.h"
 #include "radiosity/surface_form_factors.h"
 #include "tests/common/test_util.h"
 #include "tests/viewer/test_run.h"
+#include "util/errors.h"
 
 namespace radkit::viewer {
 namespace {

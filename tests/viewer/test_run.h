@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "geometry/vec3.h"
+#include "util/vec3.h"
 
 namespace radkit::viewer::test {
 

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "geometry/scene_loader.h"
 #include "tests/common/test_util.h"
 #include "tests/viewer/test_run.h"
+#include "util/errors.h"
 #include "viewer/viewer.h"
 
 namespace radkit::viewer {

@@ -262,7 +262,14 @@ TEST_F(ViewerDisplay, RadiosityDrawsTheRunsSkyInItsDirections) {
   const Vec3 downRight = meanColour(c, w * 0.9, h * 0.8);
   auto expectColour = [](const Vec3& got, bool r, bool g, bool b, const char* where) {
     for (int k = 0; k < 3; ++k)
-      EXPECT_NEAR(got[k], (k == 0 ? r : k == 1 ? g : b) ? 231 : 63, 12) << where << " channel " << k;
+      EXPECT_NEAR(got[k],
+                  (k == 0   ? r
+                   : k == 1 ? g
+                            : b)
+                      ? 231
+                      : 63,
+                  12)
+          << where << " channel " << k;
   };
   expectColour(upLeft, false, true, true, "up, west");
   expectColour(upRight, true, true, false, "up, east");
