@@ -58,10 +58,8 @@ class DampedJacobiSolver final : public Solver {
 }  // namespace
 
 // The registry's factory: reads its parameters (the registry rejects unknown keys after it).
-std::unique_ptr<Solver> makeDampedJacobiSolver(SolverParams& params) {
-  const double omega = params.get("omega", 0.8);
-  if (!(omega > 0 && omega <= 1))
-    throw std::invalid_argument("damped-jacobi: omega must lie in (0, 1]");
+std::unique_ptr<Solver> makeDampedJacobiSolver(Params& params) {
+  const double omega = params.number("omega", 0.8, 0.0, 1.0, /*openLo=*/true);
   return std::make_unique<DampedJacobiSolver>(omega);
 }
 
