@@ -13,8 +13,7 @@
 
 #include "apps/common.h"
 #include "apps/report.h"
-#include "atmosphere/atmosphere.h"
-#include "daylight/sky.h"
+#include "experiments/cloud_comparison.h"
 #include "media/cloud_marcher.h"
 #include "media/medium.h"
 #include "media/medium_json.h"
@@ -34,9 +33,7 @@ using nlohmann::json;
 
 struct CloudsCommand {
   media::CloudLayerSettings layer;
-  // Off by default: on cumulus, stratus and haze it cost 30-80 % more time for no less noise
-  // (docs/clouds.md); it pays where a small bright part of the sky dominates.
-  bool skyNee = false;
+  bool skyNee = CloudComparisonSettings{}.skyNee;  ///< CloudComparisonSettings says why
   // HG with the Mie cloud table's g: the table's forward peak (thousands per sr) makes the
   // reference's sun estimates fireflies (docs/clouds.md); --phase mie-cloud uses it.
   // Empty parameters: HG takes g = 0.86 (the Mie table's mean cosine), others their defaults.
@@ -55,27 +52,6 @@ struct CloudsCommand {
 
 /// Whether an option was given on the command line (its default does not count).
 bool given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
-
-/// (Σ a − Σ reference)/Σ reference over pixels and channels: the brightness bias, which the
-/// reference's noise averages out of.
-double relativeBias(const std::vector<Vec3>& a, const std::vector<Vec3>& reference) {
-  double sa = 0, sr = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    sa += a[i].x + a[i].y + a[i].z, sr += reference[i].x + reference[i].y + reference[i].z;
-  return sr > 0 ? (sa - sr) / sr : 0.0;
-}
-
-/// Root-mean-square difference over pixels and channels, relative to the reference's mean.
-double relativeRmse(const std::vector<Vec3>& a, const std::vector<Vec3>& reference) {
-  double sum = 0, mean = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const Vec3 e = a[i] - reference[i];
-    sum += dot(e, e) / 3;
-    mean += (reference[i].x + reference[i].y + reference[i].z) / 3;
-  }
-  mean /= double(a.size());
-  return mean > 0 ? std::sqrt(sum / double(a.size())) / mean : 0.0;
-}
 
 void runClouds(CloudsCommand& cmd) {
   // The scene file is read before the output folder exists: a bad file leaves nothing behind.
@@ -121,33 +97,7 @@ void runClouds(CloudsCommand& cmd) {
   const double layerSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   OutputFolder folder(cmd.out);
-
-  // Sun and sky from the atmosphere: the sun's irradiance at the medium's middle altitude, the
-  // sky tabulated as daylight/ does for scenes. Below the horizon the sky is the ground's glow
-  // ρ E_h/π (black by default).
-  SkyDescription sd;
-  sd.type = SkyDescription::Type::Physical;
-  sd.sun = true, sd.sunElevationDeg = cmd.sunElevation, sd.sunAzimuthDeg = cmd.sunAzimuth;
-  sd.groundReflectance = groundAlbedo;
-  const SkyModel sky(sd);
   const Bounds3 bounds = layer.bounds();
-  const atmosphere::Atmosphere air;
-  const Vec3 sunLocal = atmosphere::sunDirection(cmd.sunElevation, cmd.sunAzimuth);
-  media::Lighting light;
-  light.sunDirection = sunLocal;
-  light.sunIrradiance =
-      air.sunIrradiance(air.pointAtAltitude((bounds.lo.z + bounds.hi.z) / 2), sunLocal);
-  light.sky = [&](const Vec3& d) { return sky.radiance(d); };
-  // The path tracer bounces paths off a Lambertian ground at z = 0; the real-time model has no
-  // ground, so it sees the ground as the sky's glow below the horizon and gets it as its
-  // ambient light from below: ρ (E_sky + E_sun)/π, unshadowed by the medium (an overestimate
-  // under thick cover).
-  light.groundAlbedo = groundAlbedo;
-  // Next-event estimation to the sky; a ground hides the sky's lower half from the medium.
-  if (cmd.skyNee)
-    light.skySampler = std::make_shared<const SkySampler>(light.sky, groundAlbedo > 0);
-  cmd.march.ambientTop = sky.horizontalSky() / M_PI;  // cosine-weighted mean sky radiance
-  cmd.march.ambientBottom = (sky.horizontalSky() + sky.horizontalSun()) * (groundAlbedo / M_PI);
 
   // The file's camera unless --camera-elevation or --fov overrides it; otherwise on the ground
   // looking north, --camera-elevation above the horizon.
@@ -178,65 +128,33 @@ void runClouds(CloudsCommand& cmd) {
                      "the camera's view is parallel to its \"up\" after --camera-elevation. "
                      "Fix: give another --camera-elevation, or the camera an \"up\" across "
                      "the view");
-  const PinholeCamera pinhole(camera, cmd.width, cmd.height);
-  const auto ray = [&](double x, double y) { return pinhole.direction(x, y); };
-
-  const media::VolumeImage reference = media::renderVolume(
-      layer, light, camera.position, ray, cmd.width, cmd.height, cmd.samples, cmd.seed);
-  // The reference's own noise: the RMSE an exact image would show against it.
-  double noise = 0, mean = 0;
-  for (std::size_t i = 0; i < reference.radiance.size(); ++i) {
-    noise += dot(reference.standardError[i], reference.standardError[i]) / 3;
-    mean += (reference.radiance[i].x + reference.radiance[i].y + reference.radiance[i].z) / 3;
-  }
-  mean /= double(reference.radiance.size());
-  const double noiseFloor =
-      mean > 0 ? std::sqrt(noise / double(reference.radiance.size())) / mean : 0;
-
-  // The features switched on one by one, then the step counts.
-  struct Variant {
-    std::string name;
-    media::MarchSettings settings;
-  };
-  std::vector<Variant> variants;
-  media::MarchSettings s = cmd.march;
-  s.octaves = 1, s.ambient = false, s.jitter = false;
-  variants.push_back({"single scattering", s});
-  s.ambient = true;
-  variants.push_back({"+ ambient", s});
-  s.octaves = cmd.march.octaves;
-  variants.push_back({"+ " + std::to_string(s.octaves) + " octaves", s});
-  s.jitter = true;
-  variants.push_back({"+ blue-noise jitter (defaults)", s});
-  media::MarchSettings coarse = s, fine = s;
-  coarse.primarySteps = std::max(1, s.primarySteps / 2),
-  coarse.lightSteps = std::max(1, s.lightSteps / 2);
-  fine.primarySteps = s.primarySteps * 4, fine.lightSteps = s.lightSteps * 4;
-  variants.push_back({"defaults, half the steps", coarse});
-  variants.push_back({"defaults, 4x the steps", fine});
+  CloudComparisonSettings cs;
+  cs.width = cmd.width, cs.height = cmd.height, cs.samples = cmd.samples, cs.seed = cmd.seed;
+  cs.sunElevationDeg = cmd.sunElevation, cs.sunAzimuthDeg = cmd.sunAzimuth;
+  cs.groundAlbedo = groundAlbedo;
+  cs.skyNee = cmd.skyNee;
+  cs.march = cmd.march;
+  cs.camera = camera;
+  const CloudComparison result = compareCloudModels(layer, cs);
+  const media::VolumeImage& reference = result.reference;
+  const media::Lighting& light = result.light;
+  const double mean = result.referenceMean, noiseFloor = result.referenceNoise;
+  const media::VolumeImage* defaults = &result.variants[result.defaults].image;
 
   double exposure = cmd.exposure;
   if (!(exposure > 0)) exposure = mean > 0 ? 0.18 / luminance(Vec3{mean, mean, mean}) : 1;
   json table = json::array();
-  const media::VolumeImage* defaults = nullptr;
-  std::vector<media::VolumeImage> images;
-  images.reserve(variants.size());
-  for (const Variant& v : variants) {
-    images.push_back(media::renderMarched(layer, light, camera.position, ray, cmd.width, cmd.height,
-                                          v.settings, cmd.seed));
-    const media::VolumeImage& img = images.back();
-    if (v.name.rfind("+ blue-noise", 0) == 0) defaults = &img;
+  for (const CloudVariant& v : result.variants)
     table.push_back({{"variant", v.name},
                      {"primary_steps", v.settings.primarySteps},
                      {"light_steps", v.settings.lightSteps},
                      {"octaves", v.settings.octaves},
                      {"ambient", v.settings.ambient},
                      {"jitter", v.settings.jitter},
-                     {"seconds", img.seconds},
-                     {"relative_rmse", relativeRmse(img.radiance, reference.radiance)},
-                     {"relative_bias", relativeBias(img.radiance, reference.radiance)},
-                     {"speedup", reference.seconds / std::max(img.seconds, 1e-9)}});
-  }
+                     {"seconds", v.image.seconds},
+                     {"relative_rmse", v.relativeRmse},
+                     {"relative_bias", v.relativeBias},
+                     {"speedup", reference.seconds / std::max(v.image.seconds, 1e-9)}});
   writeLinearAndPng(folder.path("clouds-reference"),
                     pixelImage(cmd.width, cmd.height, reference.radiance, exposure));
   writeLinearAndPng(folder.path("clouds-realtime"),

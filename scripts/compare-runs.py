@@ -44,6 +44,16 @@ def cases(quick):
     out.append(("photons-cornell", ["photons", cornell, "--patches", "400", "--photons", "50000",
                                     "--out", "{out}"]))
     out.append(("brdf-table", ["brdf", "--table"]))  # prints its output: compared as stdout.txt
+    out.append(("outdoor-sky", ["sky", "--size", "64", "--out", "{out}"]))
+    out.append(("outdoor-clouds", ["clouds", "--width", "32", "--height", "18", "--samples", "4",
+                                   "--out", "{out}"]))
+    out.append(("outdoor-clouds-slab", ["clouds", "--scene", str(ROOT / "data/clouds/slab.json"),
+                                        "--width", "32", "--height", "18", "--samples", "4",
+                                        "--out", "{out}"]))
+    out.append(("outdoor-terrain", ["terrain", "--resolution", "33", "--image", "--image-width",
+                                    "64", "--image-height", "36", "--out", "{out}"]))
+    out.append(("outdoor-pillars", ["pillars", "--size", "40", "24", "--samples", "2000",
+                                    "--out", "{out}"]))
     return out
 
 
@@ -90,7 +100,8 @@ def run(args):
         (folder / "log.txt").write_text("\n".join(log) + "\n")
         names.append(name)
         print(f"{name}: exit {r.returncode}", flush=True)
-    (out / "cases.txt").write_text("\n".join(names) + "\n")
+    if not args.only:  # a partial run adds to a folder and leaves its list alone
+        (out / "cases.txt").write_text("\n".join(names) + "\n")
 
 
 def diff(args):
