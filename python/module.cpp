@@ -26,6 +26,7 @@
 #include "geometry/scene.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
+#include "hierarchy/hierarchical.h"
 #include "photon/estimate.h"
 #include "photon/image.h"
 #include "photon/map.h"
@@ -582,6 +583,58 @@ PhotonTrace tracePy(const PyMesh& m, const RayScene& rays, const PhotonSettings&
   return tracePhotons(*m.scene, *m.mesh, rays, emitters, settings);
 }
 
+// ---- hierarchical radiosity ----
+
+/// The hierarchical method (docs/hierarchical.md) on a loaded scene, by the same library call
+/// `radkit run --method hierarchical` makes: its leaves as a Mesh, their radiosity and
+/// irradiance, and the solve's account.
+py::dict hierarchicalPy(const PyScene& s, double epsilon, int raysPerLink, int rounds,
+                        const std::string& order, std::uint64_t seed, double minArea,
+                        double tolerance, long maxIterations) {
+  if (!(minArea >= 0) || !std::isfinite(minArea))
+    throw py::value_error("hierarchical: min_area must be finite and >= 0 (0: the default)");
+  HierarchicalSettings settings;
+  settings.epsilon = epsilon;
+  settings.raysPerLink = raysPerLink;
+  settings.rounds = rounds;
+  settings.order = parseGatherOrder(order);
+  settings.seed = seed;
+  settings.minArea = minArea / squareMetres(*s.scene);  // m² to the scene's units²
+  settings.stopping.tolerance = tolerance;
+  settings.stopping.maxIterations = maxIterations;
+  validateHierarchicalSettings(settings);
+  std::optional<HierarchicalResult> r;
+  {
+    py::gil_scoped_release release;
+    r.emplace(solveHierarchical(*s.scene, settings));
+  }
+  PyMesh leaves;
+  leaves.scene = s.scene;
+  leaves.mesh = std::make_shared<const PatchMesh>(std::move(r->leaves));
+  py::dict d;
+  d["mesh"] = py::cast(std::move(leaves));
+  d["radiosity"] = vec3Array(r->radiosity);
+  d["irradiance"] = vec3Array(r->irradiance);
+  d["converged"] = r->solve.converged;
+  d["reason"] = r->solve.reason;
+  d["iterations"] = r->solve.iterations;
+  long long links = 0;
+  for (long long n : r->linksByKind) links += n;
+  d["links"] = links;
+  d["rays"] = r->raysCast;
+  d["min_area"] = r->minArea * squareMetres(*s.scene);
+  py::list roundList;
+  for (const HierarchicalRound& round : r->rounds) {
+    py::dict row;
+    row["epsilon"] = round.epsilon, row["links"] = round.links, row["leaves"] = round.leaves;
+    row["rays"] = round.rays, row["sweeps"] = round.sweeps;
+    roundList.append(row);
+  }
+  d["rounds"] = roundList;
+  d["relative_imbalance"] = r->energy.relativeImbalance;
+  return d;
+}
+
 py::dict photonsPy(const PyMesh& m, std::size_t photons, std::uint64_t seed) {
   const PhotonSettings settings = photonSettings("photons", photons, seed);
   const RayScene& rays = m.rayScene();
@@ -942,6 +995,14 @@ PYBIND11_MODULE(radkit, mod) {
           "radiosity (n, 3), converged, exit, iterations, residual, checked_residual, seconds, "
           "spectral_radius and history (numpy arrays per column)");
   mod.def("solver_names", &solverNames, "The built-in solvers' names");
+  mod.def("hierarchical", &hierarchicalPy, py::arg("scene"), py::arg("epsilon") = 1e-4,
+          py::arg("rays_per_link") = 16, py::arg("rounds") = 3, py::arg("order") = "jacobi",
+          py::arg("seed") = 1, py::arg("min_area") = 0.0, py::arg("tolerance") = 1e-6,
+          py::arg("max_iterations") = long(kDefaultHierarchicalSweeps),
+          "Hierarchical radiosity with clustering (docs/hierarchical.md), as radkit run "
+          "--method hierarchical: a dict with the leaves as a Mesh, their radiosity and "
+          "irradiance (n, 3), converged, reason, iterations, links, rays, min_area (m^2), "
+          "rounds, relative_imbalance");
   mod.def("render", &renderRadiosityPy, py::arg("mesh"), py::arg("radiosity"),
           py::arg("width") = 256, py::arg("height") = 256, py::arg("samples_per_axis") = 2,
           py::arg("smooth") = false, py::arg("camera") = py::none(),

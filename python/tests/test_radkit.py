@@ -2,8 +2,10 @@
 
 Run from the build: PYTHONPATH=build/python python3 -m pytest python/tests (ctest does this).
 """
+import json
 import math
 import os
+import subprocess
 
 import numpy as np
 import pytest
@@ -496,3 +498,58 @@ def test_python_solver_that_never_changes_b_stops_as_stagnated(furnace):
     assert r["iterations"] == 2
     assert "B, the residual 0.5 and the unshot power have not changed since iteration 1" in r["reason"]
     assert "step() must update the B its radiosity() returns" in r["reason"]
+
+
+def furnace_of_input_faces(tmp_path, n, rho):
+    """data/furnace.json at reflectance rho, each face cut into n x n input faces wound as the
+    face is."""
+    with open(os.path.join(DATA, "furnace.json")) as f:
+        scene = json.load(f)
+    scene["materials"]["glow"]["reflectance"] = [rho] * 3
+    polygons = []
+    for surface in scene["surfaces"]:
+        p0, p1, p2, p3 = (np.array(p, dtype=float) for p in surface["polygon"])
+
+        def at(i, j):  # bilinear over the face, i along p0 -> p1, j along p0 -> p3
+            u, v = i / n, j / n
+            return list((1 - u) * (1 - v) * p0 + u * (1 - v) * p1 + u * v * p2 + (1 - u) * v * p3)
+        polygons += [[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]
+                     for i in range(n) for j in range(n)]
+    # One closed surface: faces share the vertices along the cube's edges.
+    scene["surfaces"] = [{"name": "box", "material": "glow", "polygons": polygons}]
+    path = tmp_path / "furnace-cut.json"
+    path.write_text(json.dumps(scene))
+    return radkit.load_scene(path)
+
+
+def test_hierarchical_furnace_is_e_over_one_minus_rho_on_every_leaf(tmp_path):
+    # Closed cube, E = 1, rho = 0.95: B = E/(1 - rho) = 20 (docs/oracles.md). Cut into input
+    # faces, every leaf's hemisphere is closed and its row sum filled to 1, so the answer is
+    # exact to the solver's tolerance (docs/hierarchical.md's furnace with clusters; the fill
+    # ramps in with rho, so at rho = 0.5 leaves carry their links' row-sum noise instead).
+    r = radkit.hierarchical(furnace_of_input_faces(tmp_path, 8, 0.95), epsilon=1e-3,
+                            tolerance=1e-10)
+    assert r["converged"], r["reason"]
+    assert len(r["mesh"]) == r["radiosity"].shape[0] >= 6 * 64
+    np.testing.assert_allclose(r["radiosity"], 20.0, rtol=1e-8)
+    np.testing.assert_allclose(r["mesh"].area.sum(), 6.0, rtol=1e-12)  # m², the six faces
+    assert r["links"] > 0 and r["rays"] > 0 and len(r["rounds"]) == 3
+    with pytest.raises(ValueError, match="gauss-seidel"):
+        radkit.hierarchical(radkit.load_scene(os.path.join(DATA, "furnace.json")), order="sor")
+
+
+@pytest.mark.skipif(not os.environ.get("RADKIT_BINARY"), reason="needs the radkit binary")
+def test_hierarchical_gives_what_the_command_line_writes(tmp_path):
+    # One library call behind both front ends: the same leaves and radiosity, digit for digit.
+    RADKIT = os.environ["RADKIT_BINARY"]
+    path = os.path.join(DATA, "cornell-box.json")
+    r = radkit.hierarchical(radkit.load_scene(path), seed=3)
+    out = tmp_path / "run"
+    subprocess.run([RADKIT, "run", path, "--method", "hierarchical", "--seed", "3",
+                    "--no-render", "--out", str(out)], check=True, capture_output=True)
+    rows = np.genfromtxt(out / "patches.csv", delimiter=",", names=True, dtype=None,
+                         encoding="utf-8")
+    assert len(rows) == len(r["mesh"])
+    np.testing.assert_allclose(rows["area_m2"], r["mesh"].area, rtol=1e-15)
+    for c, name in enumerate(["b_r_W_m2", "b_g_W_m2", "b_b_W_m2"]):
+        np.testing.assert_allclose(rows[name], r["radiosity"][:, c], rtol=1e-15, atol=0)
