@@ -27,6 +27,7 @@
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
 #include "hierarchy/hierarchical.h"
+#include "integrators/integrator.h"
 #include "photon/estimate.h"
 #include "photon/image.h"
 #include "photon/map.h"
@@ -569,6 +570,36 @@ py::tuple pathTracePy(const PyMesh& m, int spp, int width, int height, std::uint
   return py::make_tuple(imageArray(img.image), imageArray(variance));
 }
 
+/// One image of a scene by any of `radkit render`'s modes, through the integrator registry
+/// (integrators/integrator.h) the command line uses: the same settings give the same image.
+Array renderScenePy(const PyScene& s, const std::string& shading, int width, int height, int spp,
+                    std::uint64_t seed, int patches, double maxArea, std::size_t photons,
+                    const std::string& sampler, const std::optional<std::string>& camera) {
+  checkImageSize(width, height);
+  if (spp < 1) throw py::value_error("render_scene: spp must be >= 1");
+  if (patches < 0 || !(maxArea >= 0) || !std::isfinite(maxArea))
+    throw py::value_error("render_scene: patches and max_area must be finite and >= 0");
+  if (photons < 1) throw py::value_error("render_scene: photons must be >= 1");
+  integratorRegistry().at(shading);  // an unknown name is refused before any work
+  RenderSettings settings;
+  settings.film.width = width, settings.film.height = height, settings.film.samplesPerPixel = spp;
+  settings.film.seed = seed;
+  settings.film.sampler = parseSamplerType(sampler);
+  settings.formFactors.seed = seed;
+  settings.mesh.targetPatches = patches;
+  settings.mesh.maxArea = maxArea / squareMetres(*s.scene);  // m² to the scene's units²
+  settings.photons = photons;
+  settings.camera = camera            ? parseCamera("camera", *camera)
+                    : s.scene->camera ? *s.scene->camera
+                                      : automaticCamera(*s.scene);
+  RenderResult r;
+  {
+    py::gil_scoped_release release;
+    r = renderImage(shading, *s.scene, settings);
+  }
+  return imageArray(r.image);
+}
+
 PhotonSettings photonSettings(const char* what, std::size_t photons, std::uint64_t seed) {
   if (photons < 1) throw py::value_error(std::string(what) + ": photons must be >= 1");
   PhotonSettings settings;
@@ -995,6 +1026,19 @@ PYBIND11_MODULE(radkit, mod) {
           "radiosity (n, 3), converged, exit, iterations, residual, checked_residual, seconds, "
           "spectral_radius and history (numpy arrays per column)");
   mod.def("solver_names", &solverNames, "The built-in solvers' names");
+  mod.def("render_scene", &renderScenePy, py::arg("scene"), py::arg("shading") = "path-trace",
+          py::arg("width") = 256, py::arg("height") = 256, py::arg("spp") = 16, py::arg("seed") = 1,
+          py::arg("patches") = 0, py::arg("max_area") = 0.0, py::arg("photons") = 200000,
+          py::arg("sampler") = "sobol", py::arg("camera") = py::none(),
+          "One image of a scene by a render mode (render_modes()), as radkit render --shading "
+          "makes it: radiance (height, width, 3), W/m^2/sr");
+  mod.def(
+      "render_modes", [] { return integratorRegistry().names(); },
+      "The image modes of render_scene and radkit render --shading");
+  mod.def(
+      "bsdf_names", [] { return bsdfRegistry().names(); },
+      "The BSDFs a material may name (\"brdf\" in a scene file)");
+  mod.def("form_factor_methods", &formFactorMethodNames, "The form-factor methods, default first");
   mod.def("hierarchical", &hierarchicalPy, py::arg("scene"), py::arg("epsilon") = 1e-4,
           py::arg("rays_per_link") = 16, py::arg("rounds") = 3, py::arg("order") = "jacobi",
           py::arg("seed") = 1, py::arg("min_area") = 0.0, py::arg("tolerance") = 1e-6,

@@ -553,3 +553,39 @@ def test_hierarchical_gives_what_the_command_line_writes(tmp_path):
     np.testing.assert_allclose(rows["area_m2"], r["mesh"].area, rtol=1e-15)
     for c, name in enumerate(["b_r_W_m2", "b_g_W_m2", "b_b_W_m2"]):
         np.testing.assert_allclose(rows[name], r["radiosity"][:, c], rtol=1e-15, atol=0)
+
+
+def read_pfm(path):
+    """A PFM image as (height, width, 3), top row first (the file stores the bottom row first)."""
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        width, height = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    return data.reshape(height, width, 3)[::-1]
+
+
+@pytest.mark.skipif(not os.environ.get("RADKIT_BINARY"), reason="needs the radkit binary")
+@pytest.mark.parametrize("shading", ["radiosity", "path-trace", "final-gather"])
+def test_render_scene_gives_the_image_radkit_render_writes(tmp_path, shading):
+    # One integrator registry behind both front ends: the same image (the PFM holds float32).
+    path = os.path.join(DATA, "cornell-box-glossy.json")
+    image = radkit.render_scene(radkit.load_scene(path), shading, width=24, height=16, spp=2,
+                                seed=5, patches=150)
+    out = tmp_path / "r.pfm"
+    subprocess.run([os.environ["RADKIT_BINARY"], "render", path, "--shading", shading,
+                    "--size", "24x16", "--spp", "2", "--seed", "5", "--patches", "150",
+                    "--out", str(out)], check=True, capture_output=True)
+    assert image.shape == (16, 24, 3)
+    np.testing.assert_array_equal(read_pfm(out), image.astype(np.float32))
+    assert image.max() > 0
+
+
+def test_registries_are_listed_and_unknown_names_refused():
+    assert radkit.render_modes() == ["radiosity", "phong", "cook-torrance", "path-trace",
+                                     "photon-map", "final-gather"]
+    assert {"lambert", "phong", "cook-torrance", "oren-nayar"} <= set(radkit.bsdf_names())
+    assert radkit.form_factor_methods()[0] == "point-polygon"
+    scene = radkit.load_scene(os.path.join(DATA, "furnace.json"))
+    with pytest.raises(ValueError, match='unknown integrator "raytrace". Fix: use one of'):
+        radkit.render_scene(scene, "raytrace")
