@@ -37,13 +37,16 @@ RenderResult finish(RadianceImage img, const Scene& scene, const PatchMesh& mesh
   return out;
 }
 
-/// The mesh of the modes that do not solve radiosity; its warnings go to `warnings`.
-PatchMesh ownMesh(const Scene& scene, const RenderSettings& s, bool defaultPatches,
-                  std::vector<std::string>& warnings) {
+/// The mesh of the modes that do not solve radiosity; its warnings go to settings.warning.
+PatchMesh ownMesh(const Scene& scene, const RenderSettings& s, bool defaultPatches) {
   SubdivisionSettings mesh = s.mesh;
   if (defaultPatches && mesh.maxArea <= 0 && mesh.targetPatches <= 0)
     mesh.targetPatches = kDefaultRenderPatches;
-  return subdivide(scene, mesh, &warnings);
+  std::vector<std::string> warnings;
+  PatchMesh out = subdivide(scene, mesh, &warnings);
+  for (const std::string& w : warnings)
+    if (s.warning) s.warning(w);
+  return out;
 }
 
 /// The radiosity solution the two-pass modes shade with.
@@ -62,10 +65,7 @@ class PhotonMapIntegrator final : public Integrator {
  public:
   RenderResult render(const Scene& scene, const RenderSettings& s) const override {
     // Final gathering over the global map plus the caustic map seen directly (Jensen 1996).
-    std::vector<std::string> meshWarnings;
-    const PatchMesh mesh = ownMesh(scene, s, true, meshWarnings);
-    for (const std::string& w : meshWarnings)
-      if (s.warning) s.warning(w);
+    const PatchMesh mesh = ownMesh(scene, s, true);
     const RayScene rays(mesh);
     const EmitterSampler emitters = photonEmitters(scene, mesh);
     PhotonSettings ps;
@@ -103,10 +103,7 @@ class PhotonMapIntegrator final : public Integrator {
 class PathTraceIntegrator final : public Integrator {
  public:
   RenderResult render(const Scene& scene, const RenderSettings& s) const override {
-    std::vector<std::string> meshWarnings;
-    const PatchMesh mesh = ownMesh(scene, s, false, meshWarnings);
-    for (const std::string& w : meshWarnings)
-      if (s.warning) s.warning(w);
+    const PatchMesh mesh = ownMesh(scene, s, false);
     // Embree's fast mode: about 15 % less time per ray, for a ray in 10⁷ that slips through a
     // shared edge (geometry/ray_scene.h). Under a sky such a ray would fetch daylight inside a
     // closed room, a firefly, so daylit scenes keep the robust mode.

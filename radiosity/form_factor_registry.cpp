@@ -1,5 +1,4 @@
 // The table of form-factor methods: the one place a name meets its constructor.
-#include <sstream>
 #include <stdexcept>
 
 #include "radiosity/form_factor_method.h"
@@ -50,14 +49,24 @@ const MethodEntry kMethods[] = {
      {16384, {256, 1024, 4096, 16384}, rowBudgetWork, 5e6, true, false}},
 };
 
+const MethodEntry* findMethod(const std::string& name) {
+  for (const MethodEntry& m : kMethods)
+    if (name == m.name) return &m;
+  return nullptr;
+}
+
+/// The entry called name; throws std::invalid_argument listing the known names otherwise.
+const MethodEntry& methodEntry(const std::string& name) {
+  if (const MethodEntry* m = findMethod(name)) return *m;
+  std::string known;
+  for (const MethodEntry& m : kMethods) known += std::string(" ") + m.name;
+  throw std::invalid_argument("unknown form-factor method '" + name + "' (--ff); known:" + known);
+}
+
 }  // namespace
 
 const FormFactorMethodTraits& formFactorTraits(const std::string& method) {
-  for (const MethodEntry& m : kMethods)
-    if (method == m.name) return m.traits;
-  std::string known;
-  for (const MethodEntry& m : kMethods) known += std::string(" ") + m.name;
-  throw std::invalid_argument("unknown form-factor method '" + method + "' (--ff); known:" + known);
+  return methodEntry(method).traits;
 }
 
 void validateFormFactorSettings(const FormFactorSettings& s) {
@@ -77,12 +86,7 @@ std::unique_ptr<FormFactorMethod> makeFormFactorMethod(const PatchMesh& mesh,
                                                        const Visibility& visibility,
                                                        const FormFactorSettings& settings) {
   validateFormFactorSettings(settings);
-  for (const MethodEntry& m : kMethods)
-    if (settings.method == m.name) return m.create(mesh, visibility, settings);
-  std::ostringstream msg;
-  msg << "unknown form-factor method '" << settings.method << "' (--ff); known:";
-  for (const MethodEntry& m : kMethods) msg << ' ' << m.name;
-  throw std::invalid_argument(msg.str());
+  return methodEntry(settings.method).create(mesh, visibility, settings);
 }
 
 std::vector<std::string> formFactorMethodNames() {
@@ -92,9 +96,9 @@ std::vector<std::string> formFactorMethodNames() {
 }
 
 int defaultFormFactorSamples(const std::string& method) {
-  for (const MethodEntry& m : kMethods)
-    if (method == m.name) return m.traits.defaultSamples;
-  return FormFactorSettings{}.samples;  // unknown names are refused by makeFormFactorMethod
+  const MethodEntry* m = findMethod(method);
+  return m ? m->traits.defaultSamples
+           : FormFactorSettings{}.samples;  // unknown names are refused by makeFormFactorMethod
 }
 
 std::vector<std::string> formFactorMethodHelp() {
