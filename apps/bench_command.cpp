@@ -10,12 +10,12 @@
 
 #include "apps/common.h"
 #include "apps/options.h"
-#include "apps/report.h"
 #include "experiments/ff_benchmark.h"
 #include "experiments/path_benchmark.h"
 #include "experiments/sweep_benchmark.h"
 #include "geometry/ray_scene.h"
 #include "hierarchy/hierarchical.h"
+#include "job/report.h"
 #include "render/camera.h"
 #include "util/process_memory.h"
 

@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
-#include "apps/report.h"
 #include "experiments/cloud_comparison.h"
+#include "job/report.h"
 #include "media/cloud_marcher.h"
 #include "media/medium.h"
 #include "media/medium_json.h"

@@ -12,8 +12,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "apps/report.h"
+#include "apps/console.h"
 #include "geometry/scene_loader.h"
+#include "job/job.h"
 #include "render/camera.h"
 #include "util/format.h"
 #include "util/output_folder.h"
@@ -93,20 +94,6 @@ std::string defaultScenePath() {
   return "data/cornell-box.json";
 }
 
-std::string defaultOutFolder(const std::string& sceneName) {
-  std::string name;
-  for (char c : sceneName)
-    name += (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '_' : c;
-  if (!name.empty() && name[0] == '.') name[0] = '_';  // no "..", no hidden folder
-  if (name.size() > 200) {  // one path component's limit is 255 bytes; keep UTF-8 whole
-    name.resize(200);
-    while (!name.empty() && (static_cast<unsigned char>(name.back()) & 0xC0) == 0x80)
-      name.pop_back();
-    if (!name.empty() && static_cast<unsigned char>(name.back()) >= 0xC0) name.pop_back();
-  }
-  return "out/" + (name.empty() ? std::string("scene") : name);
-}
-
 void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired) {
   auto* scene =
       command.add_option("scene", options.scene, "Scene file (.json, or .obj with its .mtl)");
@@ -174,49 +161,16 @@ void addCameraOption(CLI::App& command, std::string& camera) {
 
 Scene loadSceneReporting(const std::string& path, const LoadOptions& load, LoadReport* out,
                          const std::string& camera) {
-  // Parsed before the scene loads: a typo is refused before minutes of work.
-  std::optional<Camera> given;
-  if (!camera.empty()) given = parseCamera("--camera", camera);
-  LoadReport local;
-  LoadReport& report = out ? *out : local;
-  // Stages of loading that run over a second (a large mesh read and checked) show progress.
-  LoadOptions options = load;
   Progress bar;
-  std::string stage;
-  std::chrono::steady_clock::time_point started;
-  bool shown = false;
-  if (!options.progress)
-    options.progress = [&](const std::string& name, double fraction) {
-      const auto now = std::chrono::steady_clock::now();
-      if (name != stage) {
-        stage = name;
-        started = now;
-        shown = false;
-      }
-      if (!shown && now - started < std::chrono::seconds(1)) return;
-      shown = true;
-      bar(name, fraction);
-    };
-  Scene scene = loadScene(path, &report, options);
+  PipelineLog log;
+  log.progress = [&](const std::string& stage, double fraction) { bar(stage, fraction); };
+  log.message = [&](const std::string& line) {
+    bar.finish();
+    printLogLine(line);
+  };
+  Scene scene = loadJobScene(path, load, camera, log, out);
   bar.finish();
-  for (const std::string& w : report.warnings) std::cerr << "radkit: warning: " << w << '\n';
-  if (given) scene.camera = given;
   return scene;
-}
-
-nlohmann::json loadJson(const LoadReport& report) {
-  nlohmann::json repairs = nlohmann::json::array();
-  for (const MeshRepair& r : report.repairs)
-    repairs.push_back({{"surface", r.surface},
-                       {"welded_vertices", r.weldedVertices},
-                       {"duplicate_faces_removed", r.duplicateFaces},
-                       {"degenerate_faces_removed", r.degenerateFaces},
-                       {"non_manifold_edges_cut", r.nonManifoldEdges},
-                       {"non_manifold_vertices_split", r.nonManifoldVertices},
-                       {"border_edges_stitched", r.stitchedEdges},
-                       {"faces_reversed", r.reversedFaces},
-                       {"summary", r.describe()}});
-  return {{"warnings", report.warnings}, {"repairs", repairs}};
 }
 
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options) {
@@ -232,15 +186,7 @@ PatchMesh meshScene(const Scene& scene, const MeshOptions& options) {
 }
 
 void tooManyPatches(const Scene& scene, const MeshOptions& options) {
-  std::ostringstream option;
-  if (options.maxArea > 0)
-    option << "--max-area " << options.maxArea;
-  else
-    option << "--patches " << options.patches;
-  throw InputError(scene.file + ": " + option.str() + " would split the scene into more than " +
-                   std::to_string(kMaxPatches) +
-                   " patches, the most radkit meshes. Fix: give a larger "
-                   "--max-area, or fewer --patches.");
+  throwTooManyPatches(scene, SubdivisionSettings{options.maxArea, options.patches});
 }
 
 std::string fmt(const char* format, double value) { return formatValue(format, value); }

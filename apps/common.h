@@ -45,10 +45,6 @@ void addMeshOptions(CLI::App& command, MeshOptions& options, bool sceneRequired 
 /// The measured Cornell box shipped in data/.
 std::string defaultScenePath();
 
-/// out/NAME for a run without --out, NAME being the scene's name made one safe path component:
-/// separators, control characters and a leading dot become '_' ("../../x" gives out/_._.._x).
-std::string defaultOutFolder(const std::string& sceneName);
-
 /// Adds --camera to a command that draws (an image, render.png, the viewer).
 void addCameraOption(CLI::App& command, std::string& camera);
 
@@ -62,8 +58,6 @@ void addImageSizeOptions(CLI::App& command, int& width, int& height, const std::
 /// report.json agree.
 Scene loadSceneReporting(const std::string& path, const LoadOptions& load = {},
                          LoadReport* report = nullptr, const std::string& camera = "");
-/// report.json's "load": the loading warnings and what the mesh repair changed.
-nlohmann::json loadJson(const LoadReport& report);
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
 /// Throws that InputError (for subdivide's TooManyPatches).
 [[noreturn]] void tooManyPatches(const Scene& scene, const MeshOptions& options);

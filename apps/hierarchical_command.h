@@ -1,13 +1,12 @@
-// `radkit run --method hierarchical`: hierarchical radiosity with clustering, writing every
-// output a dense run writes (the leaves are its patches) plus links.png.
+// `radkit run --method hierarchical`: the options of hierarchical radiosity with clustering
+// and the summary it prints; the job itself is the library's (job/job.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "geometry/scene_loader.h"
 #include "hierarchy/hierarchical.h"
-#include "hierarchy/link_matrix.h"
+#include "job/job.h"
 
 namespace radkit::app {
 
@@ -25,21 +24,10 @@ struct HierarchicalOptions {
 
 void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& options);
 
-/// What the run command passes on: the scene, the output folder and the shared options.
-struct HierarchicalJob {
-  std::string scene, out, camera;
-  LoadOptions load;
-  HierarchicalSettings settings;
-  LinkColour linkColour = LinkColour::FormFactor;
-  bool noRender = false, photometric = false, smooth = false;
-  int imageWidth = 512, imageHeight = 512;
-  int checkLinks = 0;
-  std::string preset;  ///< the --preset that chose this method, for report.json
-};
-
-/// Parses --gather and --link-colour, refuses dense-only options; throws CLI::ValidationError.
+/// Parses --gather and --daylight-per into the settings; throws CLI::ValidationError.
 void finishHierarchicalOptions(HierarchicalOptions& options);
 
-void runHierarchicalJob(HierarchicalJob job);
+/// The console summary of a hierarchical job.
+void printHierarchicalSummary(const JobResult& result, double epsilon, bool photometric);
 
 }  // namespace radkit::app

@@ -11,12 +11,12 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
-#include "apps/report.h"
 #include "experiments/photon_benchmark.h"
 #include "experiments/photon_comparison.h"
 #include "geometry/mesh_structure.h"
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
+#include "job/report.h"
 #include "output/run_files.h"
 #include "photon/estimate.h"
 #include "photon/image.h"

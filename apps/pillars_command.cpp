@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
-#include "apps/report.h"
+#include "job/report.h"
 #include "media/pillars.h"
 #include "render/hdr_io.h"
 #include "render/radiosity_image.h"

@@ -1,22 +1,15 @@
 // radkit formfactors, radkit solvers and radkit run: one pipeline, three selections of output.
-#include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 
 #include "apps/common.h"
+#include "apps/console.h"
 #include "apps/hierarchical_command.h"
 #include "apps/options.h"
-#include "apps/report.h"
-#include "output/run_files.h"
-#include "radiosity/adaptive.h"
-#include "radiosity/form_factor_heat_map.h"
+#include "job/job.h"
+#include "job/report.h"
 #include "radiosity/presets.h"
-#include "radiosity/surface_form_factors.h"
-#include "render/radiosity_image.h"
 #include "solvers/registry.h"
-#include "util/errors.h"
-#include "util/output_folder.h"
 
 namespace radkit::app {
 
@@ -47,66 +40,47 @@ bool given(const std::vector<CLI::Option*>& flags) {
   return false;
 }
 
-/// The run's settings: the preset's (if any), then every option the user gave explicitly.
-PipelineSettings pipelineSettings(const PipelineCommand& cmd) {
-  PipelineSettings explicitSettings;
-  explicitSettings.mesh = {cmd.mesh.maxArea, cmd.mesh.patches};
-  explicitSettings.formFactors = cmd.ff.settings;
-  explicitSettings.solvers =
-      cmd.job == Job::FormFactors ? std::vector<SolverChoice>{} : cmd.solver.choices;
-  explicitSettings.stopping = cmd.solver.stopping;
-  // Each method has its own K; a preset's K is for its own method.
-  if (!given(cmd.samplesFlag) && (cmd.preset.empty() || given(cmd.methodFlag)))
-    explicitSettings.formFactors.samples =
-        defaultFormFactorSamples(explicitSettings.formFactors.method);
-  if (cmd.preset.empty()) return explicitSettings;
-  PipelineSettings s = explicitSettings;
-  applyPreset(cmd.preset, s);
-  if (given(cmd.meshFlags)) s.mesh = explicitSettings.mesh;
-  if (given(cmd.methodFlag)) s.formFactors.method = explicitSettings.formFactors.method;
-  if (given(cmd.samplesFlag)) s.formFactors.samples = explicitSettings.formFactors.samples;
-  if (given(cmd.tolFlag)) s.stopping.tolerance = explicitSettings.stopping.tolerance;
+/// The library job the options describe: a setting a preset or the method would choose is
+/// passed on only when its option was given.
+JobSettings jobSettings(const PipelineCommand& cmd) {
+  JobSettings s;
+  s.kind = cmd.job == Job::Run       ? JobKind::Run
+           : cmd.job == Job::Solvers ? JobKind::Solvers
+                                     : JobKind::FormFactors;
+  s.scene = cmd.mesh.scene;
+  s.load = cmd.mesh.load;
+  s.camera = cmd.camera;
+  s.out = cmd.out;
+  s.preset = cmd.preset;
+  if (cmd.hierarchical.methodOption && cmd.hierarchical.methodOption->count() > 0)
+    s.method =
+        cmd.hierarchical.method == "hierarchical" ? JobMethod::Hierarchical : JobMethod::Dense;
+  if (given(cmd.meshFlags)) s.mesh = SubdivisionSettings{cmd.mesh.maxArea, cmd.mesh.patches};
+  if (given(cmd.methodFlag)) s.formFactorMethod = cmd.ff.settings.method;
+  if (given(cmd.samplesFlag)) s.formFactorSamples = cmd.ff.settings.samples;
+  if (given(cmd.tolFlag)) s.tolerance = cmd.solver.stopping.tolerance;
+  if (given(cmd.maxIterationsFlag)) s.maxIterations = cmd.solver.stopping.maxIterations;
+  if (given(cmd.memoryBudgetFlag)) s.memoryBudget = cmd.ff.settings.memoryBudget;
+  s.seed = cmd.ff.settings.seed;
+  s.formFactors = cmd.ff.settings;
+  s.solvers = cmd.solver.choices;
+  s.stopping = cmd.solver.stopping;
+  if (cmd.adaptive) s.adaptive = cmd.adaptiveSettings;
+  s.hierarchical = cmd.hierarchical.settings;
+  s.checkLinks = cmd.hierarchical.checkLinks;
+  s.linkColour =
+      cmd.hierarchical.linkColour == "power" ? LinkColour::Power : LinkColour::FormFactor;
+  s.writeMatrix = cmd.writeMatrix;
+  s.render = !cmd.noRender;
+  s.photometric = cmd.photometric;
+  s.smooth = cmd.smooth;
+  s.imageWidth = cmd.imageWidth, s.imageHeight = cmd.imageHeight;
   return s;
 }
 
-/// `run`'s mesh when none is given: on the Cornell box, surface radiosities lie within 0.6 %
-/// of a 32 000-patch run (docs/run.md), in about 13 s on two cores.
-constexpr int kDefaultRunPatches = 4000;
-
-/// Writes the form-factor files; returns the seconds spent on formfactors.bin and .mtx.
-double writeFormFactorFiles(OutputFolder& folder, const Scene& scene, const PipelineResult& r,
-                            bool matrixFile) {
-  std::vector<std::string> names = surfaceNames(scene);
-  const FormFactorMatrix& f = r.formFactors->matrix;
-  writeSurfaceFormFactors(folder.path("surface_formfactors.csv"), r.mesh, names, f);
-  HeatMapSettings heat;
-  heat.title = scene.name + ": F_ij, " + std::to_string(r.mesh.size()) + " patches, " +
-               r.formFactors->diagnostics.method;
-  writeFormFactorHeatMap(folder.path("formfactors.png"), r.mesh, names, f, heat);
-  // The viewer's matrix and row views read the compact binary, written on every run (4 bytes
-  // per entry at most); the Matrix Market text (about 25 bytes per entry) only when asked.
-  const auto start = std::chrono::steady_clock::now();
-  writeFormFactorBinary(folder.path("formfactors.bin"), f);
-  if (matrixFile)
-    writeMatrixMarket(
-        folder.path("formfactors.mtx"), f,
-        {"radkit form factors of " + scene.file, r.formFactors->diagnostics.description,
-         "row i, column j: F_ij (patch ids from 0 in patches.csv are i-1, j-1)"});
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-void renderImage(OutputFolder& folder, const Scene& scene, const PipelineResult& r,
-                 const PipelineCommand& cmd) {
-  ImageSettings s;
-  s.width = cmd.imageWidth, s.height = cmd.imageHeight;
-  s.smooth = cmd.smooth;
-  if (r.sky) s.background = [&](const Vec3& d) { return r.sky->radiance(d); };
-  if (!writeRadiosityPng(folder.path("render.png"), scene, r.mesh, *r.rays, r.radiosity, s))
-    std::fprintf(stderr, "radkit: warning: %s\n", blackPictureWarning("render.png").c_str());
-}
-
-void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCommand& cmd,
-                  double total, double matrixSeconds) {
+void printSummary(const JobResult& result, const PipelineCommand& cmd) {
+  const Scene& scene = result.scene;
+  const PipelineResult& r = *result.dense;
   const FormFactorDiagnostics& d = r.formFactors->diagnostics;
   std::printf("\n");
   printField("scene", scene.name + " (" + scene.file + ")");
@@ -123,8 +97,9 @@ void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCom
              "mesh " + fmt("%.2f", r.seconds.mesh) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
                  ", form factors " + fmt("%.2f", r.seconds.formFactors) +
                  (r.daylight ? ", daylight " + fmt("%.2f", r.seconds.daylight) : "") + ", solve " +
-                 fmt("%.2f", r.seconds.solve) + ", F files " + fmt("%.2f", matrixSeconds) +
-                 (cmd.writeMatrix ? " (with .mtx)" : "") + ", total " + fmt("%.2f", total));
+                 fmt("%.2f", r.seconds.solve) + ", F files " + fmt("%.2f", result.matrixSeconds) +
+                 (cmd.writeMatrix ? " (with .mtx)" : "") + ", total " +
+                 fmt("%.2f", result.seconds));
   if (r.daylight)
     printField("daylight", r.sky->typeName() + " sky" + (r.sky->hasSun() ? " and sun" : "") +
                                ", open horizontal " +
@@ -138,103 +113,11 @@ void printSummary(const Scene& scene, const PipelineResult& r, const PipelineCom
                              (s.converged ? "" : "  NOT CONVERGED: " + s.reason));
   if (!r.solves.empty()) printEnergyAndSurfaces(r.energy, r.surfaces, cmd.photometric);
   printField("peak memory", fmt("%.0f MiB", peakMemoryBytes() / 1048576.0));
-  printField("wrote", cmd.out);
+  printField("wrote", result.out);
 }
 
-/// `run --method hierarchical`: the options it shares with a dense run, and a refusal of the
-/// ones that only a dense run understands.
-void runHierarchical(PipelineCommand& cmd) {
-  finishHierarchicalOptions(cmd.hierarchical);
-  std::vector<std::string> refused;
-  for (const CLI::Option* o : cmd.hierarchical.denseOnly)
-    if (o && o->count() > 0) refused.push_back(o->get_name());
-  if (!cmd.preset.empty() && !presetIsHierarchical(cmd.preset)) refused.push_back("--preset");
-  if (cmd.adaptive) refused.push_back("--adaptive");
-  if (!refused.empty()) {
-    std::string list;
-    for (const std::string& name : refused) list += (list.empty() ? "" : ", ") + name;
-    throw CLI::ValidationError(
-        "--method hierarchical",
-        list +
-            " belong to the dense method; the hierarchy sets its own elements and links. "
-            "Use --epsilon, --min-area and --hr-rays instead");
-  }
-  HierarchicalJob job;
-  job.scene = cmd.mesh.scene;
-  job.load = cmd.mesh.load;
-  job.out = cmd.out;
-  job.settings = cmd.hierarchical.settings;
-  job.settings.seed = cmd.ff.settings.seed;
-  // Dense F's default budget is a fixed 8 GiB; the hierarchy's follows the machine.
-  if (given(cmd.memoryBudgetFlag)) job.settings.memoryBudget = cmd.ff.settings.memoryBudget;
-  job.settings.stopping = cmd.solver.stopping;
-  // The dense default (10⁸ steps) is no bound on a gather's sweeps: the hierarchy has its own.
-  if (!given(cmd.maxIterationsFlag))
-    job.settings.stopping.maxIterations = kDefaultHierarchicalSweeps;
-  job.linkColour =
-      cmd.hierarchical.linkColour == "power" ? LinkColour::Power : LinkColour::FormFactor;
-  job.noRender = cmd.noRender, job.photometric = cmd.photometric, job.smooth = cmd.smooth;
-  job.imageWidth = cmd.imageWidth, job.imageHeight = cmd.imageHeight;
-  job.camera = cmd.camera;
-  job.checkLinks = cmd.hierarchical.checkLinks;
-  job.settings.keepGatherArrays = job.checkLinks > 0;
-  job.preset = cmd.preset;
-  runHierarchicalJob(job);
-}
-
-/// MemoryBudgetError's message with what it leaves out: a mesh of one patch per input face
-/// cannot have fewer patches (that fix is dropped), and the hierarchical method keeps no n×n
-/// matrix.
-std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene,
-                                const PipelineCommand& cmd) {
-  std::size_t faces = 0;
-  for (const Surface& s : scene.surfaces) faces += s.faces.size();
-  const bool atFloor = std::size_t(e.patches) <= faces + faces / 20;
-  // F grows with the square of the patch count: at one patch per input face it would need
-  // about this much in the smallest storage.
-  const double ratio = double(faces) / double(std::max(1, e.patches));
-  const double atFloorBytes = double(e.smallestBytes) * ratio * ratio;
-  const bool floorTooBig = !atFloor && e.budget > 0 && atFloorBytes > double(e.budget);
-  std::string message = e.what();
-  if (atFloor || floorTooBig) {
-    const std::string fewer = kFewerPatchesFix;
-    if (const std::size_t at = message.find(fewer); at != std::string::npos) {
-      message.erase(at, fewer.size());
-    } else if (const std::size_t last = message.find(", " + fewer.substr(0, fewer.size() - 2));
-               last != std::string::npos) {
-      message.erase(last, fewer.size());  // the last fix: ", use fewer ... smaller)"
-    }
-  }
-  message += atFloor
-                 ? ". The mesh is at its floor: " + std::to_string(faces) +
-                       " input faces, and a patch never spans two, so fewer patches cannot help."
-             : floorTooBig
-                 ? ". Fewer patches cannot help enough: at the floor of " + std::to_string(faces) +
-                       " patches (one per input face; a patch never spans two) F would "
-                       "still need about " +
-                       formatBytes(atFloorBytes) + "."
-                 : ". Fewer patches help down to about " + std::to_string(faces) +
-                       ", the scene's input faces (a patch never spans two).";
-  if (cmd.job == Job::Run) {
-    // Peak memory of `run --method hierarchical --no-render` on the shipped scenes, less
-    // radkit's own 40 MiB: terrain-room.json 2.7 kB per input face (51 201 faces, 170 MiB),
-    // models/spot-room.json 11.7 kB (5 870 faces, 105 MiB). A million-face terrain takes
-    // 1.3 kB, so for large meshes the range errs high.
-    const double base = 40.0 * 1024 * 1024;
-    const double low = base + 2.7e3 * double(faces), high = base + 11.7e3 * double(faces);
-    message +=
-        " --method hierarchical keeps no n×n matrix: on the shipped scenes it took 40 MiB "
-        "and 2.7-11.7 kB per input face, about " +
-        formatBytes(low) + " to " + formatBytes(high) + " here (docs/bring-your-own-model.md)";
-  }
-  return message;
-}
-
-void runJob(PipelineCommand& cmd) {
-  auto start = std::chrono::steady_clock::now();
-  cmd.ff.finish();
-  if (cmd.job != Job::FormFactors) cmd.solver.finish();
-  if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
+/// The option combinations the library would refuse, refused in the options' own words.
+void checkCombinations(PipelineCommand& cmd) {
   if (!cmd.preset.empty() && presetIsHierarchical(cmd.preset)) {
     // A preset that picks the hierarchical method: only `run` has it, and a --method given
     // explicitly must agree (explicit options win, so a disagreement has no right answer).
@@ -251,22 +134,34 @@ void runJob(PipelineCommand& cmd) {
                                            "(draft, balanced, reference)");
     cmd.hierarchical.method = "hierarchical";
   }
-  if (cmd.job == Job::Run && cmd.hierarchical.method == "hierarchical") return runHierarchical(cmd);
+  if (cmd.job == Job::Run && cmd.hierarchical.method == "hierarchical") {
+    finishHierarchicalOptions(cmd.hierarchical);
+    std::vector<std::string> refused;
+    for (const CLI::Option* o : cmd.hierarchical.denseOnly)
+      if (o && o->count() > 0) refused.push_back(o->get_name());
+    if (!cmd.preset.empty() && !presetIsHierarchical(cmd.preset)) refused.push_back("--preset");
+    if (cmd.adaptive) refused.push_back("--adaptive");
+    if (!refused.empty()) {
+      std::string list;
+      for (const std::string& name : refused) list += (list.empty() ? "" : ", ") + name;
+      throw CLI::ValidationError(
+          "--method hierarchical",
+          list +
+              " belong to the dense method; the hierarchy sets its own elements and links. "
+              "Use --epsilon, --min-area and --hr-rays instead");
+    }
+    return;
+  }
   if (cmd.hierarchical.checkLinks > 0)
     throw CLI::ValidationError("--check-links",
                                "checks the links of --method hierarchical; a dense run has none");
-  // Adaptive refinement starts coarse, at a quarter of its budget, so it has room to refine.
-  if (cmd.job == Job::Run && cmd.preset.empty() && cmd.mesh.maxArea <= 0 && cmd.mesh.patches <= 0)
-    cmd.mesh.patches =
-        cmd.adaptive ? std::max(1, cmd.adaptiveSettings.maxPatches / 4) : kDefaultRunPatches;
-  LoadReport loaded;
-  Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded, cmd.camera);
-  addBackSides(scene);  // two-sided surfaces exchange light on both sides
-  if (cmd.out.empty() && cmd.job == Job::Run)
-    cmd.out = defaultOutFolder(scene.name);  // required for the others
-  OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the work, not after
+}
 
-  PipelineSettings settings = pipelineSettings(cmd);
+JobResult runCommand(PipelineCommand& cmd) {
+  cmd.ff.finish();
+  if (cmd.job != Job::FormFactors) cmd.solver.finish();
+  if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
+  checkCombinations(cmd);
   Progress progress;
   PipelineLog log;
   log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
@@ -274,84 +169,18 @@ void runJob(PipelineCommand& cmd) {
     progress.finish();
     printLogLine(line);
   };
-  nlohmann::json adaptiveJson;
-  PipelineResult r;
-  try {  // subdivide's TooManyPatches: more patches than radkit meshes
-    if (cmd.adaptive) {
-      AdaptiveResult a = solveAdaptive(scene, settings, cmd.adaptiveSettings, log);
-      r = std::move(a.final);
-      nlohmann::json rounds = nlohmann::json::array();
-      for (const AdaptiveRound& round : a.rounds)
-        rounds.push_back({{"patches", round.patches},
-                          {"max_indicator", round.maxIndicator},
-                          {"shadow_patches", round.shadowPatches},
-                          {"split", round.split}});
-      adaptiveJson = {{"rounds", rounds}, {"stop_reason", a.stopReason}, {"seconds", a.seconds}};
-    } else {
-      r = runPipeline(scene, settings, log);
-    }
-  } catch (const TooManyPatches&) {
-    tooManyPatches(scene, cmd.mesh);
-  } catch (const MemoryBudgetError& e) {
+  try {
+    JobResult result = radkit::runJob(jobSettings(cmd), log);
     progress.finish();
-    throw InputError(memoryBudgetMessage(e, scene, cmd));
+    if (result.hierarchical)
+      printHierarchicalSummary(result, cmd.hierarchical.settings.epsilon, cmd.photometric);
+    else
+      printSummary(result, cmd);
+    return result;
+  } catch (...) {
+    progress.finish();
+    throw;
   }
-  progress.finish();
-  // A run's answer must be a number: a diverged first solver leaves nothing to write.
-  if (cmd.job == Job::Run && !r.solves.empty() && r.solves.front().reason.rfind("diverged", 0) == 0)
-    throw std::runtime_error(r.solves.front().solver + " " + r.solves.front().reason +
-                             "; nothing written");
-
-  nlohmann::json report{{"radkit", RADKIT_VERSION},
-                        {"command", cmd.job == Job::Run       ? "run"
-                                    : cmd.job == Job::Solvers ? "solvers"
-                                                              : "formfactors"},
-                        {"scene", sceneJson(scene)},
-                        {"mesh", meshJson(scene, r.mesh)},
-                        {"form_factors", toJson(r.formFactors->diagnostics)},
-                        {"warnings", r.warnings},
-                        {"load", loadJson(loaded)}};
-  if (!cmd.preset.empty())
-    report["preset"] = {{"name", cmd.preset}, {"description", describePreset(cmd.preset)}};
-  if (cmd.adaptive) report["adaptive"] = adaptiveJson;
-  if (r.formFactorNoise > 0) report["form_factors"]["gathered_light_noise"] = r.formFactorNoise;
-  writePatchesCsv(folder.path("patches.csv"), scene, r.mesh,
-                  r.solves.empty() ? nullptr : &r.radiosity);
-  double matrixSeconds = 0;
-  if (cmd.job != Job::Solvers)
-    matrixSeconds = writeFormFactorFiles(folder, scene, r, cmd.writeMatrix);
-  if (!r.solves.empty()) {
-    writeConvergence(folder.path("convergence.csv"), folder.path("convergence.png"), r.solves,
-                     scene.metresPerUnit());
-    nlohmann::json solves = nlohmann::json::array();
-    for (const SolveResult& s : r.solves) solves.push_back(solveJson(s));
-    report["solvers"] = solves;
-    report["energy_balance"] = energyJson(r.energy);
-    report["surfaces"] = surfacesJson(r.surfaces);
-  }
-  if (r.daylight) report["daylight"] = daylightJson(*r.sky, *r.daylight);
-  if (cmd.job == Job::Solvers)
-    for (const SolveResult& s : r.solves)
-      writeSolutionCsv(folder.path("solution-" + s.solver + ".csv"), scene, r.mesh, s);
-  if (cmd.job == Job::Run) {
-    writeSurfacesCsv(folder.path("surfaces.csv"), scene, r.surfaces, cmd.photometric);
-    writePatchesVtp(folder.path("radiosity.vtp"), scene, r.mesh, &r.radiosity);
-    if (r.sky) report["sky_panorama"] = writeSkyPanorama(folder, *r.sky);
-    if (!cmd.noRender) renderImage(folder, scene, r, cmd);
-  }
-  double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  report["seconds"] = {{"mesh", r.seconds.mesh},
-                       {"ray_scene", r.seconds.rayScene},
-                       {"form_factors", r.seconds.formFactors},
-                       {"daylight", r.seconds.daylight},
-                       {"solve", r.seconds.solve},
-                       {"results", r.seconds.results},
-                       {"matrix_files", matrixSeconds},
-                       {"total", total}};
-  report["peak_memory_bytes"] = peakMemoryBytes();
-  writeJson(folder.path("report.json"), report);
-  folder.commit();
-  printSummary(scene, r, cmd, total, matrixSeconds);
 }
 
 CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std::string& help) {
@@ -369,7 +198,7 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
   cmd->methodFlag = {sub->get_option("--ff")};
   cmd->samplesFlag = {sub->get_option("--ff-samples")};
   cmd->memoryBudgetFlag = {sub->get_option("--memory-budget")};
-  // `solvers` runs past 1e-9 so report.json's table of iterations to 1e-3, 1e-6 and 1e-9 is whole.
+  // `solvers` runs past 1e-9 (its default in the library), shown in --help.
   if (job == Job::Solvers) cmd->solver.stopping.tolerance = 1e-10;
   if (job != Job::FormFactors) {
     std::string every;  // `solvers` compares every registered solver by default
@@ -419,7 +248,7 @@ CLI::App* addPipelineCommand(CLI::App& app, Job job, const char* name, const std
         sub->get_option("--ff-enforce"), sub->get_option("--ff-storage"),
         sub->get_option("--solvers"),    sub->get_option("--write-matrix")};
   }
-  sub->callback([cmd] { runJob(*cmd); });
+  sub->callback([cmd] { runCommand(*cmd); });
   return sub;
 }
 
@@ -430,8 +259,7 @@ std::string runDefaultJob(const std::string& scenePath, const std::string& outDi
   cmd.job = Job::Run;
   cmd.mesh.scene = scenePath;
   cmd.out = outDir;
-  runJob(cmd);
-  return cmd.out;
+  return runCommand(cmd).out;
 }
 
 void addPipelineCommands(CLI::App& app) {

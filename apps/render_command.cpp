@@ -12,10 +12,11 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
+#include "apps/console.h"
 #include "apps/options.h"
-#include "apps/report.h"
 #include "geometry/scene_loader.h"
 #include "integrators/integrator.h"
+#include "job/report.h"
 #include "render/camera.h"
 #include "render/exr_io.h"
 #include "render/hdr_io.h"

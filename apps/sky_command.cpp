@@ -13,10 +13,10 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
-#include "apps/report.h"
 #include "atmosphere/atmosphere.h"
 #include "atmosphere/sky_image.h"
 #include "experiments/sky_comparison.h"
+#include "job/report.h"
 #include "render/exr_io.h"
 #include "render/hdr_io.h"
 #include "render/radiosity_image.h"

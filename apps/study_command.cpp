@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "apps/common.h"
-#include "apps/report.h"
+#include "apps/console.h"
 #include "experiments/study.h"
 #include "geometry/scene_loader.h"
 #include "hierarchy/hierarchical.h"

@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
-#include "apps/report.h"
 #include "atmosphere/atmosphere.h"
+#include "job/report.h"
 #include "render/camera.h"
 #include "render/hdr_io.h"
 #include "terrain/heightfield.h"

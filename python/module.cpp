@@ -28,6 +28,7 @@
 #include "geometry/subdivision.h"
 #include "hierarchy/hierarchical.h"
 #include "integrators/integrator.h"
+#include "job/job.h"
 #include "photon/estimate.h"
 #include "photon/image.h"
 #include "photon/map.h"
@@ -614,6 +615,124 @@ PhotonTrace tracePy(const PyMesh& m, const RayScene& rays, const PhotonSettings&
   return tracePhotons(*m.scene, *m.mesh, rays, emitters, settings);
 }
 
+// ---- the main job ----
+
+/// The options of radkit run, solvers and formfactors as keywords; None leaves a setting to the
+/// preset or the method, as an option not given does.
+struct RunOptions {
+  std::optional<std::filesystem::path> out;
+  std::string kind = "run";
+  std::optional<std::string> method, preset, ff, camera;
+  std::optional<int> patches, ffSamples;
+  std::optional<double> maxArea, tolerance;
+  std::optional<long> maxIterations;
+  std::optional<std::size_t> memoryBudget;
+  py::object solvers;
+  std::uint64_t seed = 1;
+  std::optional<double> epsilon, minArea;
+  std::optional<int> raysPerLink, rounds;
+  std::optional<std::string> gather;
+  bool adaptive = false;
+  int checkLinks = 0;
+  bool render = true, photometric = false, smooth = false, writeMatrix = false;
+  int width = 512, height = 512;
+  std::string units;
+  bool repair = false;
+};
+
+/// radkit's main job by the library call the command line makes (job/job.h): the run folder
+/// written, report.json as a dict, and the solution (the patches, or the hierarchy's leaves,
+/// as a Mesh with their radiosity). Areas are m² here, as everywhere in the module.
+py::dict runPy(const py::object& sceneArg, const RunOptions& o) {
+  JobSettings s;
+  s.kind = o.kind == "run"           ? JobKind::Run
+           : o.kind == "solvers"     ? JobKind::Solvers
+           : o.kind == "formfactors" ? JobKind::FormFactors
+                                     : throw py::value_error("run: kind '" + o.kind +
+                                                             "' is not run, solvers or "
+                                                             "formfactors");
+  if (o.out) s.out = o.out->string();
+  if (o.method) {
+    if (*o.method != "dense" && *o.method != "hierarchical")
+      throw py::value_error("run: method '" + *o.method + "' is not dense or hierarchical");
+    s.method = *o.method == "hierarchical" ? JobMethod::Hierarchical : JobMethod::Dense;
+  }
+  if (o.preset) s.preset = *o.preset;
+  if (o.camera) s.camera = *o.camera;
+  s.formFactorMethod = o.ff;
+  s.formFactorSamples = o.ffSamples;
+  s.tolerance = o.tolerance;
+  s.maxIterations = o.maxIterations;
+  s.memoryBudget = o.memoryBudget;
+  s.seed = o.seed;
+  if (!o.solvers.is_none()) {
+    std::string text;
+    if (py::isinstance<py::str>(o.solvers)) {
+      text = o.solvers.cast<std::string>();
+    } else {
+      for (const py::handle& name : o.solvers)
+        text += (text.empty() ? "" : ",") + py::str(name).cast<std::string>();
+    }
+    s.solvers = parseSolverList(text);
+  }
+  if (o.adaptive) s.adaptive = AdaptiveSettings{};
+  if (o.epsilon) s.hierarchical.epsilon = *o.epsilon;
+  if (o.raysPerLink) s.hierarchical.raysPerLink = *o.raysPerLink;
+  if (o.rounds) s.hierarchical.rounds = *o.rounds;
+  if (o.gather) s.hierarchical.order = parseGatherOrder(*o.gather);
+  s.checkLinks = o.checkLinks;
+  s.render = o.render, s.photometric = o.photometric, s.smooth = o.smooth;
+  s.writeMatrix = o.writeMatrix;
+  s.imageWidth = o.width, s.imageHeight = o.height;
+
+  std::vector<std::string> lines;
+  PipelineLog log;
+  log.message = [&](const std::string& line) { lines.push_back(line); };
+  std::optional<JobResult> r;
+  {
+    Scene scene;
+    LoadReport loaded;
+    if (py::isinstance<PyScene>(sceneArg)) {
+      if (!o.units.empty() || o.repair)
+        throw py::value_error(
+            "run: units and repair are for a scene file; this Scene is "
+            "loaded (give them to load_scene)");
+      scene = *sceneArg.cast<const PyScene&>().scene;
+    } else {
+      const std::string path = sceneArg.cast<std::filesystem::path>().string();
+      LoadOptions load;
+      load.units = o.units, load.repair = o.repair;
+      py::gil_scoped_release release;
+      scene = loadJobScene(path, load, "", log, &loaded);
+    }
+    // m² to the scene's units², as the job's settings take them
+    const double unit2 = squareMetres(scene);
+    if (o.patches || o.maxArea)
+      s.mesh = SubdivisionSettings{o.maxArea.value_or(0) / unit2, o.patches.value_or(0)};
+    if (o.minArea) s.hierarchical.minArea = *o.minArea / unit2;
+    py::gil_scoped_release release;
+    r.emplace(runJob(std::move(scene), s, log, loaded));
+  }
+  py::module_ warnings = py::module_::import("warnings");
+  for (const std::string& line : lines)
+    if (line.rfind("warning: ", 0) == 0) warnings.attr("warn")(line.substr(9));
+  py::dict d;
+  d["out"] = r->out;
+  d["report"] = jsonToPython(r->report);
+  d["log"] = lines;
+  PyMesh mesh;
+  mesh.scene = std::make_shared<const Scene>(std::move(r->scene));
+  if (r->hierarchical) {
+    mesh.mesh = std::make_shared<const PatchMesh>(std::move(r->hierarchical->leaves));
+    d["radiosity"] = vec3Array(r->hierarchical->radiosity);
+  } else {
+    mesh.mesh = std::make_shared<const PatchMesh>(std::move(r->dense->mesh));
+    if (!r->dense->solves.empty()) d["radiosity"] = vec3Array(r->dense->radiosity);
+  }
+  d["mesh"] = py::cast(std::move(mesh));
+  return d;
+}
+
 // ---- hierarchical radiosity ----
 
 /// The hierarchical method (docs/hierarchical.md) on a loaded scene, by the same library call
@@ -1039,6 +1158,49 @@ PYBIND11_MODULE(radkit, mod) {
       "bsdf_names", [] { return bsdfRegistry().names(); },
       "The BSDFs a material may name (\"brdf\" in a scene file)");
   mod.def("form_factor_methods", &formFactorMethodNames, "The form-factor methods, default first");
+  mod.def(
+      "run",
+      [](const py::object& scene, const std::optional<std::filesystem::path>& out,
+         const std::string& kind, const std::optional<std::string>& method,
+         const std::optional<std::string>& preset, const std::optional<int>& patches,
+         const std::optional<double>& maxArea, const std::optional<std::string>& ff,
+         const std::optional<int>& ffSamples, const py::object& solvers,
+         const std::optional<double>& tolerance, const std::optional<long>& maxIterations,
+         const std::optional<std::size_t>& memoryBudget, std::uint64_t seed,
+         const std::optional<double>& epsilon, const std::optional<double>& minArea,
+         const std::optional<int>& raysPerLink, const std::optional<int>& rounds,
+         const std::optional<std::string>& gather, bool adaptive, int checkLinks,
+         const std::optional<std::string>& camera, bool render, bool photometric, bool smooth,
+         bool writeMatrix, int width, int height, const std::string& units, bool repair) {
+        RunOptions o;
+        o.out = out, o.kind = kind, o.method = method, o.preset = preset, o.patches = patches;
+        o.maxArea = maxArea, o.ff = ff, o.ffSamples = ffSamples, o.solvers = solvers;
+        o.tolerance = tolerance, o.maxIterations = maxIterations, o.memoryBudget = memoryBudget;
+        o.seed = seed, o.epsilon = epsilon, o.minArea = minArea, o.raysPerLink = raysPerLink;
+        o.rounds = rounds, o.gather = gather, o.adaptive = adaptive, o.checkLinks = checkLinks;
+        o.camera = camera, o.render = render, o.photometric = photometric, o.smooth = smooth;
+        o.writeMatrix = writeMatrix, o.width = width, o.height = height, o.units = units;
+        o.repair = repair;
+        return runPy(scene, o);
+      },
+      py::arg("scene"), py::kw_only(), py::arg("out") = py::none(), py::arg("kind") = "run",
+      py::arg("method") = py::none(), py::arg("preset") = py::none(),
+      py::arg("patches") = py::none(), py::arg("max_area") = py::none(), py::arg("ff") = py::none(),
+      py::arg("ff_samples") = py::none(), py::arg("solvers") = py::none(),
+      py::arg("tolerance") = py::none(), py::arg("max_iterations") = py::none(),
+      py::arg("memory_budget") = py::none(), py::arg("seed") = 1, py::arg("epsilon") = py::none(),
+      py::arg("min_area") = py::none(), py::arg("rays_per_link") = py::none(),
+      py::arg("rounds") = py::none(), py::arg("gather") = py::none(), py::arg("adaptive") = false,
+      py::arg("check_links") = 0, py::arg("camera") = py::none(), py::arg("render") = true,
+      py::arg("photometric") = false, py::arg("smooth") = false, py::arg("write_matrix") = false,
+      py::arg("width") = 512, py::arg("height") = 512, py::arg("units") = "",
+      py::arg("repair") = false,
+      "radkit's main job, as radkit run (kind \"solvers\", \"formfactors\": those commands) "
+      "makes it with the options of the same names: writes the run folder `out` (default "
+      "out/<scene name>, run only) and returns a dict: out, report (report.json), log (the "
+      "lines the command line prints; warnings are also raised as Python warnings), mesh (the "
+      "patches, or the hierarchy's leaves) and radiosity (n, 3). scene: a path or a Scene; "
+      "areas in m^2; None leaves a setting to the preset or the method");
   mod.def("hierarchical", &hierarchicalPy, py::arg("scene"), py::arg("epsilon") = 1e-4,
           py::arg("rays_per_link") = 16, py::arg("rounds") = 3, py::arg("order") = "jacobi",
           py::arg("seed") = 1, py::arg("min_area") = 0.0, py::arg("tolerance") = 1e-6,

@@ -6,6 +6,7 @@ import json
 import math
 import os
 import subprocess
+import warnings
 
 import numpy as np
 import pytest
@@ -553,6 +554,77 @@ def test_hierarchical_gives_what_the_command_line_writes(tmp_path):
     np.testing.assert_allclose(rows["area_m2"], r["mesh"].area, rtol=1e-15)
     for c, name in enumerate(["b_r_W_m2", "b_g_W_m2", "b_b_W_m2"]):
         np.testing.assert_allclose(rows[name], r["radiosity"][:, c], rtol=1e-15, atol=0)
+
+
+@pytest.mark.skipif(not os.environ.get("RADKIT_BINARY"), reason="needs the radkit binary")
+@pytest.mark.parametrize("kind,args", [
+    ("run", ["--preset", "draft", "--patches", "150", "--no-render"]),
+    ("run", ["--method", "hierarchical", "--seed", "4", "--epsilon", "1e-3", "--no-render"]),
+    ("solvers", ["--patches", "120", "--solvers", "jacobi,sor:omega=1.3"]),
+    ("formfactors", ["--ff", "monte-carlo", "--seed", "2"])])
+def test_run_writes_the_folder_the_command_line_writes(tmp_path, kind, args):
+    # The command line and run() are one library call (job/job.h): the same files, byte for
+    # byte, and the same report but for the clock and the memory.
+    path = os.path.join(DATA, "cornell-box.json")
+    cli = tmp_path / "cli"
+    subprocess.run([os.environ["RADKIT_BINARY"], kind, path, *args, "--out", str(cli)],
+                   check=True, capture_output=True)
+    options = {"run": {}, "solvers": {"kind": "solvers"}, "formfactors": {"kind": "formfactors"}}
+    keywords = dict(options[kind])
+    flags = dict(zip(args[::2], args[1::2]))
+    names = {"--preset": "preset", "--method": "method", "--seed": "seed", "--epsilon": "epsilon",
+             "--solvers": "solvers", "--ff": "ff"}
+    for flag, value in flags.items():
+        if flag in names:
+            keywords[names[flag]] = int(value) if flag == "--seed" else \
+                float(value) if flag == "--epsilon" else value
+    if "--patches" in args:
+        keywords["patches"] = int(args[args.index("--patches") + 1])
+    if "--no-render" in args:
+        keywords["render"] = False
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the box's non-planar wall is split into triangles
+        r = radkit.run(path, out=tmp_path / "py", **keywords)
+    assert r["out"] == str(tmp_path / "py")
+    files = sorted(p.name for p in cli.iterdir())
+    assert files == sorted(p.name for p in (tmp_path / "py").iterdir())
+    for name in files:
+        if name.endswith((".csv", ".vtp", ".bin", ".mtx")) and name != "convergence.csv":
+            assert (cli / name).read_bytes() == (tmp_path / "py" / name).read_bytes(), name
+    report = json.loads((cli / "report.json").read_text())
+    assert r["report"]["surfaces" if kind != "formfactors" else "mesh"] == \
+        report["surfaces" if kind != "formfactors" else "mesh"]
+    assert r["report"]["command"] == kind
+    assert len(r["mesh"]) == report["mesh"]["patches"]
+    if kind != "formfactors":
+        assert r["radiosity"].shape == (len(r["mesh"]), 3)
+
+
+def test_run_takes_areas_in_square_metres_raises_warnings_and_refuses_bad_settings(tmp_path):
+    # A centimetre scene: max_area is m², as everywhere in the module (1 cm² squares, 0.25 cm²).
+    scene = json.loads(open(os.path.join(DATA, "parallel-squares.json")).read())
+    scene["units"] = "cm"
+    path = tmp_path / "squares.json"
+    path.write_text(json.dumps(scene))
+    r = radkit.run(path, out=tmp_path / "a", max_area=0.25e-4, render=False)
+    assert len(r["mesh"]) == 8
+    np.testing.assert_allclose(r["mesh"].area, 0.25e-4, rtol=1e-12)
+    # A loaded Scene runs as its file does.
+    again = radkit.run(radkit.load_scene(path), out=tmp_path / "b", max_area=0.25e-4,
+                       render=False)
+    np.testing.assert_array_equal(again["radiosity"], r["radiosity"])
+    with pytest.warns(UserWarning, match="not planar"):
+        radkit.run(os.path.join(DATA, "cornell-box.json"), out=tmp_path / "c", patches=60,
+                   render=False)
+    for keywords, message in [({"kind": "study"}, "kind 'study'"),
+                              ({"preset": "large", "method": "dense"}, "not the dense one"),
+                              ({"method": "hierarchical", "adaptive": True}, "adaptive"),
+                              ({"solvers": "jacobi,nope"}, "nope")]:
+        with pytest.raises(ValueError, match=message):
+            radkit.run(path, out=tmp_path / "d", **keywords)
+        assert not (tmp_path / "d").exists()
+    with pytest.raises(ValueError, match="units and repair are for a scene file"):
+        radkit.run(radkit.load_scene(path), out=tmp_path / "d", units="mm")
 
 
 def read_pfm(path):

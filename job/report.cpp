@@ -1,9 +1,4 @@
-#include "apps/report.h"
-
-#include "apps/common.h"
-
-#include <sys/resource.h>
-#include <unistd.h>
+#include "job/report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +14,7 @@
 #include "util/output_folder.h"
 #include "util/process_memory.h"
 
-namespace radkit::app {
+namespace radkit {
 
 using nlohmann::json;
 
@@ -108,6 +103,21 @@ json surfacesJson(const std::vector<SurfaceResult>& surfaces) {
   return a;
 }
 
+json loadJson(const LoadReport& report) {
+  nlohmann::json repairs = nlohmann::json::array();
+  for (const MeshRepair& r : report.repairs)
+    repairs.push_back({{"surface", r.surface},
+                       {"welded_vertices", r.weldedVertices},
+                       {"duplicate_faces_removed", r.duplicateFaces},
+                       {"degenerate_faces_removed", r.degenerateFaces},
+                       {"non_manifold_edges_cut", r.nonManifoldEdges},
+                       {"non_manifold_vertices_split", r.nonManifoldVertices},
+                       {"border_edges_stitched", r.stitchedEdges},
+                       {"faces_reversed", r.reversedFaces},
+                       {"summary", r.describe()}});
+  return {{"warnings", report.warnings}, {"repairs", repairs}};
+}
+
 json daylightJson(const SkyModel& sky, const Daylight& d) {
   const SkyDescription& k = sky.description();
   json j{{"sky", sky.typeName()},
@@ -143,22 +153,6 @@ json writeSkyPanorama(OutputFolder& folder, const SkyModel& sky) {
           {"up", vec3Json(sky.toScene({0, 0, 1}))},
           {"north", vec3Json(sky.toScene({0, 1, 0}))},
           {"east", vec3Json(sky.toScene({1, 0, 0}))}};
-}
-
-void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceResult>& surfaces,
-                            bool photometric, const std::string& escapedNote) {
-  printField("energy balance", "emitted " + fmt("%.4g W", luminance(e.emitted)) + " = absorbed " +
-                                   fmt("%.4g", luminance(e.absorbed)) + " + escaped " +
-                                   fmt("%.4g", luminance(e.escaped)) + escapedNote +
-                                   " (Y), imbalance " + fmt("%.2e", e.relativeImbalance));
-  for (const SurfaceResult& s : surfaces) {
-    std::string line = fmt("%10.4f", s.radiosity.x) + fmt(" %10.4f", s.radiosity.y) +
-                       fmt(" %10.4f W/m²", s.radiosity.z);
-    if (photometric || s.daylit)
-      line += fmt("  %9.2f cd/m²", s.luminance) + fmt("  %9.1f lux", s.illuminance);
-    if (s.daylit) line += fmt("  sky view %.3f", s.skyViewFactor);
-    printField(s.name, line);
-  }
 }
 
 std::size_t peakMemoryBytes() { return lifetimePeakMemory(); }
@@ -217,29 +211,4 @@ void writeConvergence(const std::string& csvPath, const std::string& pngPath,
   writeLineChartPng(pngPath, {byIteration, bySeconds});
 }
 
-void Progress::operator()(const std::string& stage, double fraction) {
-  bool terminal = isatty(STDERR_FILENO);
-  if (stage != m_stage) {
-    finish();
-    m_stage = stage;
-    m_lastTenth = -1;
-  }
-  int tenth = int(fraction * 10 + 1e-9);
-  if (terminal) {
-    const int filled = int(std::lround(fraction * 30));
-    std::fprintf(stderr, "\r%-14s [%s%s] %3d%%", stage.c_str(), std::string(filled, '#').c_str(),
-                 std::string(30 - filled, '.').c_str(), int(std::lround(fraction * 100)));
-    m_open = true;
-  } else if (tenth > m_lastTenth) {
-    std::fprintf(stderr, "%s: %d%%\n", stage.c_str(), tenth * 10);
-  }
-  m_lastTenth = std::max(m_lastTenth, tenth);
-  std::fflush(stderr);
-}
-
-void Progress::finish() {
-  if (m_open) std::fprintf(stderr, "\n");
-  m_open = false;
-}
-
-}  // namespace radkit::app
+}  // namespace radkit
