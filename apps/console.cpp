@@ -26,7 +26,6 @@ void printEnergyAndSurfaces(const EnergyBalance& e, const std::vector<SurfaceRes
   }
 }
 
-
 void Progress::operator()(const std::string& stage, double fraction) {
   bool terminal = isatty(STDERR_FILENO);
   if (stage != m_stage) {

@@ -1,209 +1,32 @@
 // radkit terrain: a procedural landscape (ridged multifractal or fBm heightfield) written as
 // meshes by material (grass, rock, snow by slope and height) and a scene file that puts them
 // under a sky, ready for `radkit run` (docs/terrain.md).
-#include <chrono>
-#include <cmath>
-#include <filesystem>
 #include <memory>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
-#include "atmosphere/atmosphere.h"
-#include "job/report.h"
-#include "render/camera.h"
-#include "render/hdr_io.h"
-#include "terrain/heightfield.h"
-#include "terrain/landscape.h"
-#include "util/canvas.h"
+#include "job/terrain_job.h"
 #include "util/format.h"
-#include "util/output_folder.h"
 
 namespace radkit::app {
 
 namespace {
 
 using nlohmann::json;
-using terrain::TerrainMaterial;
 
-struct TerrainCommand {
-  terrain::TerrainSettings settings;
-  std::string type = "ridged", format = "obj", sky = "physical", out = "out/terrain";
-  double sunElevation = 35, sunAzimuth = 150;
-  int skySamples = 128, sunSamples = 16;
-  bool image = false;
-  terrain::LandscapeSettings landscape;
-  double exposure = 0;  ///< 0: automatic
-};
-
-/// The heightfield as a viridis PNG, north up.
-void writeHeightMap(const std::string& path, const terrain::Heightfield& f, double height) {
-  Canvas c(f.n, f.n);
-  for (int j = 0; j < f.n; ++j)
-    for (int i = 0; i < f.n; ++i)
-      c.set(i, f.n - 1 - j, viridis(height > 0 ? f.z[std::size_t(j) * f.n + i] / height : 0));
-  writePng(path, c);
-}
-
-Camera terrainCamera(const terrain::TerrainSettings& s) {
-  const double half = s.size / 2;
-  Camera c;
-  c.position = {0.0, -1.2 * half, 1.6 * s.height};
-  c.lookAt = {0.0, 0.2 * half, 0.3 * s.height};
-  c.up = {0, 0, 1};
-  c.fovDeg = 55;
-  return c;
-}
-
-/// Both landscape images, their difference, and what each cost.
-json renderLandscapes(TerrainCommand& cmd, OutputFolder& folder,
-                      const terrain::Heightfield& field) {
-  terrain::LandscapeSettings& ls = cmd.landscape;
-  ls.sunElevationDeg = cmd.sunElevation, ls.sunAzimuthDeg = cmd.sunAzimuth;
-  ls.seed = cmd.settings.fractal.seed;
-  const terrain::TerrainSurface surface(field, cmd.settings);
-  const atmosphere::Atmosphere air;
-  const PinholeCamera camera(terrainCamera(cmd.settings), ls.width, ls.height);
-  const auto direction = [&](double x, double y) { return camera.direction(x, y); };
-  const terrain::LandscapeImage march =
-      terrain::renderLandscape(surface, air, camera.origin(), direction, ls, false);
-  const terrain::LandscapeImage embree =
-      terrain::renderLandscape(surface, air, camera.origin(), direction, ls, true);
-  // Exposure: the reference's mean luminance to 0.18 (a mid grey), unless given.
-  double mean = 0;
-  for (const Vec3& v : embree.radiance) mean += luminance(v);
-  mean /= double(embree.radiance.size());
-  const double exposure = cmd.exposure > 0 ? cmd.exposure : (mean > 0 ? 0.18 / mean : 1);
-  json out = json::object();
-  double sumSq = 0, refSq = 0, hitMismatch = 0, depthError = 0, both = 0;
-  for (std::size_t i = 0; i < embree.radiance.size(); ++i) {
-    const Vec3 e = march.radiance[i] - embree.radiance[i];
-    sumSq += dot(e, e) / 3, refSq += dot(embree.radiance[i], embree.radiance[i]) / 3;
-    const bool a = march.depth[i] >= 0, b = embree.depth[i] >= 0;
-    hitMismatch += a != b;
-    if (a && b)
-      both += 1, depthError += std::fabs(march.depth[i] - embree.depth[i]) / embree.depth[i];
-  }
-  const std::size_t pixels = embree.radiance.size();
-  for (const auto& [name, image] :
-       {std::pair<std::string, const terrain::LandscapeImage*>{"march", &march},
-        {"embree", &embree}}) {
-    writeLinearAndPng(folder.path("landscape-" + name),
-                      pixelImage(ls.width, ls.height, image->radiance, exposure));
-    out[name] = {{"seconds", image->seconds},
-                 {"visibility_thread_seconds", image->visibilitySeconds},
-                 {"rays", image->rays},
-                 {"rays_per_second", image->rays / std::max(image->seconds, 1e-9)}};
-    if (name == "march") out[name]["steps"] = image->steps;
-  }
-  writePng(
-      folder.path("landscape-difference.png"),
-      toneMapCurve(relativeDifferenceImage(ls.width, ls.height, march.radiance, embree.radiance), 1,
-                   ToneCurve::Srgb));
-  out["relative_rmse"] = refSq > 0 ? std::sqrt(sumSq / refSq) : 0.0;
-  out["hit_mismatch_pixels"] = hitMismatch;
-  out["mean_relative_depth_difference"] = both > 0 ? depthError / both : 0.0;
-  out["pixels"] = pixels;
-  out["settings"] = {{"width", ls.width},
-                     {"height", ls.height},
-                     {"max_steps", ls.maxSteps},
-                     {"sun_samples", ls.sunSamples},
-                     {"aerial_samples", ls.aerialSamples},
-                     {"aerial_perspective", ls.aerialPerspective},
-                     {"exposure", exposure}};
-  return out;
-}
-
-json skyJson(const TerrainCommand& cmd) {
-  json sky{{"type", cmd.sky},
-           {"up", {0, 0, 1}},
-           {"north", {0, 1, 0}},
-           {"samples", cmd.skySamples},
-           {"sun_samples", cmd.sunSamples}};
-  if (cmd.sky == "physical") {
-    sky["sun"] = {{"elevation", cmd.sunElevation}, {"azimuth", cmd.sunAzimuth}};
-  } else if (cmd.sky == "cie-overcast") {
-    sky["zenith_luminance"] = 4093;  // 10 000 lux on an open horizontal plane
-  } else {
-    sky["luminance"] = 3183;  // 10 000 lux: πL = E
-  }
-  return sky;
-}
-
-void runTerrain(TerrainCommand& cmd) {
-  const auto start = std::chrono::steady_clock::now();
-  terrain::TerrainSettings& s = cmd.settings;
-  s.type = cmd.type == "fbm" ? terrain::NoiseType::Fbm : terrain::NoiseType::Ridged;
-  OutputFolder folder(cmd.out);
-  const terrain::Heightfield field = terrain::makeHeightfield(s);
-  const terrain::TerrainMesh mesh = terrain::triangulate(field, s);
-  const double generateSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  json materials = json::object(), surfaces = json::array(), counts = json::object();
-  for (int m = 0; m < 3; ++m) {
-    const std::string name = terrain::kTerrainMaterialNames[m];
-    const std::string file = "terrain-" + name + "." + cmd.format;
-    const std::size_t n = terrain::writeTerrainPart(folder.path(file), mesh, TerrainMaterial(m));
-    counts[name] = n;
-    if (n == 0) {
-      std::filesystem::remove(folder.path(file));
-      continue;
-    }
-    materials[name] = {{"reflectance", vec3Json(terrain::kTerrainReflectance[m])}};
-    surfaces.push_back({{"name", name}, {"material", name}, {"mesh", file}});
-  }
-  // In the order a person reads a scene file (nlohmann::json would sort the keys).
-  const auto ordered = [](const json& j) { return nlohmann::ordered_json::parse(j.dump()); };
-  nlohmann::ordered_json scene;
-  // Named after its folder, so `radkit run` writes to out/<folder>.
-  const std::string folderName = std::filesystem::path(cmd.out).filename().string();
-  scene["name"] = folderName.empty() ? "terrain" : folderName;
-  scene["description"] = "radkit terrain: " + cmd.type + " heightfield, seed " +
-                         std::to_string(s.fractal.seed) + ", " + std::to_string(s.resolution) +
-                         "² vertices over " + formatNumber(s.size) + " m";
-  scene["units"] = "m";
-  scene["materials"] = ordered(materials);
-  scene["surfaces"] = ordered(surfaces);
-  scene["camera"] = ordered({{"position", vec3Json(terrainCamera(s).position)},
-                             {"look_at", vec3Json(terrainCamera(s).lookAt)},
-                             {"up", {0, 0, 1}},
-                             {"fov_deg", terrainCamera(s).fovDeg}});
-  scene["sky"] = ordered(skyJson(cmd));
-  writeFileAtomically(folder.path("terrain.json"), scene.dump(1) + "\n");
-  writeHeightMap(folder.path("heightmap.png"), field, s.height);
-  const FractalSettings& f = s.fractal;
-  json report{{"radkit", RADKIT_VERSION},
-              {"command", "terrain"},
-              {"settings",
-               {{"type", cmd.type},
-                {"octaves", f.octaves},
-                {"lacunarity", f.lacunarity},
-                {"H", f.H},
-                {"gain", f.gain},
-                {"offset", f.offset},
-                {"seed", f.seed},
-                {"resolution", s.resolution},
-                {"size_m", s.size},
-                {"height_m", s.height},
-                {"feature_size_m", s.featureSize},
-                {"snow_line", s.snowLine},
-                {"rock_slope_deg", s.rockSlopeDeg},
-                {"format", cmd.format}}},
-              {"triangles", mesh.triangles.size()},
-              {"triangles_by_material", counts},
-              {"seconds", {{"generate", generateSeconds}}}};
-  if (cmd.image) report["landscape"] = renderLandscapes(cmd, folder, field);
-  writeJson(folder.path("report.json"), report);
-  folder.commit();
-  printField("terrain", cmd.type + ", seed " + std::to_string(f.seed) + ", " +
-                            std::to_string(s.resolution) + "² vertices, " +
-                            std::to_string(mesh.triangles.size()) + " triangles");
+void printSummary(const TerrainJobResult& r) {
+  const json& s = r.report["settings"];
+  const json& counts = r.report["triangles_by_material"];
+  printField("terrain", s["type"].get<std::string>() + ", seed " + s["seed"].dump() + ", " +
+                            s["resolution"].dump() + "² vertices, " + r.report["triangles"].dump() +
+                            " triangles");
   printField("materials", "grass " + counts["grass"].dump() + ", rock " + counts["rock"].dump() +
                               ", snow " + counts["snow"].dump() + " triangles");
-  printField("seconds", formatNumber(generateSeconds));
-  if (cmd.image) {
-    const json& l = report["landscape"];
+  printField("seconds", formatNumber(r.report["seconds"]["generate"].get<double>()));
+  if (r.report.contains("landscape")) {
+    const json& l = r.report["landscape"];
     auto seconds = [&](const char* who) {
       return formatNumber(l[who]["seconds"].get<double>()) + " s (hits and shadows " +
              formatNumber(l[who]["visibility_thread_seconds"].get<double>()) + " thread-s)";
@@ -212,13 +35,13 @@ void runTerrain(TerrainCommand& cmd) {
                                 ", relative RMSE " +
                                 formatNumber(l["relative_rmse"].get<double>()));
   }
-  printField("wrote", cmd.out + "/terrain.json (run it: radkit run " + cmd.out + "/terrain.json)");
+  printField("wrote", r.out + "/terrain.json (run it: radkit run " + r.out + "/terrain.json)");
 }
 
 }  // namespace
 
 void addTerrainCommand(CLI::App& app) {
-  auto cmd = std::make_shared<TerrainCommand>();
+  auto cmd = std::make_shared<TerrainJobSettings>();
   CLI::App* sub = app.add_subcommand(
       "terrain", "Generate a procedural landscape (meshes and a scene under a sky)");
   terrain::TerrainSettings& s = cmd->settings;
@@ -296,7 +119,7 @@ void addTerrainCommand(CLI::App& app) {
   sub->add_option("--exposure", cmd->exposure, "Image exposure (default: automatic)")
       ->check(FiniteNonNegative);
   sub->add_option("--out", cmd->out, "Output folder")->capture_default_str();
-  sub->callback([cmd] { runTerrain(*cmd); });
+  sub->callback([cmd] { printSummary(runTerrainJob(*cmd)); });
 }
 
 }  // namespace radkit::app

@@ -138,9 +138,9 @@ std::vector<std::string> hierarchicalWarnings(const Scene& scene, const Hierarch
   for (std::size_t k = 0; k < scene.surfaces.size(); ++k) {
     const Material& m = scene.materials[scene.surfaces[k].material];
     if (maxComponent(m.emission) > 0 || r.zeroIrradianceShare[k] < kDarkShareWarning) continue;
-    darkList +=
-        (darkList.empty() ? "" : ", ") + ("\"" + scene.surfaces[k].name + "\" " +
-                                          formatValue("%.0f", 100 * r.zeroIrradianceShare[k]) + " %");
+    darkList += (darkList.empty() ? "" : ", ") +
+                ("\"" + scene.surfaces[k].name + "\" " +
+                 formatValue("%.0f", 100 * r.zeroIrradianceShare[k]) + " %");
   }
   if (!darkList.empty())
     out.push_back(scene.file + ": no light at all reached " + darkList +
@@ -221,10 +221,11 @@ JobResult runHierarchicalJob(Scene loadedScene, const LoadReport& loaded, const 
     std::string csv = "receiver,source,kind,model,reference,reference_se,relative_difference,z\n";
     for (const LinkCheck& c : checks)
       csv += std::to_string(c.receiver) + "," + std::to_string(c.source) + "," +
-             linkKindName(c.kind) + "," + formatValue("%.9g", c.model) + "," + formatValue("%.9g", c.reference) +
-             "," + formatValue("%.3g", c.referenceError) + "," +
+             linkKindName(c.kind) + "," + formatValue("%.9g", c.model) + "," +
+             formatValue("%.9g", c.reference) + "," + formatValue("%.3g", c.referenceError) + "," +
              (c.reference > 0 ? formatValue("%.5g", c.model / c.reference - 1) : "") + "," +
-             (c.referenceError > 0 ? formatValue("%.3g", (c.model - c.reference) / c.referenceError) : "") +
+             (c.referenceError > 0 ? formatValue("%.3g", (c.model - c.reference) / c.referenceError)
+                                   : "") +
              "\n";
     writeFileAtomically(folder.path("links_check.csv"), csv);
     linkCheck = nlohmann::json::object();

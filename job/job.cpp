@@ -9,9 +9,9 @@
 #include "job/job_parts.h"
 #include "radiosity/presets.h"
 #include "render/camera.h"
+#include "solvers/registry.h"
 #include "util/errors.h"
 #include "util/format.h"
-#include "solvers/registry.h"
 
 namespace radkit {
 
@@ -42,8 +42,9 @@ JobSettings resolveJobSettings(const JobSettings& given) {
 
   if (*s.method == JobMethod::Hierarchical) {
     if (s.kind != JobKind::Run)
-      throw std::invalid_argument(std::string("the hierarchical method writes a run's outputs; a ") +
-                                  kindName(s.kind) + " job needs the dense method's F");
+      throw std::invalid_argument(
+          std::string("the hierarchical method writes a run's outputs; a ") + kindName(s.kind) +
+          " job needs the dense method's F");
     if (!s.preset.empty() && !hierarchicalPreset)
       throw std::invalid_argument("preset \"" + s.preset +
                                   "\" belongs to the dense method; the hierarchy sets its own "

@@ -55,8 +55,8 @@ struct JobSettings {
   /// the others.
   std::optional<SubdivisionSettings> mesh;
   std::optional<std::string> formFactorMethod;  ///< unset: the preset's, else point-polygon
-  std::optional<int> formFactorSamples;  ///< unset: the preset's, else the method's own K
-  std::optional<double> tolerance;       ///< unset: the preset's, else SolverSettings' (Solvers: 1e-10)
+  std::optional<int> formFactorSamples;         ///< unset: the preset's, else the method's own K
+  std::optional<double> tolerance;  ///< unset: the preset's, else SolverSettings' (Solvers: 1e-10)
   /// Unset: SolverSettings' for dense solvers, kDefaultHierarchicalSweeps for the hierarchy.
   std::optional<long> maxIterations;
   /// Unset: 8 GiB for a dense F, defaultHierarchicalMemoryBudget() for the hierarchy.
@@ -96,10 +96,10 @@ struct JobResult {
   Scene scene;
   nlohmann::json report;
   JobMethod method = JobMethod::Dense;
-  std::unique_ptr<PipelineResult> dense;               ///< the dense method's result
-  std::unique_ptr<HierarchicalResult> hierarchical;    ///< the hierarchical method's result
-  double seconds = 0;                                   ///< wall clock of the whole job
-  double matrixSeconds = 0;  ///< dense: writing formfactors.bin (and .mtx)
+  std::unique_ptr<PipelineResult> dense;             ///< the dense method's result
+  std::unique_ptr<HierarchicalResult> hierarchical;  ///< the hierarchical method's result
+  double seconds = 0;                                ///< wall clock of the whole job
+  double matrixSeconds = 0;                          ///< dense: writing formfactors.bin (and .mtx)
 };
 
 /// \brief The settings a job runs with: the preset's, then the ones given, then each method's

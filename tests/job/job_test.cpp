@@ -196,8 +196,7 @@ TEST(Job, ALoadedSceneGivesTheFilesItsPathGives) {
   s.out = dir.path("loaded");
   const JobResult fromScene = runJob(std::move(scene), s, {}, loaded);
   for (const char* file : {"patches.csv", "surfaces.csv", "formfactors.bin"})
-    EXPECT_EQ(readFile(dir.path("by-path/") + file), readFile(dir.path("loaded/") + file))
-        << file;
+    EXPECT_EQ(readFile(dir.path("by-path/") + file), readFile(dir.path("loaded/") + file)) << file;
   EXPECT_EQ(byPath.report["load"], fromScene.report["load"]);
 }
 
