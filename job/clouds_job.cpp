@@ -62,8 +62,9 @@ CloudsJobResult runCloudsJob(const CloudsJobSettings& cmd) {
     constexpr double kMaxOpticalExtent = 1e5;
     if (!(depth <= kMaxOpticalExtent))
       throw InputError((scene ? cmd.scene + ": the medium's" : std::string("--extinction:")) +
-                       " extinction " + formatValue("%g", layer.majorant()) + " /m across a medium " +
-                       formatValue("%g", extent) + " m wide is an optical extent of " + formatValue("%g", depth) +
+                       " extinction " + formatValue("%g", layer.majorant()) +
+                       " /m across a medium " + formatValue("%g", extent) +
+                       " m wide is an optical extent of " + formatValue("%g", depth) +
                        ", and a path takes about that many tracking steps (the limit is " +
                        formatValue("%g", kMaxOpticalExtent) + "). Fix: give an extinction below " +
                        formatValue("%g", kMaxOpticalExtent / extent) +
@@ -172,19 +173,18 @@ CloudsJobResult runCloudsJob(const CloudsJobSettings& cmd) {
   }
   json& report = r.report;
   report = json{{"radkit", RADKIT_VERSION},
-              {"command", "clouds"},
-              {"settings", settings},
-              {"reference",
-               {{"seconds", reference.seconds},
-                {"paths", reference.paths},
-                {"paths_per_second", reference.paths / std::max(reference.seconds, 1e-9)},
-                {"relative_noise", noiseFloor}}},
-              {"realtime", table},
-              {"seconds", {{"layer", layerSeconds}}}};
+                {"command", "clouds"},
+                {"settings", settings},
+                {"reference",
+                 {{"seconds", reference.seconds},
+                  {"paths", reference.paths},
+                  {"paths_per_second", reference.paths / std::max(reference.seconds, 1e-9)},
+                  {"relative_noise", noiseFloor}}},
+                {"realtime", table},
+                {"seconds", {{"layer", layerSeconds}}}};
   writeJson(folder.path("report.json"), report);
   folder.commit();
   return r;
 }
-
 
 }  // namespace radkit

@@ -25,13 +25,13 @@ struct CloudsJobSettings {
   int width = 128, height = 72;
   int samples = 32;  ///< reference paths per pixel
   // Unset: the scene file's value, else the default beside it.
-  std::optional<double> sunElevationDeg;   ///< 40
-  std::optional<double> sunAzimuthDeg;     ///< 150, clockwise from north
+  std::optional<double> sunElevationDeg;     ///< 40
+  std::optional<double> sunAzimuthDeg;       ///< 150, clockwise from north
   std::optional<double> cameraElevationDeg;  ///< 25, looking north from the ground
-  std::optional<double> fovDeg;            ///< 70, vertical
-  double exposure = 0;  ///< 0: automatic
-  bool skyNee;          ///< reference: next-event estimation to the sky (CloudComparisonSettings)
-  std::uint64_t seed = 1;  ///< the samples', and the layer's noise without a scene file
+  std::optional<double> fovDeg;              ///< 70, vertical
+  double exposure = 0;                       ///< 0: automatic
+  bool skyNee;  ///< reference: next-event estimation to the sky (CloudComparisonSettings)
+  std::uint64_t seed = 1;      ///< the samples', and the layer's noise without a scene file
   media::MarchSettings march;  ///< the real-time model's steps and octaves
   std::string out = "out/clouds";
   CloudsJobSettings();

@@ -59,10 +59,12 @@ SkyJobResult runSkyJob(const SkyJobSettings& cmd) {
     throw std::invalid_argument("sky: projection \"" + cmd.projection +
                                 "\" is none of fisheye, panorama, camera, all");
   if (std::fabs(cmd.cameraElevationDeg) > 90)
-    throw std::invalid_argument("sky: camera elevation " + formatValue("%g", cmd.cameraElevationDeg) +
+    throw std::invalid_argument("sky: camera elevation " +
+                                formatValue("%g", cmd.cameraElevationDeg) +
                                 " is outside [-90, 90]");
   if (cmd.comparePaths == 1)
-    throw std::invalid_argument("sky: 1 reference path gives no standard error; give 0 or at least 2");
+    throw std::invalid_argument(
+        "sky: 1 reference path gives no standard error; give 0 or at least 2");
   SkyJobResult result;
   result.out = cmd.out;
   const auto start = std::chrono::steady_clock::now();
@@ -112,35 +114,36 @@ SkyJobResult runSkyJob(const SkyJobSettings& cmd) {
 
   const Vec3 zenith = air.skyRadiance(eye, {0, 0, 1}, sun, sky);
   const Vec3 towardSun = air.skyRadiance(eye, atmo::sunDirection(2, cmd.sunAzimuthDeg), sun, sky);
-  const Vec3 awayFromSun = air.skyRadiance(eye, atmo::sunDirection(2, cmd.sunAzimuthDeg + 180), sun, sky);
+  const Vec3 awayFromSun =
+      air.skyRadiance(eye, atmo::sunDirection(2, cmd.sunAzimuthDeg + 180), sun, sky);
   const Vec3 diffuse = atmo::modelHorizontalIrradiance(air, eye, sun, sky);
   const Vec3 direct = air.sunIrradiance(eye, sun) * std::max(0.0, sun.z);
   json& report = result.report;
   report = json{{"radkit", RADKIT_VERSION},
-              {"command", "sky"},
-              {"settings",
-               {{"sun_elevation_deg", cmd.sunElevationDeg},
-                {"sun_azimuth_deg", cmd.sunAzimuthDeg},
-                {"relative_density", cmd.relativeDensity},
-                {"altitude_m", cmd.altitude},
-                {"view_samples", sky.viewSamples},
-                {"light_samples", sky.lightSamples},
-                {"multiple_scattering", sky.multipleScattering},
-                {"size", cmd.size},
-                {"projection", cmd.projection},
-                {"camera_azimuth_deg", cmd.cameraAzimuthDeg},
-                {"camera_elevation_deg", cmd.cameraElevationDeg},
-                {"fov_deg", cmd.fovDeg},
-                {"seed", cmd.seed}}},
-              {"images", images},
-              {"radiance",
-               {{"zenith", vec3Json(zenith)},
-                {"horizon_toward_sun_2deg", vec3Json(towardSun)},
-                {"horizon_away_from_sun_2deg", vec3Json(awayFromSun)}}},
-              {"irradiance",
-               {{"diffuse_horizontal", vec3Json(diffuse)},
-                {"direct_horizontal", vec3Json(direct)},
-                {"direct_normal", vec3Json(air.sunIrradiance(eye, sun))}}}};
+                {"command", "sky"},
+                {"settings",
+                 {{"sun_elevation_deg", cmd.sunElevationDeg},
+                  {"sun_azimuth_deg", cmd.sunAzimuthDeg},
+                  {"relative_density", cmd.relativeDensity},
+                  {"altitude_m", cmd.altitude},
+                  {"view_samples", sky.viewSamples},
+                  {"light_samples", sky.lightSamples},
+                  {"multiple_scattering", sky.multipleScattering},
+                  {"size", cmd.size},
+                  {"projection", cmd.projection},
+                  {"camera_azimuth_deg", cmd.cameraAzimuthDeg},
+                  {"camera_elevation_deg", cmd.cameraElevationDeg},
+                  {"fov_deg", cmd.fovDeg},
+                  {"seed", cmd.seed}}},
+                {"images", images},
+                {"radiance",
+                 {{"zenith", vec3Json(zenith)},
+                  {"horizon_toward_sun_2deg", vec3Json(towardSun)},
+                  {"horizon_away_from_sun_2deg", vec3Json(awayFromSun)}}},
+                {"irradiance",
+                 {{"diffuse_horizontal", vec3Json(diffuse)},
+                  {"direct_horizontal", vec3Json(direct)},
+                  {"direct_normal", vec3Json(air.sunIrradiance(eye, sun))}}}};
   if (cmd.comparePaths > 0) {
     atmo::ComparisonSettings cs;
     cs.sunElevationsDeg = cmd.compareElevationsDeg;

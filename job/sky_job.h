@@ -23,9 +23,9 @@ struct SkyJobSettings {
   /// Which images: "fisheye", "panorama", "camera" or "all".
   std::string projection = "all";
   double cameraAzimuthDeg = 180, cameraElevationDeg = 20;  ///< the camera view's direction
-  double fovDeg = 90;    ///< the camera view's horizontal field of view
-  double exposure = 0;   ///< radiance multiplier before tone mapping; 0: automatic per image
-  bool exr = false;      ///< also each image as OpenEXR
+  double fovDeg = 90;   ///< the camera view's horizontal field of view
+  double exposure = 0;  ///< radiance multiplier before tone mapping; 0: automatic per image
+  bool exr = false;     ///< also each image as OpenEXR
   /// Reference paths per direction for the comparison with the path tracer; 0: none.
   long long comparePaths = 0;
   std::vector<double> compareElevationsDeg{2, 10, 30, 60, 90};

@@ -41,8 +41,7 @@ Camera terrainCamera(const terrain::TerrainSettings& s) {
 
 /// Both landscape images, their difference, and what each cost.
 json renderLandscapes(const TerrainJobSettings& cmd, const terrain::TerrainSettings& settings,
-                      OutputFolder& folder,
-                      const terrain::Heightfield& field) {
+                      OutputFolder& folder, const terrain::Heightfield& field) {
   terrain::LandscapeSettings ls = cmd.landscape;
   ls.sunElevationDeg = cmd.sunElevation, ls.sunAzimuthDeg = cmd.sunAzimuth;
   ls.seed = settings.fractal.seed;
@@ -171,25 +170,25 @@ TerrainJobResult runTerrainJob(const TerrainJobSettings& cmd) {
   const FractalSettings& f = s.fractal;
   json& report = result.report;
   report = json{{"radkit", RADKIT_VERSION},
-              {"command", "terrain"},
-              {"settings",
-               {{"type", cmd.type},
-                {"octaves", f.octaves},
-                {"lacunarity", f.lacunarity},
-                {"H", f.H},
-                {"gain", f.gain},
-                {"offset", f.offset},
-                {"seed", f.seed},
-                {"resolution", s.resolution},
-                {"size_m", s.size},
-                {"height_m", s.height},
-                {"feature_size_m", s.featureSize},
-                {"snow_line", s.snowLine},
-                {"rock_slope_deg", s.rockSlopeDeg},
-                {"format", cmd.format}}},
-              {"triangles", mesh.triangles.size()},
-              {"triangles_by_material", counts},
-              {"seconds", {{"generate", generateSeconds}}}};
+                {"command", "terrain"},
+                {"settings",
+                 {{"type", cmd.type},
+                  {"octaves", f.octaves},
+                  {"lacunarity", f.lacunarity},
+                  {"H", f.H},
+                  {"gain", f.gain},
+                  {"offset", f.offset},
+                  {"seed", f.seed},
+                  {"resolution", s.resolution},
+                  {"size_m", s.size},
+                  {"height_m", s.height},
+                  {"feature_size_m", s.featureSize},
+                  {"snow_line", s.snowLine},
+                  {"rock_slope_deg", s.rockSlopeDeg},
+                  {"format", cmd.format}}},
+                {"triangles", mesh.triangles.size()},
+                {"triangles_by_material", counts},
+                {"seconds", {{"generate", generateSeconds}}}};
   if (cmd.image) report["landscape"] = renderLandscapes(cmd, s, folder, field);
   writeJson(folder.path("report.json"), report);
   folder.commit();

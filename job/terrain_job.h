@@ -20,7 +20,7 @@ struct TerrainJobSettings {
   std::string sky = "physical";       ///< the scene's sky: physical, cie-overcast or uniform
   double sunElevation = 35, sunAzimuth = 150;  ///< degrees; azimuth clockwise from north
   int skySamples = 128, sunSamples = 16;       ///< the scene's sky and sun rays per patch
-  bool image = false;  ///< render the landscape both ways and compare
+  bool image = false;                          ///< render the landscape both ways and compare
   terrain::LandscapeSettings landscape;
   double exposure = 0;  ///< 0: automatic
   std::string out = "out/terrain";
