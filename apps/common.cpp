@@ -70,23 +70,6 @@ const CLI::Validator Unsigned = CLI::Validator(
     },
     "UINT >= 0");
 
-void checkOutputFile(const std::string& option, const std::string& path) {
-  namespace fs = std::filesystem;
-  if (path.empty()) throw InputError(option + " is empty. Fix: give a file name");
-  if (fs::is_directory(path))
-    throw InputError(option + " " + path + " is a folder. Fix: give a file name inside it, e.g. " +
-                     (fs::path(path) / "image.png").string());
-  try {
-    checkRegularOutput(option, path);
-  } catch (const std::runtime_error& e) {
-    throw InputError(e.what());
-  }
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent))
-    throw InputError(option + " " + path + ": folder " + parent.string() +
-                     " does not exist. Fix: create it or write elsewhere");
-}
-
 std::string defaultScenePath() {
   // The source tree's data/ first (a build run from anywhere), then ./data.
   std::filesystem::path p = std::filesystem::path(RADKIT_DATA_DIR) / "cornell-box.json";

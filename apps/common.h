@@ -10,6 +10,7 @@
 #include "geometry/scene.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
+#include "util/output_folder.h"
 
 namespace radkit::app {
 
@@ -33,10 +34,6 @@ extern const CLI::Validator FiniteNonNegative;
 CLI::Validator FiniteRange(double lo, double hi);
 /// A whole number >= 0 for unsigned options: CLI11 reads "-1" into an unsigned as 2^64 - 1.
 extern const CLI::Validator Unsigned;
-
-/// Refuses a file output (an image, a report) whose path is an existing folder or whose folder
-/// does not exist, before any work is done; throws InputError naming the option.
-void checkOutputFile(const std::string& option, const std::string& path);
 
 /// Adds SCENE (positional; `required` or defaulting to the Cornell box), --max-area/--patches,
 /// --units and --repair.

@@ -3,47 +3,8 @@
 #include <cstdio>
 
 #include "apps/common.h"
-#include "apps/console.h"
-#include "job/report.h"
 
 namespace radkit::app {
-
-void printHierarchicalSummary(const JobResult& result, double epsilon, bool photometric) {
-  const Scene& scene = result.scene;
-  const HierarchicalResult& r = *result.hierarchical;
-  const double total = result.seconds;
-  std::printf("\n");
-  printField("scene", scene.name + " (" + scene.file + ")");
-  printField("method", "hierarchical, epsilon " + fmt("%.3g", epsilon) + ", min area " +
-                           fmt("%.3g", r.minArea) + " " + scene.units + "^2");
-  printField("hierarchy", std::to_string(r.hierarchy->base().size()) + " input faces, " +
-                              std::to_string(r.hierarchy->size()) + " nodes, " +
-                              std::to_string(r.leaves.size()) + " leaves");
-  long long links = 0;
-  for (long long k : r.linksByKind) links += k;
-  printField("links", std::to_string(links) + " (" + std::to_string(r.linksByKind[0]) +
-                          " element-element), " + std::to_string(r.raysCast) + " rays");
-  if (r.daylight)
-    printField("daylight",
-               r.sky->typeName() + " sky" + (r.sky->hasSun() ? " and sun" : "") + ", " +
-                   std::to_string(r.daylight->rays) + " rays on " +
-                   (r.daylightPerLeaf
-                        ? std::to_string(r.daylightElements) + " elements, " +
-                              std::to_string(r.daylightSplits) + " split where it varies"
-                        : "the " + std::to_string(r.hierarchy->base().size()) + " input faces"));
-  printField("seconds", "hierarchy " + fmt("%.2f", r.seconds.hierarchy) + ", rays " +
-                            fmt("%.2f", r.seconds.rayScene) +
-                            (r.daylight ? ", daylight " + fmt("%.2f", r.seconds.daylight) : "") +
-                            ", links " + fmt("%.2f", r.seconds.refine) + ", solve " +
-                            fmt("%.2f", r.seconds.solve) + ", total " + fmt("%.2f", total));
-  printField(r.solve.solver, std::to_string(r.solve.iterations) + " sweeps, change " +
-                                 fmt("%.2e", r.solve.residual) +
-                                 (r.solve.converged ? "" : "  NOT CONVERGED: " + r.solve.reason));
-  printEnergyAndSurfaces(r.energy, r.surfaces, photometric,
-                         " ± " + fmt("%.2g", luminance(r.escapedStandardError)));
-  printField("peak memory", fmt("%.0f MiB", peakMemoryBytes() / 1048576.0));
-  printField("wrote", result.out);
-}
 
 void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& o) {
   o.methodOption =

@@ -1,12 +1,11 @@
-// `radkit run --method hierarchical`: the options of hierarchical radiosity with clustering
-// and the summary it prints; the job itself is the library's (job/job.h).
+// `radkit run --method hierarchical`: the options of hierarchical radiosity with clustering;
+// the job itself is the library's (job/job.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 
 #include "hierarchy/hierarchical.h"
-#include "job/job.h"
 
 namespace radkit::app {
 
@@ -26,8 +25,5 @@ void addHierarchicalOptions(CLI::App& run, HierarchicalOptions& options);
 
 /// Parses --gather and --daylight-per into the settings; throws CLI::ValidationError.
 void finishHierarchicalOptions(HierarchicalOptions& options);
-
-/// The console summary of a hierarchical job.
-void printHierarchicalSummary(const JobResult& result, double epsilon, bool photometric);
 
 }  // namespace radkit::app

@@ -5,6 +5,7 @@
 #include "apps/common.h"
 #include "apps/console.h"
 #include "apps/hierarchical_command.h"
+#include "apps/job_summary.h"
 #include "apps/options.h"
 #include "job/job.h"
 #include "job/report.h"
@@ -78,44 +79,6 @@ JobSettings jobSettings(const PipelineCommand& cmd) {
   return s;
 }
 
-void printSummary(const JobResult& result, const PipelineCommand& cmd) {
-  const Scene& scene = result.scene;
-  const PipelineResult& r = *result.dense;
-  const FormFactorDiagnostics& d = r.formFactors->diagnostics;
-  std::printf("\n");
-  printField("scene", scene.name + " (" + scene.file + ")");
-  printField("patches", std::to_string(r.mesh.size()));
-  printField("form factors", d.method + ", " + d.storage + ", " + std::to_string(d.raysCast) +
-                                 " rays (" + std::to_string(d.raysSaved) + " saved), " +
-                                 fmt("%.3g rays/s", d.raysPerSecond));
-  printField("row sums", fmt("%.6f", d.rowSumMin) + " .. " + fmt("%.6f", d.rowSumMax) +
-                             ", reciprocity error " + fmt("%.2e", d.maxRelativeReciprocityError) +
-                             (r.formFactorNoise > 0 ? ", gathered-light noise " +
-                                                          fmt("%.2g %%", 100 * r.formFactorNoise)
-                                                    : ""));
-  printField("seconds",
-             "mesh " + fmt("%.2f", r.seconds.mesh) + ", rays " + fmt("%.2f", r.seconds.rayScene) +
-                 ", form factors " + fmt("%.2f", r.seconds.formFactors) +
-                 (r.daylight ? ", daylight " + fmt("%.2f", r.seconds.daylight) : "") + ", solve " +
-                 fmt("%.2f", r.seconds.solve) + ", F files " + fmt("%.2f", result.matrixSeconds) +
-                 (cmd.writeMatrix ? " (with .mtx)" : "") + ", total " +
-                 fmt("%.2f", result.seconds));
-  if (r.daylight)
-    printField("daylight", r.sky->typeName() + " sky" + (r.sky->hasSun() ? " and sun" : "") +
-                               ", open horizontal " +
-                               fmt("%.4g lux", kLumensPerWatt * luminance(r.sky->horizontalSky() +
-                                                                          r.sky->horizontalSun())) +
-                               ", " + std::to_string(r.daylight->rays) + " rays, sky noise " +
-                               fmt("%.2g %%", 100 * r.daylight->skyNoise));
-  for (const SolveResult& s : r.solves)
-    printField(s.solver, std::to_string(s.iterations) + " iterations, residual " +
-                             fmt("%.2e", s.checkedResidual) + ", " + fmt("%.3f s", s.seconds) +
-                             (s.converged ? "" : "  NOT CONVERGED: " + s.reason));
-  if (!r.solves.empty()) printEnergyAndSurfaces(r.energy, r.surfaces, cmd.photometric);
-  printField("peak memory", fmt("%.0f MiB", peakMemoryBytes() / 1048576.0));
-  printField("wrote", result.out);
-}
-
 /// The option combinations the library would refuse, refused in the options' own words.
 void checkCombinations(PipelineCommand& cmd) {
   if (!cmd.preset.empty() && presetIsHierarchical(cmd.preset)) {
@@ -175,7 +138,7 @@ JobResult runCommand(PipelineCommand& cmd) {
     if (result.hierarchical)
       printHierarchicalSummary(result, cmd.hierarchical.settings.epsilon, cmd.photometric);
     else
-      printSummary(result, cmd);
+      printDenseSummary(result, cmd.writeMatrix, cmd.photometric);
     return result;
   } catch (...) {
     progress.finish();

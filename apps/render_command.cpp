@@ -1,27 +1,15 @@
 // radkit render: one camera image of a scene by one shading mode (radiosity, two-pass Phong
 // or Cook-Torrance, path tracing, photon mapping), as PNG (tone mapped) or PFM (linear radiance).
-#include <algorithm>
-#include <cctype>
-#include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <memory>
-#include <optional>
-
-#include <nlohmann/json.hpp>
+#include <string>
 
 #include "apps/common.h"
 #include "apps/console.h"
 #include "apps/options.h"
-#include "geometry/scene_loader.h"
 #include "integrators/integrator.h"
-#include "job/report.h"
-#include "render/camera.h"
-#include "render/exr_io.h"
+#include "job/render_job.h"
 #include "render/hdr_io.h"
-#include "render/image_comparison.h"
-#include "util/output_folder.h"
 #include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
 
 namespace radkit::app {
@@ -47,13 +35,22 @@ struct RenderCommand {
   SmoothSettings smoothing;
 };
 
-/// The image of the chosen integrator (integrators/integrator.h), from the command's flags.
-RenderResult renderMode(const RenderCommand& cmd, const Scene& scene, int width, int height) {
-  RenderSettings s;
+/// The render job the command's flags describe (integrators/integrator.h's settings).
+RenderJobSettings jobSettings(const RenderCommand& cmd, int width, int height) {
+  RenderJobSettings job;
+  job.scene = cmd.mesh.scene.empty() ? defaultScenePath() : cmd.mesh.scene;
+  job.load = cmd.mesh.load;
+  job.camera = cmd.camera;
+  job.shading = cmd.shading;
+  job.out = cmd.out;
+  job.exposure = cmd.exposure;
+  job.tonemap = cmd.tonemap == "filmic" ? ToneCurve::Filmic : ToneCurve::Srgb;
+  job.references = cmd.references;
+  job.report = cmd.report;
+  RenderSettings& s = job.render;
   s.film.width = width, s.film.height = height, s.film.samplesPerPixel = cmd.spp;
   s.film.seed = cmd.ff.settings.seed;
   s.film.sampler = parseSamplerType(cmd.sampler);
-  s.camera = scene.camera ? *scene.camera : automaticCamera(scene);
   s.bsdf.masking = parseMaskingShadowing(cmd.masking);
   s.bsdf.compensated = cmd.compensated;
   s.light = parseLightSampling(cmd.lightSampling);
@@ -69,81 +66,7 @@ RenderResult renderMode(const RenderCommand& cmd, const Scene& scene, int width,
   s.smooth = cmd.smooth;
   s.smoothing = cmd.smoothing;
   s.guided = !cmd.unguided;
-  Progress progress;
-  s.log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
-  s.warning = [&](const std::string& w) {
-    progress.finish();
-    std::fprintf(stderr, "radkit: warning: %s\n", w.c_str());
-  };
-  try {
-    RenderResult r = renderImage(cmd.shading, scene, s);
-    progress.finish();
-    return r;
-  } catch (const TooManyPatches&) {
-    MeshOptions options = cmd.mesh;
-    if (options.maxArea <= 0 && options.patches <= 0) options.patches = kDefaultRenderPatches;
-    tooManyPatches(scene, options);
-  }
-}
-
-/// Region errors against the reference renders: printed, and written as JSON with --report.
-void compareWithReference(const RenderCommand& cmd, const Scene& scene, const LoadReport& loaded,
-                          const RenderResult& mode, double seconds,
-                          const std::vector<RadianceImage>& refs) {
-  const RadianceImage& img = mode.image;
-  const std::vector<int>& surfaces = mode.surfaces;
-  const std::vector<std::string>& warnings = mode.warnings;
-  std::vector<std::string> names;
-  for (const Surface& s : scene.surfaces) names.push_back(s.name);
-  names.push_back("edges");
-  const std::vector<int> region =
-      surfaceRegions(surfaces, img.width, img.height, int(names.size()) - 1);
-  // Also the lit surfaces alone, away from edges: emitters and aliased edges swamp "all".
-  std::vector<int> lit(region.size(), -1);
-  for (std::size_t k = 0; k < region.size(); ++k)
-    if (region[k] >= 0 && region[k] < int(scene.surfaces.size()) &&
-        !scene.materials[scene.surfaces[region[k]].material].emits())
-      lit[k] = 0;
-  std::vector<RegionError> errors;
-  try {
-    errors = compareToReference(img, refs, region, names);
-    errors.insert(errors.begin() + 1, compareToReference(img, refs, lit, {"surfaces"})[1]);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(std::string(e.what()) + ". Fix: render the image at the reference's --size");
-  }
-  nlohmann::json rows = nlohmann::json::array();
-  for (const RegionError& e : errors) {
-    if (e.pixels == 0) continue;
-    char line[160];
-    std::snprintf(line, sizeof line,
-                  "%6.2f %% (raw %.4g, reference noise %.4g, mean %.4g W/m²/sr, %d px)",
-                  100 * e.relative(), e.rawRmse, e.referenceNoise, e.referenceMean, e.pixels);
-    printField("rmse " + e.name, line);
-    rows.push_back({{"region", e.name},
-                    {"pixels", e.pixels},
-                    {"reference_mean", e.referenceMean},
-                    {"raw_rmse", e.rawRmse},
-                    {"reference_noise", e.referenceNoise},
-                    {"rmse", e.rmse},
-                    {"relative_rmse", e.relative()}});
-  }
-  if (refs.size() < 2)
-    printField("note", "one reference: its own noise is not subtracted (give --reference twice)");
-  if (cmd.report.empty()) return;
-  const nlohmann::json j{{"shading", cmd.shading},
-                         {"load", loadJson(loaded)},
-                         {"warnings", warnings},
-                         {"smooth", cmd.smooth},
-                         {"sampler", cmd.sampler},
-                         {"light_sampling", cmd.lightSampling},
-                         {"spp", cmd.spp},
-                         {"width", img.width},
-                         {"height", img.height},
-                         {"seconds", seconds},
-                         {"references", cmd.references},
-                         {"regions", rows}};
-  writeJson(cmd.report, j);
-  printField("report", cmd.report);
+  return job;
 }
 
 void runRender(RenderCommand& cmd) {
@@ -151,58 +74,41 @@ void runRender(RenderCommand& cmd) {
   cmd.solver.finish();
   int width = 0, height = 0;
   viewer::parseSize(cmd.size, width, height, 1, 16384);  // tests render 8x8 images
-  // Refused before the render, which may take minutes, rather than when it is written.
-  checkOutputFile("--out", cmd.out);
-  if (!cmd.report.empty()) {
-    if (cmd.references.empty())
-      throw InputError("--report " + cmd.report +
-                       " needs --reference: the report holds the errors against it");
-    checkOutputFile("--report", cmd.report);
+  RenderJobSettings job = jobSettings(cmd, width, height);
+  Progress progress;
+  PipelineLog log;
+  log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
+  log.message = [&](const std::string& line) {
+    progress.finish();
+    printLogLine(line);
+  };
+  job.render.log.progress = log.progress;
+  job.render.warning = [&](const std::string& w) { log.message("warning: " + w); };
+  RenderJobResult r;
+  try {
+    r = runRenderJob(job, log);
+  } catch (...) {
+    progress.finish();
+    throw;
   }
-  std::string ext = std::filesystem::path(cmd.out).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".png" && ext != ".pfm" && ext != ".exr")
-    throw InputError("--out " + cmd.out + ": '" + ext +
-                     "' is not an image format render writes (PNG bytes under "
-                     "another name would mislead). Fix: end the name in .png (tone mapped), .exr "
-                     "or .pfm (linear "
-                     "radiance, W/m²/sr)");
-  // References are read and their size checked first: a mismatch found after the render left
-  // the image behind.
-  std::vector<RadianceImage> refs;
-  for (const std::string& f : cmd.references) {
-    refs.push_back(readPfm(f));
-    if (refs.back().width != width || refs.back().height != height)
-      throw InputError("--reference " + f + " is " + std::to_string(refs.back().width) + "x" +
-                       std::to_string(refs.back().height) + ", the image --size " +
-                       std::to_string(width) + "x" + std::to_string(height) +
-                       ". Fix: render at the reference's --size");
-  }
-  if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
-  LoadReport loaded;
-  const Scene scene = loadSceneReporting(cmd.mesh.scene, cmd.mesh.load, &loaded, cmd.camera);
-  const auto start = std::chrono::steady_clock::now();
-  RenderResult mode = renderMode(cmd, scene, width, height);
-  const RadianceImage& img = mode.image;
-  const std::string& what = mode.what;
-  const std::vector<bool>& emits = mode.emits;
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const double exposure = cmd.exposure > 0 ? cmd.exposure : autoExposure(img, emits);
-  if (ext == ".pfm")
-    writePfm(cmd.out, img);
-  else if (ext == ".exr")
-    writeExr(cmd.out, img);
-  else
-    writePng(cmd.out, toneMapCurve(img, exposure,
-                                   cmd.tonemap == "filmic" ? ToneCurve::Filmic : ToneCurve::Srgb));
-  printField("scene", scene.name + " (" + scene.file + ")");
-  printField("shading", cmd.shading + ": " + what);
-  if (ext == ".png") printField("exposure", std::to_string(exposure));
+  progress.finish();
+  printField("scene", r.sceneName + " (" + r.sceneFile + ")");
+  printField("shading", cmd.shading + ": " + r.mode.what);
+  if (r.format == "png") printField("exposure", std::to_string(r.exposure));
   printField("wrote", cmd.out);
-  printField("seconds", std::to_string(seconds));
-  if (!cmd.references.empty()) compareWithReference(cmd, scene, loaded, mode, seconds, refs);
+  printField("seconds", std::to_string(r.seconds));
+  if (cmd.references.empty()) return;
+  for (const RegionError& e : r.errors) {
+    if (e.pixels == 0) continue;
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "%6.2f %% (raw %.4g, reference noise %.4g, mean %.4g W/m²/sr, %d px)",
+                  100 * e.relative(), e.rawRmse, e.referenceNoise, e.referenceMean, e.pixels);
+    printField("rmse " + e.name, line);
+  }
+  if (cmd.references.size() < 2)
+    printField("note", "one reference: its own noise is not subtracted (give --reference twice)");
+  if (!cmd.report.empty()) printField("report", cmd.report);
 }
 
 }  // namespace

@@ -176,8 +176,8 @@ void checkCompareFolder(const std::string& folder, const Scene& scene, const Pat
     if (theirs[s].name != scene.surfaces[s].name ||
         !(std::fabs(theirs[s].area - area) <= 1e-3 * area))
       throw InputError("--compare " + folder + ": its surface " + std::to_string(s) + " is \"" +
-                       theirs[s].name + "\" of area " + formatValue("%.6g", theirs[s].area) + " m²" +
-                       ", this scene's \"" + scene.surfaces[s].name + "\" of area " +
+                       theirs[s].name + "\" of area " + formatValue("%.6g", theirs[s].area) +
+                       " m²" + ", this scene's \"" + scene.surfaces[s].name + "\" of area " +
                        formatValue("%.6g", area) + " m² (the scene changed since that run)" + fix);
   }
 }

@@ -26,7 +26,7 @@ constexpr int kDefaultPhotonPatches = 1000;
 struct PhotonsJobSettings {
   std::string scene;
   LoadOptions load;
-  std::string camera;  ///< replaces the scene's (JobSettings::camera's form)
+  std::string camera;                       ///< replaces the scene's (JobSettings::camera's form)
   std::optional<SubdivisionSettings> mesh;  ///< unset: kDefaultPhotonPatches patches
   PhotonSettings settings;
   std::string view = "gather";  ///< photonmap.png: "gather" (final gathering) or "map"
@@ -44,8 +44,8 @@ struct PhotonsJobSettings {
 
 struct PhotonsJobResult {
   std::string out;
-  nlohmann::json report;  ///< report.json as written
-  std::vector<SurfaceEstimate> surfaces;    ///< the photon estimate per surface
+  nlohmann::json report;                      ///< report.json as written
+  std::vector<SurfaceEstimate> surfaces;      ///< the photon estimate per surface
   std::vector<SurfaceComparison> comparison;  ///< against radiosity, when compared
 };
 

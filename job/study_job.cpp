@@ -172,10 +172,11 @@ void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& s
     << "**Reference:** " << ref.patches << " patches, " << ref.config.settings.formFactors.method
     << " K = " << ref.config.settings.formFactors.samples << ", "
     << ref.config.settings.solvers.front().name << " to "
-    << formatValue("%.0e", ref.config.settings.stopping.tolerance) << " (" << formatValue("%.1f", ref.totalSeconds)
-    << " s, F " << mib(ref.formFactorBytes) << " MiB, peak " << mib(ref.peakBytes)
-    << " MiB). Its own error, estimated: surface " << formatValue("%.2e", r.reference.surfaceErrorEstimate)
-    << ", patch " << formatValue("%.2e", r.reference.patchErrorEstimate) << ". " << r.reference.errorMethod
+    << formatValue("%.0e", ref.config.settings.stopping.tolerance) << " ("
+    << formatValue("%.1f", ref.totalSeconds) << " s, F " << mib(ref.formFactorBytes)
+    << " MiB, peak " << mib(ref.peakBytes) << " MiB). Its own error, estimated: surface "
+    << formatValue("%.2e", r.reference.surfaceErrorEstimate) << ", patch "
+    << formatValue("%.2e", r.reference.patchErrorEstimate) << ". " << r.reference.errorMethod
     << "\n\n"
     << "Errors are relative to the reference (experiments/study.h): surface = max over surfaces "
        "and "
@@ -190,12 +191,12 @@ void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& s
   for (const StudyRow& w : r.rows) {
     if (!w.ran) continue;
     o << "| " << studyKnobName(w.config.knob) << " | " << w.config.label() << " | " << w.patches
-      << " | " << formatValue("%.2f", w.seconds.mesh) << " | " << formatValue("%.2f", w.seconds.formFactors)
-      << " | " << formatValue("%.3f", w.seconds.solve) << " | " << formatValue("%.2f", w.totalSeconds) << " | "
-      << mib(w.formFactorBytes) << " | " << mib(w.peakBytes) << " | " << w.iterations << " | "
-      << formatValue("%.2e", w.surfaceError) << " | " << formatValue("%.2e", w.patchError) << " | "
-      << formatValue("%.2e", w.fieldError) << " | " << (w.paretoSurface ? "s" : "")
-      << (w.paretoPatch ? "p" : "") << " |\n";
+      << " | " << formatValue("%.2f", w.seconds.mesh) << " | "
+      << formatValue("%.2f", w.seconds.formFactors) << " | " << formatValue("%.3f", w.seconds.solve)
+      << " | " << formatValue("%.2f", w.totalSeconds) << " | " << mib(w.formFactorBytes) << " | "
+      << mib(w.peakBytes) << " | " << w.iterations << " | " << formatValue("%.2e", w.surfaceError)
+      << " | " << formatValue("%.2e", w.patchError) << " | " << formatValue("%.2e", w.fieldError)
+      << " | " << (w.paretoSurface ? "s" : "") << (w.paretoPatch ? "p" : "") << " |\n";
   }
   o << "\nSkipped (the planner's estimate did not fit the remaining budget):\n\n";
   for (const StudyRow& w : r.rows)
@@ -207,7 +208,8 @@ void writeMarkdown(const std::string& path, const StudyResult& r, const Scene& s
     n.push_back(w->patches), ff.push_back(w->seconds.formFactors), pe.push_back(w->patchError);
   // A fit needs two rungs with positive values; NaN says it had fewer.
   const auto exponent = [](double e) {
-    return std::isnan(e) ? std::string("n/a (fewer than two rungs to fit)") : "N^" + formatValue("%.2f", e);
+    return std::isnan(e) ? std::string("n/a (fewer than two rungs to fit)")
+                         : "N^" + formatValue("%.2f", e);
   };
   o << "\nMesh ladder fits: form-factor seconds ∝ " << exponent(fitExponent(n, ff))
     << ", patch error ∝ " << exponent(fitExponent(n, pe)) << ".\n";

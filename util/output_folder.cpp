@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "util/errors.h"
+
 namespace radkit {
 
 namespace fs = std::filesystem;
@@ -238,6 +240,22 @@ void writeFileStreaming(const std::string& given, const std::function<void(std::
 
 void writeFileAtomically(const std::string& path, const std::string& text) {
   writeFileStreaming(path, [&](std::ostream& out) { out << text; });
+}
+
+void checkOutputFile(const std::string& option, const std::string& path) {
+  if (path.empty()) throw InputError(option + " is empty. Fix: give a file name");
+  if (fs::is_directory(path))
+    throw InputError(option + " " + path + " is a folder. Fix: give a file name inside it, e.g. " +
+                     (fs::path(path) / "image.png").string());
+  try {
+    checkRegularOutput(option, path);
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw InputError(option + " " + path + ": folder " + parent.string() +
+                     " does not exist. Fix: create it or write elsewhere");
 }
 
 }  // namespace radkit

@@ -51,6 +51,11 @@ void registerOutputFile(const std::string& path);
 /// temporary file and renaming it onto such a path would replace the device node or block.
 void checkRegularOutput(const std::string& option, const std::string& path);
 
+/// Refuses a file output (an image, a report) whose path is empty, an existing folder, not a
+/// regular file, or in a folder that does not exist, before any work is done; throws InputError
+/// naming the option.
+void checkOutputFile(const std::string& option, const std::string& path);
+
 /// Writes `text` to `path` through a temporary file in the same folder and a rename.
 void writeFileAtomically(const std::string& path, const std::string& text);
 
