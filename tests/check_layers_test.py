@@ -36,7 +36,7 @@ def main():
         (tree / ".clang-tidy").write_text(tidy)
         bad = check("--root", str(tree))
         assert bad.returncode == 1, bad.stdout
-        assert "util/bad.h:2: includes apps/ (floor 8) from util/ (floor 0)" in bad.stdout, bad.stdout
+        assert "util/bad.h:2: includes apps/ (floor 9) from util/ (floor 0)" in bad.stdout, bad.stdout
         assert "bsdf/sideways.cpp:2: includes solvers/ (floor 1) from bsdf/ (floor 1)" in bad.stdout, bad.stdout
         assert ".clang-tidy: HeaderFilterRegex does not name python/" in bad.stdout, bad.stdout
         assert "3 problems" in bad.stdout, bad.stdout
