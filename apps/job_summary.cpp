@@ -29,8 +29,7 @@ void printDenseSummary(const JobResult& result, bool writeMatrix, bool photometr
                  ", form factors " + fmt("%.2f", r.seconds.formFactors) +
                  (r.daylight ? ", daylight " + fmt("%.2f", r.seconds.daylight) : "") + ", solve " +
                  fmt("%.2f", r.seconds.solve) + ", F files " + fmt("%.2f", result.matrixSeconds) +
-                 (writeMatrix ? " (with .mtx)" : "") + ", total " +
-                 fmt("%.2f", result.seconds));
+                 (writeMatrix ? " (with .mtx)" : "") + ", total " + fmt("%.2f", result.seconds));
   if (r.daylight)
     printField("daylight", r.sky->typeName() + " sky" + (r.sky->hasSun() ? " and sun" : "") +
                                ", open horizontal " +

@@ -59,20 +59,19 @@ void writeReport(const RenderJobSettings& s, const LoadReport& loaded, const Ren
                     {"relative_rmse", e.relative()}});
   }
   const FilmSettings& film = s.render.film;
-  const nlohmann::json j{{"shading", s.shading},
-                         {"load", loadJson(loaded)},
-                         {"warnings", r.mode.warnings},
-                         {"smooth", s.render.smooth},
-                         {"sampler", samplerName(film.sampler)},
-                         {"light_sampling", s.render.light == LightSampling::SolidAngle
-                                                ? "solid-angle"
-                                                : "area"},
-                         {"spp", film.samplesPerPixel},
-                         {"width", r.mode.image.width},
-                         {"height", r.mode.image.height},
-                         {"seconds", r.seconds},
-                         {"references", s.references},
-                         {"regions", rows}};
+  const nlohmann::json j{
+      {"shading", s.shading},
+      {"load", loadJson(loaded)},
+      {"warnings", r.mode.warnings},
+      {"smooth", s.render.smooth},
+      {"sampler", samplerName(film.sampler)},
+      {"light_sampling", s.render.light == LightSampling::SolidAngle ? "solid-angle" : "area"},
+      {"spp", film.samplesPerPixel},
+      {"width", r.mode.image.width},
+      {"height", r.mode.image.height},
+      {"seconds", r.seconds},
+      {"references", s.references},
+      {"regions", rows}};
   writeJson(s.report, j);
 }
 

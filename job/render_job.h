@@ -22,9 +22,9 @@ struct RenderJobSettings {
   /// the scene from its most front-facing side (automaticCamera).
   std::string camera;
   std::string shading = "path-trace";  ///< an integratorRegistry() name
-  RenderSettings render;  ///< its camera is the job's (above)
-  std::string out;        ///< .png, .pfm or .exr
-  double exposure = 0;    ///< PNG: radiance multiplier before tone mapping; 0: automatic
+  RenderSettings render;               ///< its camera is the job's (above)
+  std::string out;                     ///< .png, .pfm or .exr
+  double exposure = 0;  ///< PNG: radiance multiplier before tone mapping; 0: automatic
   ToneCurve tonemap = ToneCurve::Srgb;
   /// Reference renders (PFM) of the same size: each region's error against their mean, their
   /// own noise subtracted when there are two or more.
@@ -35,9 +35,9 @@ struct RenderJobSettings {
 struct RenderJobResult {
   std::string sceneName, sceneFile;
   RenderResult mode;
-  double seconds = 0;   ///< the render's
-  std::string format;   ///< of the file written: "png", "pfm" or "exr"
-  double exposure = 0;  ///< the PNG's
+  double seconds = 0;               ///< the render's
+  std::string format;               ///< of the file written: "png", "pfm" or "exr"
+  double exposure = 0;              ///< the PNG's
   std::vector<RegionError> errors;  ///< against the references: all, surfaces, each surface, edges
 };
 

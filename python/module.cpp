@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "atmosphere/atmosphere.h"
+#include "bsdf/bsdf.h"
 #include "geometry/patch_mesh.h"
 #include "geometry/ray_scene.h"
 #include "geometry/scene.h"
@@ -28,7 +30,10 @@
 #include "geometry/subdivision.h"
 #include "hierarchy/hierarchical.h"
 #include "integrators/integrator.h"
+#include "job/clouds_job.h"
 #include "job/job.h"
+#include "job/sky_job.h"
+#include "job/terrain_job.h"
 #include "photon/estimate.h"
 #include "photon/image.h"
 #include "photon/map.h"
@@ -879,6 +884,136 @@ std::vector<Vec3> toPoints(const Array& a, const char* what) {
   return v;
 }
 
+// ---- materials, the sky and outdoor jobs ----
+
+/// A plugin's parameters for Python: the registry's "key=value, key=r g b" text, or a dict of
+/// numbers, three-number sequences (rgb) and texts, turned into that text so both forms are
+/// read, and refused, by the same parser.
+Params pluginParams(const py::object& params, const std::string& what) {
+  if (params.is_none()) return {};
+  if (py::isinstance<py::str>(params)) return Params::parse(params.cast<std::string>());
+  if (!py::isinstance<py::dict>(params))
+    throw py::type_error(what + " params: expected text \"key=value, ...\" or a dict");
+  std::string text;
+  for (const auto& [k, v] : params.cast<py::dict>()) {
+    const std::string key = py::str(k).cast<std::string>();
+    std::string value;
+    if (py::isinstance<py::str>(v)) {
+      value = v.cast<std::string>();
+    } else if (py::isinstance<py::sequence>(v)) {
+      for (const py::handle& x : v.cast<py::sequence>())
+        value += (value.empty() ? "" : " ") +
+                 py::repr(py::float_(py::reinterpret_borrow<py::object>(x))).cast<std::string>();
+    } else {
+      value = py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>();
+    }
+    if (key.find_first_of(",=") != std::string::npos || value.find(',') != std::string::npos)
+      throw py::value_error(what + " params: '" + key + "=" + value +
+                            "' holds a ',' or '=' the text form would split");
+    text += (text.empty() ? "" : ", ") + key + "=" + value;
+  }
+  return Params::parse(text);
+}
+
+/// A BSDF of the registry, evaluated on arrays of local directions (+z the front normal).
+struct PyBsdf {
+  std::shared_ptr<const Bsdf> bsdf;
+  std::string name;
+};
+
+PyBsdf makeBsdfPy(const std::string& name, const py::object& params) {
+  return {
+      std::shared_ptr<const Bsdf>(makeBsdf(name, pluginParams(params, "bsdf \"" + name + "\""))),
+      name};
+}
+
+/// Rows of wo and wi, one of them possibly a single (3,) direction for every row.
+std::pair<std::vector<Vec3>, std::vector<Vec3>> directionPairs(const Array& wo, const Array& wi) {
+  std::vector<Vec3> o = toPoints(wo, "wo"), i = toPoints(wi, "wi");
+  if (o.size() == 1 && i.size() > 1) o.assign(i.size(), o.front());
+  if (i.size() == 1 && o.size() > 1) i.assign(o.size(), i.front());
+  if (o.size() != i.size())
+    throw py::value_error("wo and wi: " + std::to_string(o.size()) + " and " +
+                          std::to_string(i.size()) + " rows. Fix: the same count, or one (3,)");
+  for (std::vector<Vec3>* v : {&o, &i})
+    for (Vec3& d : *v) {
+      if (!(length(d) > 0)) throw py::value_error("wo, wi: a direction of length 0");
+      d = normalize(d);
+    }
+  return {o, i};
+}
+
+Array bsdfEvalPy(const PyBsdf& b, const Array& wo, const Array& wi) {
+  const auto [o, i] = directionPairs(wo, wi);
+  std::vector<Vec3> f(o.size());
+  for (std::size_t k = 0; k < o.size(); ++k) f[k] = b.bsdf->eval(o[k], i[k]);
+  return vec3Array(f);
+}
+
+Array bsdfPdfPy(const PyBsdf& b, const Array& wo, const Array& wi) {
+  const auto [o, i] = directionPairs(wo, wi);
+  Array pdf{py::ssize_t(o.size())};
+  for (std::size_t k = 0; k < o.size(); ++k) pdf.mutable_at(k) = b.bsdf->pdf(o[k], i[k]);
+  return pdf;
+}
+
+/// Samples wi for each wo from (n, 3) uniform numbers (the lobe, then the direction); a lost
+/// sample has weight and pdf 0.
+py::dict bsdfSamplePy(const PyBsdf& b, const Array& wo, const Array& u) {
+  if (u.ndim() != 2 || u.shape(1) != 3) throw py::value_error("u: expected shape (n, 3)");
+  const std::size_t n = std::size_t(u.shape(0));
+  std::vector<Vec3> o = toPoints(wo, "wo");
+  if (o.size() == 1) o.assign(n, o.front());
+  if (o.size() != n) throw py::value_error("wo and u: different row counts");
+  std::vector<Vec3> wi(n), weight(n);
+  Array pdf{py::ssize_t(n)};
+  py::array_t<bool> delta{py::ssize_t(n)};
+  auto um = u.unchecked<2>();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::optional<BsdfSample> s =
+        b.bsdf->sample(normalize(o[k]), um(k, 0), um(k, 1), um(k, 2));
+    pdf.mutable_at(k) = s ? s->pdf : 0.0;
+    delta.mutable_at(k) = s && s->delta;
+    if (s) wi[k] = s->wi, weight[k] = s->weight;
+  }
+  py::dict d;
+  d["wi"] = vec3Array(wi), d["weight"] = vec3Array(weight), d["pdf"] = pdf, d["delta"] = delta;
+  return d;
+}
+
+/// The physical sky's radiance (atmosphere/) toward directions in the observer's frame
+/// (x east, y north, z up), as radkit sky computes every pixel.
+Array skyRadiancePy(const Array& directions, double elevation, double azimuth, double altitude,
+                    double density, int viewSamples, int lightSamples, bool multiple) {
+  if (!(density > 0) || !(altitude >= 0) || viewSamples < 1 || lightSamples < 1)
+    throw py::value_error("sky_radiance: density > 0, altitude >= 0 and samples >= 1");
+  const std::vector<Vec3> dirs = toPoints(directions, "directions");
+  atmosphere::AtmosphereParameters parameters;
+  parameters.relativeDensity = density;
+  std::vector<Vec3> radiance(dirs.size());
+  {
+    py::gil_scoped_release release;
+    const atmosphere::Atmosphere air(parameters);
+    atmosphere::SkySettings sky;
+    sky.viewSamples = viewSamples, sky.lightSamples = lightSamples;
+    sky.multipleScattering = multiple;
+    const Vec3 sun = atmosphere::sunDirection(elevation, azimuth);
+    const Vec3 eye = air.pointAtAltitude(altitude);
+    tbb::parallel_for(std::size_t(0), dirs.size(), [&](std::size_t k) {
+      radiance[k] =
+          length(dirs[k]) > 0 ? air.skyRadiance(eye, normalize(dirs[k]), sun, sky) : Vec3{};
+    });
+  }
+  return vec3Array(radiance);
+}
+
+py::dict reportDict(const std::string& out, const nlohmann::json& report) {
+  py::dict d;
+  d["out"] = out;
+  d["report"] = jsonToPython(report);
+  return d;
+}
+
 py::dict photonIrradiancePy(const PyPhotonMap& pm, const Array& points, const Array& normals, int k,
                             const std::string& filterName) {
   if (k < 2) throw py::value_error("irradiance: k must be >= 2 (the k-th photon has weight 0)");
@@ -1201,6 +1336,101 @@ PYBIND11_MODULE(radkit, mod) {
       "lines the command line prints; warnings are also raised as Python warnings), mesh (the "
       "patches, or the hierarchy's leaves) and radiosity (n, 3). scene: a path or a Scene; "
       "areas in m^2; None leaves a setting to the preset or the method");
+  py::class_<PyBsdf>(mod, "Bsdf",
+                     "A BSDF of the registry (bsdf_names()) on local directions: +z is the "
+                     "surface's front normal, wo toward the viewer, wi toward the light")
+      .def(py::init(&makeBsdfPy), py::arg("name"), py::arg("params") = py::none())
+      .def("eval", &bsdfEvalPy, py::arg("wo"), py::arg("wi"),
+           "f(wo, wi) per channel, (n, 3), 1/sr; wo, wi (n, 3) or (3,)")
+      .def("pdf", &bsdfPdfPy, py::arg("wo"), py::arg("wi"),
+           "The density sample() draws wi with, per steradian, (n,)")
+      .def("sample", &bsdfSamplePy, py::arg("wo"), py::arg("u"),
+           "wi drawn from (n, 3) uniform numbers (the lobe, then the direction): dict wi, weight "
+           "(f cos / pdf, (n, 3)), pdf, "
+           "delta")
+      .def_property_readonly("name", [](const PyBsdf& b) { return b.name; })
+      .def_property_readonly(
+          "diffuse_albedo",
+          [](const PyBsdf& b) { return vec3Array({b.bsdf->diffuseAlbedo()}).attr("reshape")(3); },
+          "The reflectance radiosity sees, (3,)")
+      .def("__repr__", [](const PyBsdf& b) { return "<radkit.Bsdf " + b.bsdf->describe() + ">"; });
+  mod.def("sky_radiance", &skyRadiancePy, py::arg("directions"), py::arg("sun_elevation") = 30.0,
+          py::arg("sun_azimuth") = 180.0, py::arg("altitude") = 1.0, py::arg("density") = 1.0,
+          py::arg("view_samples") = 32, py::arg("light_samples") = 8,
+          py::arg("multiple_scattering") = true,
+          "The physical sky's radiance, (n, 3) W/m^2/sr, toward (n, 3) directions in the "
+          "observer's frame (x east, y north, z up); degrees, azimuth clockwise from north");
+  mod.def(
+      "sky",
+      [](const std::filesystem::path& out, double elevation, double azimuth, int size,
+         const std::string& projection, double density, double altitude, int viewSamples,
+         int lightSamples, bool multiple, long long compare, std::uint64_t seed) {
+        SkyJobSettings s;
+        s.out = out.string(), s.sunElevationDeg = elevation, s.sunAzimuthDeg = azimuth;
+        s.size = size, s.projection = projection, s.relativeDensity = density;
+        s.altitude = altitude, s.sky.viewSamples = viewSamples, s.sky.lightSamples = lightSamples;
+        s.sky.multipleScattering = multiple, s.comparePaths = compare, s.seed = seed;
+        SkyJobResult r;
+        {
+          py::gil_scoped_release release;
+          r = runSkyJob(s);
+        }
+        return reportDict(r.out, r.report);
+      },
+      py::arg("out"), py::kw_only(), py::arg("sun_elevation") = 30.0,
+      py::arg("sun_azimuth") = 180.0, py::arg("size") = 512, py::arg("projection") = "all",
+      py::arg("density") = 1.0, py::arg("altitude") = 1.0, py::arg("view_samples") = 32,
+      py::arg("light_samples") = 8, py::arg("multiple_scattering") = true, py::arg("compare") = 0,
+      py::arg("seed") = 1,
+      "radkit sky's job: the sky's images and report.json in `out`; returns dict out, report");
+  mod.def(
+      "clouds",
+      [](const std::filesystem::path& out, const std::optional<std::filesystem::path>& scene,
+         int width, int height, int samples, std::optional<double> sunElevation,
+         std::optional<double> sunAzimuth, std::optional<double> cameraElevation,
+         std::optional<double> fov, double coverage, std::uint64_t seed) {
+        CloudsJobSettings s;
+        s.out = out.string();
+        if (scene) s.scene = scene->string();
+        s.width = width, s.height = height, s.samples = samples;
+        s.sunElevationDeg = sunElevation, s.sunAzimuthDeg = sunAzimuth;
+        s.cameraElevationDeg = cameraElevation, s.fovDeg = fov;
+        s.layer.coverage = coverage, s.seed = seed;
+        CloudsJobResult r;
+        {
+          py::gil_scoped_release release;
+          r = runCloudsJob(s);
+        }
+        return reportDict(r.out, r.report);
+      },
+      py::arg("out"), py::kw_only(), py::arg("scene") = py::none(), py::arg("width") = 128,
+      py::arg("height") = 72, py::arg("samples") = 32, py::arg("sun_elevation") = py::none(),
+      py::arg("sun_azimuth") = py::none(), py::arg("camera_elevation") = py::none(),
+      py::arg("fov") = py::none(), py::arg("coverage") = media::CloudLayerSettings{}.coverage,
+      py::arg("seed") = 1,
+      "radkit clouds' job: the reference and real-time images and report.json in `out`; a "
+      "volume scene file or the default layer; None takes the file's value, else the default");
+  mod.def(
+      "terrain",
+      [](const std::filesystem::path& out, const std::string& type, int resolution, double size,
+         double height, std::uint32_t seed, const std::string& format, const std::string& sky) {
+        TerrainJobSettings s;
+        s.out = out.string(), s.type = type, s.settings.resolution = resolution;
+        s.settings.size = size, s.settings.height = height, s.settings.fractal.seed = seed;
+        s.format = format, s.sky = sky;
+        TerrainJobResult r;
+        {
+          py::gil_scoped_release release;
+          r = runTerrainJob(s);
+        }
+        return reportDict(r.out, r.report);
+      },
+      py::arg("out"), py::kw_only(), py::arg("type") = "ridged",
+      py::arg("resolution") = terrain::TerrainSettings{}.resolution,
+      py::arg("size") = terrain::TerrainSettings{}.size,
+      py::arg("height") = terrain::TerrainSettings{}.height, py::arg("seed") = 1,
+      py::arg("format") = "obj", py::arg("sky") = "physical",
+      "radkit terrain's job: meshes, terrain.json (a scene for run()) and report.json in `out`");
   mod.def("hierarchical", &hierarchicalPy, py::arg("scene"), py::arg("epsilon") = 1e-4,
           py::arg("rays_per_link") = 16, py::arg("rounds") = 3, py::arg("order") = "jacobi",
           py::arg("seed") = 1, py::arg("min_area") = 0.0, py::arg("tolerance") = 1e-6,

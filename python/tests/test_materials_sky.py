@@ -1,0 +1,99 @@
+"""Materials, the sky and the outdoor jobs from Python (docs/python.md): BSDFs of the registry
+against their closed forms, the sky's radiance against the sky job, and the sky, clouds and
+terrain jobs against the command line's files.
+
+Run from the build: PYTHONPATH=build/python python3 -m pytest python/tests (ctest does this).
+"""
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import radkit
+
+NEEDS_BINARY = pytest.mark.skipif(not os.environ.get("RADKIT_BINARY"),
+                                  reason="needs the radkit binary")
+
+
+def upper_hemisphere(n, rng):
+    v = rng.normal(size=(n, 3))
+    v[:, 2] = np.abs(v[:, 2]) + 1e-3
+    return v / np.linalg.norm(v, axis=1)[:, None]
+
+
+def test_lambert_is_its_reflectance_over_pi():
+    rng = np.random.default_rng(1)
+    b = radkit.Bsdf("lambert", {"reflectance": [0.8, 0.5, 0.2]})
+    f = b.eval(upper_hemisphere(100, rng), upper_hemisphere(100, rng))
+    np.testing.assert_allclose(f, np.tile([0.8 / math.pi, 0.5 / math.pi, 0.2 / math.pi],
+                                          (100, 1)), rtol=1e-14)
+    np.testing.assert_allclose(b.diffuse_albedo, [0.8, 0.5, 0.2], rtol=1e-14)
+    # One-sided: nothing toward the back.
+    assert not b.eval([0, 0, 1], [0, 0, -1]).any()
+
+
+def test_phong_albedo_at_normal_incidence_is_ks_by_quadrature_and_by_sampling():
+    # Energy-normalised Phong, ks (n + 2)/(2 pi) cos^n alpha: looking straight down the mirror
+    # direction is the normal, and the integral of f cos over the hemisphere is exactly ks.
+    ks, n = 0.9, 20
+    b = radkit.Bsdf("phong", f"kd=0 0 0, ks={ks}, shininess={n}")
+    as_dict = radkit.Bsdf("phong", {"kd": [0, 0, 0], "ks": ks, "shininess": n})
+    wo = np.array([0.0, 0.0, 1.0])
+    # Midpoint rule in (cos theta, phi): f cos dw = f mu dmu dphi.
+    m = 4000
+    mu = (np.arange(m) + 0.5) / m
+    wi = np.stack([np.sqrt(1 - mu**2), np.zeros(m), mu], axis=1)
+    f = b.eval(wo, wi)[:, 0]
+    np.testing.assert_array_equal(f, as_dict.eval(wo, wi)[:, 0])
+    albedo = 2 * math.pi * np.sum(f * mu) / m
+    assert albedo == pytest.approx(ks, rel=1e-5)
+    # Sampling: the weights f cos / pdf average to the albedo (within four standard errors),
+    # and pdf() gives each sample's density.
+    rng = np.random.default_rng(7)
+    s = b.sample(wo, rng.random((200000, 3)))
+    w = s["weight"][:, 0]
+    assert abs(w.mean() - ks) <= 4 * w.std(ddof=1) / math.sqrt(len(w))
+    kept = s["pdf"] > 0
+    np.testing.assert_allclose(b.pdf(wo, s["wi"][kept])[:200], s["pdf"][kept][:200], rtol=1e-9)
+
+
+def test_bsdf_refusals_name_the_key():
+    with pytest.raises(ValueError, match="shininesss"):
+        radkit.Bsdf("phong", {"shininesss": 20})
+    with pytest.raises(ValueError, match="lambertian"):
+        radkit.Bsdf("lambertian")
+    with pytest.raises(ValueError, match="wo and wi"):
+        radkit.Bsdf("lambert").eval(np.ones((2, 3)), np.ones((3, 3)))
+
+
+def test_sky_radiance_is_what_the_sky_job_reports(tmp_path):
+    r = radkit.sky(tmp_path / "sky", sun_elevation=20, sun_azimuth=90, size=16,
+                   projection="fisheye")
+    assert sorted(p.name for p in (tmp_path / "sky").iterdir()) == \
+        [".radkit-output", "report.json", "sky-fisheye.pfm", "sky-fisheye.png"]
+    zenith = radkit.sky_radiance([[0, 0, 1]], sun_elevation=20, sun_azimuth=90)
+    np.testing.assert_array_equal(zenith[0], r["report"]["radiance"]["zenith"])
+    # Rayleigh scattering grows as 1/lambda^4: the clear zenith is bluest.
+    assert zenith[0, 2] > zenith[0, 1] > zenith[0, 0] > 0
+
+
+@NEEDS_BINARY
+def test_clouds_and_terrain_write_the_files_the_command_line_writes(tmp_path):
+    cli = os.environ["RADKIT_BINARY"]
+    subprocess.run([cli, "clouds", "--width", "8", "--height", "6", "--samples", "2",
+                    "--sun-elevation", "25", "--out", str(tmp_path / "c-cli")],
+                   check=True, capture_output=True)
+    radkit.clouds(tmp_path / "c-py", width=8, height=6, samples=2, sun_elevation=25)
+    subprocess.run([cli, "terrain", "--resolution", "17", "--seed", "3", "--out",
+                    str(tmp_path / "t-cli")], check=True, capture_output=True)
+    radkit.terrain(tmp_path / "t-py", resolution=17, seed=3)
+    for a, b in [("c-cli", "c-py"), ("t-cli", "t-py")]:
+        files = sorted(p.name for p in (tmp_path / a).iterdir())
+        assert files == sorted(p.name for p in (tmp_path / b).iterdir())
+        for name in files:
+            # report.json holds times; terrain.json names the scene after its folder.
+            if name not in ("report.json", ".radkit-output", "terrain.json"):
+                assert (tmp_path / a / name).read_bytes() == (tmp_path / b / name).read_bytes(), \
+                    name
