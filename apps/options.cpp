@@ -37,6 +37,15 @@ std::size_t parseBytes(const std::string& text) {
 }
 
 void FormFactorOptions::finish() {
+  // --ff NAME:key=value;...: the method's own parameters, read when it is built.
+  std::string name;
+  splitFormFactorChoice(settings.method, name, settings.parameters);
+  settings.method = name;
+  try {
+    formFactorTraits(name);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("--ff", e.what());
+  }
   if (!enforce.empty() && enforce != "reciprocity")
     throw CLI::ValidationError("--ff-enforce", "the only value is 'reciprocity'");
   settings.enforceReciprocity = enforce == "reciprocity";
@@ -62,8 +71,10 @@ void SolverOptions::finish() {
 void addFormFactorOptions(CLI::App& c, FormFactorOptions& o) {
   std::string methods;
   for (const std::string& line : formFactorMethodHelp()) methods += "\n  " + line;
-  c.add_option("--ff", o.settings.method, "Form-factor method:" + methods)
-      ->check(CLI::IsMember(formFactorMethodNames()))
+  c.add_option("--ff", o.settings.method,
+               "Form-factor method, its own parameters after ':' separated by ';' "
+               "(point-polygon:pair_levels=2):" +
+                   methods)
       ->capture_default_str();
   c.add_option("--ff-samples", o.settings.samples,
                "Rays (or point pairs) per patch pair, K >= 1; hemisphere: rays per "

@@ -89,6 +89,11 @@ JobSettings resolveJobSettings(const JobSettings& given) {
       s.mesh = SubdivisionSettings{};
   }
   const bool methodGiven = s.formFactorMethod.has_value();
+  if (methodGiven && s.formFactorMethod->find(':') != std::string::npos) {
+    std::string name;  // "name:key=value;..." carries the method's own parameters
+    splitFormFactorChoice(*s.formFactorMethod, name, s.formFactors.parameters);
+    s.formFactorMethod = name;
+  }
   if (!s.formFactorMethod)
     s.formFactorMethod = s.preset.empty() ? FormFactorSettings{}.method : preset.formFactors.method;
   // Each method has its own K; a preset's K is for its own method.

@@ -54,8 +54,10 @@ struct JobSettings {
   /// (adaptive runs start from a quarter of their budget) and one patch per input face for
   /// the others.
   std::optional<SubdivisionSettings> mesh;
-  std::optional<std::string> formFactorMethod;  ///< unset: the preset's, else point-polygon
-  std::optional<int> formFactorSamples;         ///< unset: the preset's, else the method's own K
+  /// Unset: the preset's, else point-polygon; "name:key=value;..." also sets
+  /// formFactors.parameters, the method's own.
+  std::optional<std::string> formFactorMethod;
+  std::optional<int> formFactorSamples;  ///< unset: the preset's, else the method's own K
   std::optional<double> tolerance;  ///< unset: the preset's, else SolverSettings' (Solvers: 1e-10)
   /// Unset: SolverSettings' for dense solvers, kDefaultHierarchicalSweeps for the hierarchy.
   std::optional<long> maxIterations;

@@ -171,7 +171,7 @@ PyMesh meshPy(const PyScene& s, int patches, double maxArea) {
 PyFormFactors formFactorsPy(const PyMesh& mesh, const std::string& method, int samples,
                             std::uint64_t seed, const std::string& precision, int pairLevels) {
   FormFactorSettings settings;
-  settings.method = method;
+  splitFormFactorChoice(method, settings.method, settings.parameters);  // "name:key=value;..."
   settings.samples = samples;
   settings.seed = seed;
   if (precision == "float")

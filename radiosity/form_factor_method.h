@@ -19,9 +19,12 @@ enum class FormFactorPrecision { Double, Float };
 /// Every setting of a form-factor run, with its default beside it. The CLI fills it once.
 struct FormFactorSettings {
   std::string method = "point-polygon";  ///< --ff: a name from formFactorMethodNames()
-  int samples = 16;                      ///< --ff-samples K >= 1: rays / point pairs per pair
-  std::uint64_t seed = 1;                ///< --seed: every stream derives from it
-  bool enforceReciprocity = false;       ///< --ff-enforce reciprocity: A_iF_ij, A_jF_ji → mean
+  /// The method's own parameters, "key=value, ..." (--ff NAME:key=value;...); each method
+  /// reads its keys from Params and the registry refuses the keys it did not read.
+  std::string parameters;
+  int samples = 16;                 ///< --ff-samples K >= 1: rays / point pairs per pair
+  std::uint64_t seed = 1;           ///< --seed: every stream derives from it
+  bool enforceReciprocity = false;  ///< --ff-enforce reciprocity: A_iF_ij, A_jF_ji → mean
   FormFactorPrecision precision = FormFactorPrecision::Double;  ///< --ff-storage float
   std::size_t memoryBudget = std::size_t(8) << 30;              ///< --memory-budget, bytes
   QuadratureSettings quadrature;  ///< point-polygon's cubature over patch i
@@ -105,6 +108,10 @@ struct FormFactorMethodTraits {
 
 /// \brief The traits of a registered method; throws std::invalid_argument for an unknown name.
 const FormFactorMethodTraits& formFactorTraits(const std::string& method);
+
+/// \brief Splits "name:key=value;key=value" (the --ff text) into the method's name and its
+/// parameters as Params text ("key=value, key=value"); a name alone has no parameters.
+void splitFormFactorChoice(const std::string& text, std::string& name, std::string& parameters);
 
 /// \brief The registered names, default first.
 std::vector<std::string> formFactorMethodNames();

@@ -2,16 +2,18 @@
 #include <stdexcept>
 
 #include "radiosity/form_factor_method.h"
+#include "util/params.h"
 
 namespace radkit {
 
 // Factories, one per method .cpp (no headers: the registry is their only caller).
-std::unique_ptr<FormFactorMethod> createPointPolygon(const PatchMesh&, const Visibility&,
-                                                     const FormFactorSettings&);
-std::unique_ptr<FormFactorMethod> createMonteCarlo(const PatchMesh&, const Visibility&,
-                                                   const FormFactorSettings&);
-std::unique_ptr<FormFactorMethod> createHemisphere(const PatchMesh&, const Visibility&,
-                                                   const FormFactorSettings&);
+// Each reads its own parameters from `params`; the registry refuses the keys it did not read.
+std::unique_ptr<FormFactorMethod> createPointPolygon(Params& params, const PatchMesh&,
+                                                     const Visibility&, const FormFactorSettings&);
+std::unique_ptr<FormFactorMethod> createMonteCarlo(Params& params, const PatchMesh&,
+                                                   const Visibility&, const FormFactorSettings&);
+std::unique_ptr<FormFactorMethod> createHemisphere(Params& params, const PatchMesh&,
+                                                   const Visibility&, const FormFactorSettings&);
 
 namespace {
 
@@ -24,7 +26,7 @@ double rowBudgetWork(double n, int k) { return n * k; }
 struct MethodEntry {
   const char* name;
   const char* help;
-  std::unique_ptr<FormFactorMethod> (*create)(const PatchMesh&, const Visibility&,
+  std::unique_ptr<FormFactorMethod> (*create)(Params&, const PatchMesh&, const Visibility&,
                                               const FormFactorSettings&);
   FormFactorMethodTraits traits;
 };
@@ -86,7 +88,24 @@ std::unique_ptr<FormFactorMethod> makeFormFactorMethod(const PatchMesh& mesh,
                                                        const Visibility& visibility,
                                                        const FormFactorSettings& settings) {
   validateFormFactorSettings(settings);
-  return methodEntry(settings.method).create(mesh, visibility, settings);
+  const MethodEntry& m = methodEntry(settings.method);
+  try {
+    Params params = Params::parse(settings.parameters);
+    std::unique_ptr<FormFactorMethod> method = m.create(params, mesh, visibility, settings);
+    params.rejectUnused(m.name);
+    return method;
+  } catch (const ParamError& e) {
+    throw ParamError(std::string("form-factor method \"") + m.name + "\": " + e.what());
+  }
+}
+
+void splitFormFactorChoice(const std::string& text, std::string& name, std::string& parameters) {
+  const std::size_t colon = text.find(':');
+  name = text.substr(0, colon);
+  parameters.clear();
+  if (colon == std::string::npos) return;
+  // The --solvers spelling: ';' between parameters, as ',' separates the solvers there.
+  for (char c : text.substr(colon + 1)) parameters += c == ';' ? ',' : c;
 }
 
 std::vector<std::string> formFactorMethodNames() {

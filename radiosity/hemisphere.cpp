@@ -11,6 +11,7 @@
 
 #include "radiosity/form_factor_method.h"
 #include "radiosity/patch_pairs.h"
+#include "util/params.h"
 #include "util/sampling.h"
 
 namespace radkit {
@@ -73,7 +74,7 @@ void Hemisphere::computeRow(int i, RowResult& out) const {
 }
 }  // namespace
 
-std::unique_ptr<FormFactorMethod> createHemisphere(const PatchMesh& mesh,
+std::unique_ptr<FormFactorMethod> createHemisphere(Params&, const PatchMesh& mesh,
                                                    const Visibility& visibility,
                                                    const FormFactorSettings& settings) {
   return std::make_unique<Hemisphere>(mesh, visibility, settings);

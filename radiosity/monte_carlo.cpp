@@ -10,6 +10,7 @@
 #include "radiosity/form_factor_method.h"
 #include "radiosity/occluder_culling.h"
 #include "radiosity/patch_pairs.h"
+#include "util/params.h"
 #include "util/sampling.h"
 
 namespace radkit {
@@ -97,7 +98,7 @@ void MonteCarlo::computeRow(int i, RowResult& out) const {
 }
 }  // namespace
 
-std::unique_ptr<FormFactorMethod> createMonteCarlo(const PatchMesh& mesh,
+std::unique_ptr<FormFactorMethod> createMonteCarlo(Params&, const PatchMesh& mesh,
                                                    const Visibility& visibility,
                                                    const FormFactorSettings& settings) {
   return std::make_unique<MonteCarlo>(mesh, visibility, settings);

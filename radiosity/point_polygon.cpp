@@ -16,6 +16,7 @@
 #include "radiosity/pair_rule.h"
 #include "radiosity/patch_pairs.h"
 #include "util/format.h"
+#include "util/params.h"
 #include "util/sampling.h"
 
 namespace radkit {
@@ -212,10 +213,14 @@ void PointPolygon::computeRow(int i, RowResult& out) const {
 }
 }  // namespace
 
-std::unique_ptr<FormFactorMethod> createPointPolygon(const PatchMesh& mesh,
+std::unique_ptr<FormFactorMethod> createPointPolygon(Params& params, const PatchMesh& mesh,
                                                      const Visibility& visibility,
                                                      const FormFactorSettings& settings) {
-  return std::make_unique<PointPolygon>(mesh, visibility, settings);
+  FormFactorSettings s = settings;
+  // The highest tensor rule a pair may take; --ff-pair-levels sets the default.
+  s.quadrature.pairLevels =
+      int(params.integer("pair_levels", settings.quadrature.pairLevels, 0, kMaxPairLevel));
+  return std::make_unique<PointPolygon>(mesh, visibility, s);
 }
 
 }  // namespace radkit

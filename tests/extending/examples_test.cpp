@@ -20,8 +20,8 @@
 namespace radkit {
 
 std::unique_ptr<Solver> makeDampedJacobiSolver(Params& params);
-std::unique_ptr<FormFactorMethod> createCentroid(const PatchMesh&, const Visibility&,
-                                                 const FormFactorSettings&);
+std::unique_ptr<FormFactorMethod> createCentroid(Params& params, const PatchMesh&,
+                                                 const Visibility&, const FormFactorSettings&);
 std::unique_ptr<PhaseFunction> createSchlickPhase(Params& params);
 
 namespace {
@@ -51,7 +51,8 @@ TEST(ExtendingExamples, ExactCentroidFormFactorConvergesToHowellC11) {
   for (int patches : {8, 32, 128}) {
     const PatchMesh mesh = subdivide(scene, {0, patches});
     const RayScene rays(mesh);
-    const std::unique_ptr<FormFactorMethod> method = createCentroid(mesh, rays, {});
+    Params none;
+    const std::unique_ptr<FormFactorMethod> method = createCentroid(none, mesh, rays, {});
     double f = 0, area = 0;
     RowResult row;
     for (int i = mesh.surfaceBegin[0]; i < mesh.surfaceBegin[1]; ++i) {
@@ -64,6 +65,43 @@ TEST(ExtendingExamples, ExactCentroidFormFactorConvergesToHowellC11) {
     previous = error;
   }
   EXPECT_LT(previous, 2e-3);
+}
+
+TEST(ExtendingExamples, ExactCentroidParameterSwitchesTheOccluderOff) {
+  // The squares of Howell C-11 with an opaque plate between them, larger than both: every
+  // centroid ray is blocked, so F = 0; visibility=0 gives the unoccluded F, which converges to
+  // C-11's 0.19982 as above. The parameter is read as the registry reads it: other keys and
+  // values outside {0, 1} are refused.
+  test::TempDir dir;
+  const std::string path = dir.file("blocked.json", R"({"units": "m",
+      "materials": {"grey": {"reflectance": [0.5, 0.5, 0.5]}},
+      "surfaces": [
+        {"name": "lower", "material": "grey", "polygon": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]},
+        {"name": "upper", "material": "grey", "polygon": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]]},
+        {"name": "plate", "material": "grey",
+         "polygon": [[-1,-1,0.5],[2,-1,0.5],[2,2,0.5],[-1,2,0.5]]}]})");
+  const Scene scene = loadScene(path);
+  const PatchMesh mesh = subdivide(scene, {0, 200});
+  const RayScene rays(mesh);
+  auto lowerToUpper = [&](const std::string& parameters) {
+    Params params = Params::parse(parameters);
+    const std::unique_ptr<FormFactorMethod> method = createCentroid(params, mesh, rays, {});
+    params.rejectUnused("centroid");
+    double f = 0, area = 0;
+    RowResult row;
+    for (int i = mesh.surfaceBegin[0]; i < mesh.surfaceBegin[1]; ++i) {
+      method->computeRow(i, row);
+      for (const RowEntry& e : row.entries)
+        if (mesh.patches[e.column].surface == 1) f += mesh.patches[i].area * e.value;
+      area += mesh.patches[i].area;
+    }
+    return f / area;
+  };
+  EXPECT_EQ(lowerToUpper(""), 0.0);
+  EXPECT_EQ(lowerToUpper("visibility=1"), 0.0);
+  EXPECT_NEAR(lowerToUpper("visibility=0"), 0.19982489569838746, 5e-3);
+  EXPECT_THROW(lowerToUpper("visibility=2"), ParamError);
+  EXPECT_THROW(lowerToUpper("visible=0"), ParamError);
 }
 
 TEST(ExtendingExamples, StatisticalSchlickPhaseIsNormalisedAndSampledAsItsDensity) {

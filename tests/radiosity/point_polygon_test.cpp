@@ -283,3 +283,54 @@ TEST(PointPolygon, SurfaceCullingImpliesPairCulling) {
   EXPECT_GT(maybe, 50);
 }
 }  // namespace radkit
+
+namespace radkit {
+namespace {
+
+// The method's own parameters: "pair_levels=0" in FormFactorSettings::parameters (the text of
+// --ff point-polygon:pair_levels=0) is the --ff-pair-levels 0 of the settings, row for row;
+// a key the method does not read is refused naming the keys it does, and so is a key given to
+// a method that reads none.
+TEST(PointPolygon, ExactItsOwnParameterEqualsTheSettingAndUnknownKeysAreRefused) {
+  // Small squares far apart: the default picks a tensor rule, level 0 the contour cubature.
+  test::MeshBuilder b = test::parallelRectangles(0.2, 0.2, 2);
+  RayScene scene(b.mesh());
+  FormFactorSettings bySetting, byParameter;
+  bySetting.quadrature.pairLevels = 0;
+  byParameter.parameters = "pair_levels=0";
+  RowResult a, c;
+  makeFormFactorMethod(b.mesh(), scene, bySetting)->computeRow(0, a);
+  makeFormFactorMethod(b.mesh(), scene, byParameter)->computeRow(0, c);
+  ASSERT_EQ(a.entries.size(), c.entries.size());
+  for (std::size_t k = 0; k < a.entries.size(); ++k)
+    EXPECT_EQ(a.entries[k].value, c.entries[k].value);
+  EXPECT_EQ(a.pairsByRule[0], c.pairsByRule[0]);
+  RowResult d;
+  makeFormFactorMethod(b.mesh(), scene, FormFactorSettings{})->computeRow(0, d);
+  EXPECT_NE(d.pairsByRule[0], c.pairsByRule[0]);
+
+  FormFactorSettings typo;
+  typo.parameters = "pair_level=3";
+  try {
+    makeFormFactorMethod(b.mesh(), scene, typo);
+    ADD_FAILURE() << "pair_level accepted";
+  } catch (const ParamError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("form-factor method \"point-polygon\""), std::string::npos) << what;
+    EXPECT_NE(what.find("pair_levels"), std::string::npos) << what;
+  }
+  FormFactorSettings range;
+  range.parameters = "pair_levels=9";
+  EXPECT_THROW(makeFormFactorMethod(b.mesh(), scene, range), ParamError);
+  FormFactorSettings none;
+  none.method = "monte-carlo";
+  none.parameters = "pair_levels=2";
+  EXPECT_THROW(makeFormFactorMethod(b.mesh(), scene, none), ParamError);
+  std::string name, parameters;
+  splitFormFactorChoice("point-polygon:pair_levels=2;x=1", name, parameters);
+  EXPECT_EQ(name, "point-polygon");
+  EXPECT_EQ(parameters, "pair_levels=2,x=1");
+}
+
+}  // namespace
+}  // namespace radkit
