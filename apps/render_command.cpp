@@ -128,8 +128,18 @@ void addRenderCommand(CLI::App& app) {
     modes.emplace_back(mode.name);
     modeHelp += std::string("\n  ") + mode.name + ": " + mode.help;
   }
-  sub->add_option("--shading", cmd->shading, modeHelp)
-      ->check(CLI::IsMember(modes))
+  sub->add_option("--shading", cmd->shading,
+                  modeHelp + "\n  (a mode's own parameters after ':', separated by ';')")
+      ->check(CLI::Validator(
+          [modes](std::string& text) -> std::string {
+            const std::string name = text.substr(0, text.find(':'));
+            for (const std::string& m : modes)
+              if (m == name) return "";
+            std::string known;
+            for (const std::string& m : modes) known += (known.empty() ? "" : ", ") + m;
+            return "'" + name + "' is not an image mode. Fix: use one of " + known;
+          },
+          "MODE[:key=value;...]"))
       ->capture_default_str();
   sub->add_option("--sampler", cmd->sampler, "Monte Carlo modes: the camera samples' numbers")
       ->check(CLI::IsMember({"independent", "stratified", "sobol"}))

@@ -86,8 +86,10 @@ class Integrator {
 ///        path-trace, photon-map, final-gather.
 const Registry<Integrator>& integratorRegistry();
 
-/// \brief The image of integrator `name`.
-RenderResult renderImage(const std::string& name, const Scene& scene,
+/// \brief The image of the integrator `shading` names: a registry name, optionally followed by
+/// the mode's own parameters, "name:key=value;key=value". \throws ParamError for an unknown
+/// name or a parameter the mode does not read.
+RenderResult renderImage(const std::string& shading, const Scene& scene,
                          const RenderSettings& settings);
 
 }  // namespace radkit

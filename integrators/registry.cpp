@@ -218,9 +218,16 @@ const Registry<Integrator>& integratorRegistry() {
   return registry;
 }
 
-RenderResult renderImage(const std::string& name, const Scene& scene,
+RenderResult renderImage(const std::string& shading, const Scene& scene,
                          const RenderSettings& settings) {
-  return integratorRegistry().make(name, {})->render(scene, settings);
+  // "name:key=value;key=value": the mode's own parameters, ';'-separated as a solver's.
+  const std::size_t colon = shading.find(':');
+  std::string parameters = colon == std::string::npos ? "" : shading.substr(colon + 1);
+  for (char& c : parameters)
+    if (c == ';') c = ',';
+  return integratorRegistry()
+      .make(shading.substr(0, colon), Params::parse(parameters))
+      ->render(scene, settings);
 }
 
 }  // namespace radkit

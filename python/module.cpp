@@ -586,7 +586,7 @@ Array renderScenePy(const PyScene& s, const std::string& shading, int width, int
   if (patches < 0 || !(maxArea >= 0) || !std::isfinite(maxArea))
     throw py::value_error("render_scene: patches and max_area must be finite and >= 0");
   if (photons < 1) throw py::value_error("render_scene: photons must be >= 1");
-  integratorRegistry().at(shading);  // an unknown name is refused before any work
+  integratorRegistry().at(shading.substr(0, shading.find(':')));  // refused before any work
   RenderSettings settings;
   settings.film.width = width, settings.film.height = height, settings.film.samplesPerPixel = spp;
   settings.film.seed = seed;

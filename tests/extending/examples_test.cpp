@@ -9,6 +9,7 @@
 #include "geometry/ray_scene.h"
 #include "geometry/scene_loader.h"
 #include "geometry/subdivision.h"
+#include "integrators/integrator.h"
 #include "phase/phase_function.h"
 #include "radiosity/form_factor_method.h"
 #include "solvers/solver.h"
@@ -23,6 +24,7 @@ std::unique_ptr<Solver> makeDampedJacobiSolver(Params& params);
 std::unique_ptr<FormFactorMethod> createCentroid(Params& params, const PatchMesh&,
                                                  const Visibility&, const FormFactorSettings&);
 std::unique_ptr<PhaseFunction> createSchlickPhase(Params& params);
+std::unique_ptr<Integrator> createAmbientOcclusion(Params& params);
 
 namespace {
 
@@ -140,6 +142,41 @@ TEST(ExtendingExamples, StatisticalSchlickPhaseIsNormalisedAndSampledAsItsDensit
     EXPECT_LT(std::fabs(sampleMean - phase->meanCosine()), 4 * standardError) << k;
     EXPECT_EQ(phase->evalAnisotropyScaled(0.3, 1.0), phase->eval(0.3));
   }
+}
+
+TEST(ExtendingExamples, StatisticalAmbientOcclusionIsOneMinusThePointFormFactor) {
+  // Registered as a row of integrators/registry.cpp would register it.
+  const Registry<Integrator> registry(
+      "integrator", {{"ambient-occlusion", createAmbientOcclusion,
+                      "share of cosine rays that escape; rays (64), distance (0: any)", "rays=8"}});
+  EXPECT_THROW(registry.make("ambient-occlusion", Params::parse("ray=8")), ParamError);
+  // Between Howell's parallel unit squares one apart, looking straight down at the lower
+  // square's centre: the only thing it sees is the upper square, whose form factor from that
+  // point is four corner rectangles of Howell B-3 (X = Y = 1/2):
+  // F = 4 · (1/2π) · 2 · X/√(1 + X²) · atan(Y/√(1 + X²)) = 0.239459...
+  const double x = 0.5, f = 4 / (2 * M_PI) * 2 * x / std::sqrt(1 + x * x) *
+                            std::atan(x / std::sqrt(1 + x * x));
+  const Scene scene = loadScene(test::dataPath("parallel-squares.json"));
+  RenderSettings s;
+  s.film.width = s.film.height = 3;
+  s.film.seed = 5;
+  s.camera.position = {0.5, 0.5, 0.9};
+  s.camera.lookAt = {0.5, 0.5, 0};
+  s.camera.up = {0, 1, 0};
+  s.camera.fovDeg = 1;
+  const int n = 40000;
+  const RenderResult r =
+      registry.make("ambient-occlusion", Params({{"rays", double(n)}}))->render(scene, s);
+  const double share = r.image.radiance[4].x;  // the centre pixel
+  EXPECT_EQ(r.surfaces[4], 0);
+  // A binomial share: its standard error from the estimate itself.
+  const double se = std::sqrt(share * (1 - share) / n);
+  EXPECT_LT(std::abs(share - (1 - f)), 4 * se) << share << " against " << 1 - f << " ± " << se;
+  // Occluders beyond `distance` do not count: the upper square is 1 away.
+  const RenderResult near =
+      registry.make("ambient-occlusion", Params({{"rays", 64.0}, {"distance", 0.99}}))
+          ->render(scene, s);
+  EXPECT_EQ(near.image.radiance[4].x, 1.0);
 }
 
 }  // namespace
