@@ -113,7 +113,7 @@ RenderJobResult runRenderJob(const RenderJobSettings& given, const PipelineLog& 
   RenderJobResult r;
   r.sceneName = scene.name, r.sceneFile = scene.file;
   const auto start = std::chrono::steady_clock::now();
-  s.render.camera = scene.camera ? *scene.camera : automaticCamera(scene);
+  s.render.camera = chooseCamera(scene);  // loading put a given camera into the scene
   if (!s.render.log.progress) s.render.log = log;
   try {
     r.mode = renderImage(s.shading, scene, s.render);

@@ -595,9 +595,7 @@ Array renderScenePy(const PyScene& s, const std::string& shading, int width, int
   settings.mesh.targetPatches = patches;
   settings.mesh.maxArea = maxArea / squareMetres(*s.scene);  // m² to the scene's units²
   settings.photons = photons;
-  settings.camera = camera            ? parseCamera("camera", *camera)
-                    : s.scene->camera ? *s.scene->camera
-                                      : automaticCamera(*s.scene);
+  settings.camera = chooseCamera(*s.scene, camera.value_or(""), "camera");
   RenderResult r;
   {
     py::gil_scoped_release release;

@@ -187,6 +187,11 @@ Camera sceneCamera(const Scene& scene, const PatchMesh& mesh) {
   return scene.camera ? *scene.camera : automaticCamera(scene, mesh);
 }
 
+Camera chooseCamera(const Scene& scene, const std::string& given, const std::string& option) {
+  if (!given.empty()) return parseCamera(option, given);
+  return scene.camera ? *scene.camera : automaticCamera(scene);
+}
+
 Camera parseCamera(const std::string& option, const std::string& text) {
   const std::string fix =
       ". Fix: give px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]] (position, look-at, up, vertical field "

@@ -57,6 +57,11 @@ Camera automaticCamera(const Scene& scene, const PatchMesh& mesh);
 /// The scene's camera, or automaticCamera(mesh) when it has none.
 Camera sceneCamera(const Scene& scene, const PatchMesh& mesh);
 
+/// \brief The camera an image of the scene is taken with: `given` (parseCamera's text) when not
+/// empty, else the scene's, else automaticCamera(scene). `option` names `given` in errors.
+Camera chooseCamera(const Scene& scene, const std::string& given = "",
+                    const std::string& option = "--camera");
+
 /// \brief Parses a --camera value "px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]]" (position, look-at,
 /// up, vertical field of view in degrees; up +y and 40° when left out).
 /// \throws InputError naming `option` and the fix.
