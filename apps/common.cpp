@@ -145,13 +145,7 @@ void addCameraOption(CLI::App& command, std::string& camera) {
 Scene loadSceneReporting(const std::string& path, const LoadOptions& load, LoadReport* out,
                          const std::string& camera) {
   Progress bar;
-  PipelineLog log;
-  log.progress = [&](const std::string& stage, double fraction) { bar(stage, fraction); };
-  log.message = [&](const std::string& line) {
-    bar.finish();
-    printLogLine(line);
-  };
-  Scene scene = loadJobScene(path, load, camera, log, out);
+  Scene scene = loadJobScene(path, load, camera, consoleLog(bar), out);
   bar.finish();
   return scene;
 }

@@ -51,4 +51,14 @@ void Progress::finish() {
   m_open = false;
 }
 
+PipelineLog consoleLog(Progress& progress) {
+  PipelineLog log;
+  log.progress = [&progress](const std::string& stage, double f) { progress(stage, f); };
+  log.message = [&progress](const std::string& line) {
+    progress.finish();
+    printLogLine(line);
+  };
+  return log;
+}
+
 }  // namespace radkit::app

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "radiosity/radiosity_pipeline.h"
 #include "radiosity/radiosity_solution.h"
 
 namespace radkit::app {
@@ -24,5 +25,9 @@ class Progress {
   int m_lastTenth = -1;
   bool m_open = false;
 };
+
+/// A library log for the console: stages draw `progress`, and each line ends the bar and is
+/// printed (printLogLine).
+PipelineLog consoleLog(Progress& progress);
 
 }  // namespace radkit::app

@@ -109,12 +109,7 @@ void addPhotonsCommand(CLI::App& app) {
     job.radiosity = !cmd->noRadiosity;
     job.image = !cmd->noImage;
     Progress progress;
-    PipelineLog log;
-    log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
-    log.message = [&](const std::string& line) {
-      progress.finish();
-      printLogLine(line);
-    };
+    const PipelineLog log = consoleLog(progress);
     printSummary(runPhotonsJob(job, log));
   });
 }

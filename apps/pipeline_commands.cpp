@@ -126,12 +126,7 @@ JobResult runCommand(PipelineCommand& cmd) {
   if (cmd.mesh.scene.empty()) cmd.mesh.scene = defaultScenePath();
   checkCombinations(cmd);
   Progress progress;
-  PipelineLog log;
-  log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
-  log.message = [&](const std::string& line) {
-    progress.finish();
-    printLogLine(line);
-  };
+  const PipelineLog log = consoleLog(progress);
   try {
     JobResult result = radkit::runJob(jobSettings(cmd), log);
     progress.finish();

@@ -76,12 +76,7 @@ void runRender(RenderCommand& cmd) {
   viewer::parseSize(cmd.size, width, height, 1, 16384);  // tests render 8x8 images
   RenderJobSettings job = jobSettings(cmd, width, height);
   Progress progress;
-  PipelineLog log;
-  log.progress = [&](const std::string& stage, double f) { progress(stage, f); };
-  log.message = [&](const std::string& line) {
-    progress.finish();
-    printLogLine(line);
-  };
+  const PipelineLog log = consoleLog(progress);
   job.render.log.progress = log.progress;
   job.render.warning = [&](const std::string& w) { log.message("warning: " + w); };
   RenderJobResult r;
