@@ -96,6 +96,7 @@ JobSettings resolveJobSettings(const JobSettings& given) {
   }
   if (!s.formFactorMethod)
     s.formFactorMethod = s.preset.empty() ? FormFactorSettings{}.method : preset.formFactors.method;
+  formFactorTraits(*s.formFactorMethod);  // an unknown name is refused before any work
   // Each method has its own K; a preset's K is for its own method.
   if (!s.formFactorSamples)
     s.formFactorSamples = !s.preset.empty() && !methodGiven

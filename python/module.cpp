@@ -34,6 +34,7 @@
 #include "job/job.h"
 #include "job/sky_job.h"
 #include "job/terrain_job.h"
+#include "phase/phase_function.h"
 #include "photon/estimate.h"
 #include "photon/image.h"
 #include "photon/map.h"
@@ -49,6 +50,7 @@
 #include "solvers/registry.h"
 #include "solvers/solver.h"
 #include "solvers/system_input.h"
+#include "util/format.h"
 #include "util/threads.h"
 
 namespace py = pybind11;
@@ -1005,6 +1007,52 @@ Array skyRadiancePy(const Array& directions, double elevation, double azimuth, d
   return vec3Array(radiance);
 }
 
+/// A phase function of the registry (phase/), on arrays of cos θ between the directions of
+/// travel before and after scattering.
+struct PyPhase {
+  std::shared_ptr<const PhaseFunction> phase;
+};
+
+PyPhase makePhasePy(const std::string& name, const py::object& params) {
+  const Params p = pluginParams(params, "phase function \"" + name + "\"");
+  std::string text;  // makePhaseFunction takes the registry's text form
+  for (const auto& [key, value] : p.values()) {
+    std::string v;
+    if (value.isText) {
+      v = value.text;
+    } else {
+      for (double x : value.numbers) v += (v.empty() ? "" : " ") + formatValue("%.17g", x);
+    }
+    text += (text.empty() ? "" : ", ") + key + "=" + v;
+  }
+  return {std::shared_ptr<const PhaseFunction>(makePhaseFunction(name, text))};
+}
+
+Array phaseEvalPy(const PyPhase& p, const Array& mu) {
+  Array out{mu.request().shape};
+  const double* in = mu.data();
+  double* o = out.mutable_data();
+  for (py::ssize_t k = 0; k < mu.size(); ++k) {
+    if (!(in[k] >= -1 && in[k] <= 1))
+      throw py::value_error("mu[" + std::to_string(k) + "] = " + formatValue("%g", in[k]) +
+                            " is not a cosine in [-1, 1]");
+    o[k] = p.phase->eval(in[k]);
+  }
+  return out;
+}
+
+/// cos θ drawn from uniform numbers u, with the density (1/sr) of each.
+py::tuple phaseSamplePy(const PyPhase& p, const Array& u) {
+  Array mu{u.request().shape}, pdf{u.request().shape};
+  const double* in = u.data();
+  for (py::ssize_t k = 0; k < u.size(); ++k) {
+    double density = 0;
+    mu.mutable_data()[k] = p.phase->sample(in[k], density);
+    pdf.mutable_data()[k] = density;
+  }
+  return py::make_tuple(mu, pdf);
+}
+
 py::dict reportDict(const std::string& out, const nlohmann::json& report) {
   py::dict d;
   d["out"] = out;
@@ -1352,6 +1400,18 @@ PYBIND11_MODULE(radkit, mod) {
           [](const PyBsdf& b) { return vec3Array({b.bsdf->diffuseAlbedo()}).attr("reshape")(3); },
           "The reflectance radiosity sees, (3,)")
       .def("__repr__", [](const PyBsdf& b) { return "<radkit.Bsdf " + b.bsdf->describe() + ">"; });
+  py::class_<PyPhase>(mod, "PhaseFunction",
+                      "A phase function of the registry (phase_function_names()) on cos theta "
+                      "between the directions of travel before and after scattering")
+      .def(py::init(&makePhasePy), py::arg("name"), py::arg("params") = py::none())
+      .def("eval", &phaseEvalPy, py::arg("mu"), "The density over the sphere, 1/sr, per cosine")
+      .def("sample", &phaseSamplePy, py::arg("u"),
+           "(mu, pdf): cosines drawn from uniform numbers u and their density, 1/sr")
+      .def_property_readonly("mean_cosine", [](const PyPhase& p) { return p.phase->meanCosine(); })
+      .def_property_readonly("name", [](const PyPhase& p) { return p.phase->name(); })
+      .def("__repr__",
+           [](const PyPhase& p) { return "<radkit.PhaseFunction " + p.phase->name() + ">"; });
+  mod.def("phase_function_names", &phaseFunctionNames, "The phase functions' names");
   mod.def("sky_radiance", &skyRadiancePy, py::arg("directions"), py::arg("sun_elevation") = 30.0,
           py::arg("sun_azimuth") = 180.0, py::arg("altitude") = 1.0, py::arg("density") = 1.0,
           py::arg("view_samples") = 32, py::arg("light_samples") = 8,

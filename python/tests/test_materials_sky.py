@@ -97,3 +97,27 @@ def test_clouds_and_terrain_write_the_files_the_command_line_writes(tmp_path):
             if name not in ("report.json", ".radkit-output", "terrain.json"):
                 assert (tmp_path / a / name).read_bytes() == (tmp_path / b / name).read_bytes(), \
                     name
+
+
+def test_phase_functions_integrate_to_one_and_have_their_mean_cosine():
+    # Henyey-Greenstein: normalised over the sphere, mean cosine g (Henyey and Greenstein
+    # 1941), and sampled as its density; Rayleigh: 3(1 + mu^2)/(16 pi), mean cosine 0.
+    assert "henyey-greenstein" in radkit.phase_function_names()
+    m = 400000
+    mu = -1 + (np.arange(m) + 0.5) * 2 / m  # midpoint rule in mu: dw = 2 pi dmu
+    for name, params, g in [("henyey-greenstein", {"g": 0.7}, 0.7),
+                            ("henyey-greenstein", "g=-0.3", -0.3), ("rayleigh", None, 0.0)]:
+        p = radkit.PhaseFunction(name, params)
+        f = p.eval(mu)
+        assert 2 * math.pi * f.sum() * 2 / m == pytest.approx(1, abs=1e-6), name
+        assert 2 * math.pi * (f * mu).sum() * 2 / m == pytest.approx(g, abs=1e-6), name
+        assert p.mean_cosine == pytest.approx(g, abs=1e-15)
+        s, pdf = p.sample(np.random.default_rng(3).random(100000))
+        np.testing.assert_allclose(pdf, p.eval(s), rtol=1e-9)
+        assert abs(s.mean() - g) <= 4 * s.std(ddof=1) / math.sqrt(len(s))
+    np.testing.assert_allclose(radkit.PhaseFunction("rayleigh").eval(np.array([0.0, 1.0])),
+                               [3 / (16 * math.pi), 6 / (16 * math.pi)], rtol=1e-14)
+    with pytest.raises(ValueError, match="g"):
+        radkit.PhaseFunction("henyey-greenstein", {"g": 1.5})
+    with pytest.raises(ValueError, match="not a cosine"):
+        radkit.PhaseFunction("isotropic").eval(np.array([1.5]))

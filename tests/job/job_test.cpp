@@ -133,6 +133,9 @@ TEST(Job, RefusesSettingsThatDisagreeBeforeAnyWork) {
   s.preset = "fast";
   refused(s, "unknown preset 'fast'");
   s = {};
+  s.formFactorMethod = "centroid";
+  refused(s, "unknown form-factor method 'centroid'");
+  s = {};
   s.method = JobMethod::Hierarchical;
   s.hierarchical.epsilon = 0;
   refused(s, "epsilon");
