@@ -1,15 +1,12 @@
 #include "apps/common.h"
 
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <optional>
-#include <sstream>
 #include <stdexcept>
 
 #include "apps/console.h"
@@ -158,12 +155,8 @@ PatchMesh meshScene(const Scene& scene, const MeshOptions& options) {
     for (const std::string& w : warnings) std::cerr << "radkit: warning: " << w << '\n';
     return mesh;
   } catch (const TooManyPatches&) {
-    tooManyPatches(scene, options);
+    throwTooManyPatches(scene, SubdivisionSettings{options.maxArea, options.patches});
   }
-}
-
-void tooManyPatches(const Scene& scene, const MeshOptions& options) {
-  throwTooManyPatches(scene, SubdivisionSettings{options.maxArea, options.patches});
 }
 
 std::string fmt(const char* format, double value) { return formatValue(format, value); }

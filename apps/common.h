@@ -55,9 +55,9 @@ void addImageSizeOptions(CLI::App& command, int& width, int& height, const std::
 /// report.json agree.
 Scene loadSceneReporting(const std::string& path, const LoadOptions& load = {},
                          LoadReport* report = nullptr, const std::string& camera = "");
+/// The scene subdivided as the options ask; warnings to stderr, more patches than radkit
+/// meshes an InputError naming the option (throwTooManyPatches).
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options);
-/// Throws that InputError (for subdivide's TooManyPatches).
-[[noreturn]] void tooManyPatches(const Scene& scene, const MeshOptions& options);
 
 /// One number printed with a printf format ("%.3g").
 std::string fmt(const char* format, double value);

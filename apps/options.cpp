@@ -5,6 +5,7 @@
 #include "apps/common.h"
 #include "hierarchy/hierarchical.h"
 #include "solvers/registry.h"
+#include "util/params.h"
 
 namespace radkit::app {
 
@@ -38,11 +39,11 @@ std::size_t parseBytes(const std::string& text) {
 
 void FormFactorOptions::finish() {
   // --ff NAME:key=value;...: the method's own parameters, read when it is built.
-  std::string name;
-  splitFormFactorChoice(settings.method, name, settings.parameters);
-  settings.method = name;
+  const PluginChoice choice = splitPluginChoice(settings.method);
+  settings.method = choice.name;
+  settings.parameters = choice.parameters;
   try {
-    formFactorTraits(name);
+    formFactorTraits(choice.name);
   } catch (const std::invalid_argument& e) {
     throw CLI::ValidationError("--ff", e.what());
   }

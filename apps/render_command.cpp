@@ -10,6 +10,7 @@
 #include "integrators/integrator.h"
 #include "job/render_job.h"
 #include "render/hdr_io.h"
+#include "util/params.h"
 #include "viewer/viewer.h"  // parseSize (viewer.h has no VTK)
 
 namespace radkit::app {
@@ -127,7 +128,7 @@ void addRenderCommand(CLI::App& app) {
                   modeHelp + "\n  (a mode's own parameters after ':', separated by ';')")
       ->check(CLI::Validator(
           [modes](std::string& text) -> std::string {
-            const std::string name = text.substr(0, text.find(':'));
+            const std::string name = splitPluginChoice(text).name;
             for (const std::string& m : modes)
               if (m == name) return "";
             std::string known;

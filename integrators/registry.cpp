@@ -220,13 +220,9 @@ const Registry<Integrator>& integratorRegistry() {
 
 RenderResult renderImage(const std::string& shading, const Scene& scene,
                          const RenderSettings& settings) {
-  // "name:key=value;key=value": the mode's own parameters, ';'-separated as a solver's.
-  const std::size_t colon = shading.find(':');
-  std::string parameters = colon == std::string::npos ? "" : shading.substr(colon + 1);
-  for (char& c : parameters)
-    if (c == ';') c = ',';
+  const PluginChoice mode = splitPluginChoice(shading);  // "name:key=value;key=value"
   return integratorRegistry()
-      .make(shading.substr(0, colon), Params::parse(parameters))
+      .make(mode.name, Params::parse(mode.parameters))
       ->render(scene, settings);
 }
 

@@ -71,8 +71,7 @@ CloudsJobResult runCloudsJob(const CloudsJobSettings& cmd) {
                        " /m (dense cloud is 0.05-0.12 /m) or a smaller medium");
   }
   const double groundAlbedo = scene ? scene->groundAlbedo : 0.0;
-  const double layerSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double layerSeconds = secondsSince(start);
   OutputFolder folder(cmd.out);
   const Bounds3 bounds = layer.bounds();
 

@@ -147,9 +147,7 @@ JobResult runDenseJob(Scene loadedScene, const LoadReport& loaded, const JobSett
 
   nlohmann::json& report = result.report;
   report = {{"radkit", RADKIT_VERSION},
-            {"command", s.kind == JobKind::Run       ? "run"
-                        : s.kind == JobKind::Solvers ? "solvers"
-                                                     : "formfactors"},
+            {"command", jobKindName(s.kind)},
             {"scene", sceneJson(scene)},
             {"mesh", meshJson(scene, r.mesh)},
             {"form_factors", toJson(r.formFactors->diagnostics)},

@@ -252,8 +252,7 @@ JobResult runHierarchicalJob(Scene loadedScene, const LoadReport& loaded, const 
     }
   }
 
-  const double total =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double total = secondsSince(start);
   result.seconds = total;
   nlohmann::json& report = result.report;
   report = nlohmann::json{
@@ -284,17 +283,16 @@ JobResult runHierarchicalJob(Scene loadedScene, const LoadReport& loaded, const 
   if (!linkCheck.is_null()) report["link_check"] = linkCheck;
   if (r.daylight) report["daylight"] = daylightJson(*r.sky, *r.daylight);
   if (panorama) report["sky_panorama"] = *panorama;
-  report["seconds"] = {
-      {"load", loadSeconds},
-      {"input_faces", r.seconds.inputFaces},
-      {"hierarchy", r.seconds.hierarchy},
-      {"ray_scene", r.seconds.rayScene},
-      {"daylight", r.seconds.daylight},
-      {"links", r.seconds.refine},
-      {"solve", r.seconds.solve},
-      {"results", r.seconds.results},
-      {"outputs", std::chrono::duration<double>(std::chrono::steady_clock::now() - solved).count()},
-      {"total", total}};
+  report["seconds"] = {{"load", loadSeconds},
+                       {"input_faces", r.seconds.inputFaces},
+                       {"hierarchy", r.seconds.hierarchy},
+                       {"ray_scene", r.seconds.rayScene},
+                       {"daylight", r.seconds.daylight},
+                       {"links", r.seconds.refine},
+                       {"solve", r.seconds.solve},
+                       {"results", r.seconds.results},
+                       {"outputs", secondsSince(solved)},
+                       {"total", total}};
   report["peak_memory_bytes"] = peakMemoryBytes();
   markStageMemory(r.memory, "outputs");
   report["memory"] = memoryJson(r.memory, r.hierarchy->base().size());

@@ -12,16 +12,13 @@
 #include "solvers/registry.h"
 #include "util/errors.h"
 #include "util/format.h"
+#include "util/params.h"
 
 namespace radkit {
 
-namespace {
-
-const char* kindName(JobKind kind) {
+const char* jobKindName(JobKind kind) {
   return kind == JobKind::Run ? "run" : kind == JobKind::Solvers ? "solvers" : "formfactors";
 }
-
-}  // namespace
 
 JobSettings resolveJobSettings(const JobSettings& given) {
   JobSettings s = given;
@@ -43,7 +40,7 @@ JobSettings resolveJobSettings(const JobSettings& given) {
   if (*s.method == JobMethod::Hierarchical) {
     if (s.kind != JobKind::Run)
       throw std::invalid_argument(
-          std::string("the hierarchical method writes a run's outputs; a ") + kindName(s.kind) +
+          std::string("the hierarchical method writes a run's outputs; a ") + jobKindName(s.kind) +
           " job needs the dense method's F");
     if (!s.preset.empty() && !hierarchicalPreset)
       throw std::invalid_argument("preset \"" + s.preset +
@@ -74,7 +71,7 @@ JobSettings resolveJobSettings(const JobSettings& given) {
         "checking links is for the hierarchical method; a dense run has none");
   if (s.adaptive && s.kind != JobKind::Run)
     throw std::invalid_argument("adaptive refinement is a run's; a " +
-                                std::string(kindName(s.kind)) + " job keeps its mesh");
+                                std::string(jobKindName(s.kind)) + " job keeps its mesh");
   // The preset first, then what was given, then each setting's own default.
   PipelineSettings preset;
   if (!s.preset.empty()) applyPreset(s.preset, preset);
@@ -90,9 +87,10 @@ JobSettings resolveJobSettings(const JobSettings& given) {
   }
   const bool methodGiven = s.formFactorMethod.has_value();
   if (methodGiven && s.formFactorMethod->find(':') != std::string::npos) {
-    std::string name;  // "name:key=value;..." carries the method's own parameters
-    splitFormFactorChoice(*s.formFactorMethod, name, s.formFactors.parameters);
-    s.formFactorMethod = name;
+    // "name:key=value;..." carries the method's own parameters
+    const PluginChoice choice = splitPluginChoice(*s.formFactorMethod);
+    s.formFactorMethod = choice.name;
+    s.formFactors.parameters = choice.parameters;
   }
   if (!s.formFactorMethod)
     s.formFactorMethod = s.preset.empty() ? FormFactorSettings{}.method : preset.formFactors.method;

@@ -28,6 +28,9 @@ enum class JobKind {
   FormFactors,  ///< F and its diagnostics only, no solve
 };
 
+/// "run", "solvers" or "formfactors": the command that writes a job of this kind.
+const char* jobKindName(JobKind kind);
+
 /// The dense method (F for every patch pair) or hierarchical radiosity with clustering.
 enum class JobMethod { Dense, Hierarchical };
 

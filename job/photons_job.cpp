@@ -25,11 +25,6 @@ namespace radkit {
 namespace {
 
 using nlohmann::json;
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 /// The radiosity solution to compare with: a run folder's surfaces.csv, or computed here on
 /// the same mesh (then per patch too).
 struct RadiosityReference {
@@ -58,7 +53,7 @@ RadiosityReference radiosityReference(const PhotonsJobSettings& cmd, const Scene
           {s.name, s.area / (scene.metresPerUnit() * scene.metresPerUnit()), s.radiosity});
     if (r.mesh.size() == mesh.size()) ref.patches = r.radiosity;
   }
-  ref.seconds = since(start);
+  ref.seconds = secondsSince(start);
   return ref;
 }
 
@@ -201,7 +196,7 @@ void traceAndEstimate(const PhotonsJobSettings& cmd, PhotonRun& r, const Pipelin
     throwTooManyPatches(r.scene, *cmd.mesh);
   }
   r.rays = std::make_unique<RayScene>(r.mesh);
-  r.seconds["mesh_and_ray_scene"] = since(t);
+  r.seconds["mesh_and_ray_scene"] = secondsSince(t);
   r.emitters = std::make_unique<EmitterSampler>(photonEmitters(r.scene, r.mesh));
   if (!cmd.compare.empty()) {
     checkCompareFolder(cmd.compare, r.scene, r.mesh);
@@ -211,7 +206,7 @@ void traceAndEstimate(const PhotonsJobSettings& cmd, PhotonRun& r, const Pipelin
   r.seconds["trace"] = r.trace.stats.seconds;
   t = Clock::now();
   r.estimate = estimateRadiosity(r.scene, r.mesh, r.trace.photons, cmd.settings.photons);
-  r.seconds["estimate"] = since(t);
+  r.seconds["estimate"] = secondsSince(t);
   if (!cmd.compare.empty()) r.rows = compareSurfaces(r.estimate.surfaces, r.reference.surfaces);
 }
 
@@ -225,15 +220,15 @@ void buildMaps(const PhotonsJobSettings& cmd, PhotonRun& r) {
       buildPhotonMaps(r.mesh, needed ? std::move(r.trace.photons) : std::vector<Photon>{});
   r.global = std::move(maps.global);
   r.caustic = std::move(maps.caustic);
-  r.buildSeconds = needed ? since(t) : 0.0;
-  r.seconds["kd_build"] = since(t);
+  r.buildSeconds = needed ? secondsSince(t) : 0.0;
+  r.seconds["kd_build"] = secondsSince(t);
   t = Clock::now();
   const PhotonSettings& ps = cmd.settings;
   r.view =
       cmd.view == "map" || ps.gatherRays == 0 ? PhotonView::GlobalMap : PhotonView::FinalGather;
   if (cmd.image && r.view == PhotonView::FinalGather)
     r.global->precomputeIrradiance(ps.neighbours, ps.filter, ps.precomputeStride);
-  r.seconds["precompute"] = since(t);
+  r.seconds["precompute"] = secondsSince(t);
 }
 
 /// photonmap.png and caustics.png (at photonmap.png's exposure, so the two compare).
@@ -249,7 +244,7 @@ void writeImages(OutputFolder& folder, const PhotonsJobSettings& cmd, PhotonRun&
     writePng(folder.path("caustics.png"),
              toneMap(renderPhotonImage(in, camera, w, h, PhotonView::CausticMap, cmd.settings),
                      exposure));
-  r.seconds["image"] = since(t);
+  r.seconds["image"] = secondsSince(t);
 }
 
 json ratesJson(const PhotonsJobSettings& cmd, PhotonRun& r) {
@@ -260,7 +255,7 @@ json ratesJson(const PhotonsJobSettings& cmd, PhotonRun& r) {
   const RateMeasurement queries =
       measureKdTreeQueries(*r.global, r.mesh, std::size_t(cmd.benchRays / 100),
                            cmd.settings.neighbours, cmd.settings.filter);
-  r.seconds["benchmark"] = since(t);
+  r.seconds["benchmark"] = secondsSince(t);
   const double photonRays = r.trace.stats.rays / r.trace.stats.seconds;
   return {
       {"photons_per_second", r.trace.stats.emitted / r.trace.stats.seconds},
@@ -334,7 +329,7 @@ PhotonsJobResult runPhotonsJob(const PhotonsJobSettings& given, const PipelineLo
                    surfaceResults(r.scene, r.mesh, r.estimate.radiosity, r.estimate.irradiance),
                    false);
   const json rates = ratesJson(cmd, r);
-  r.seconds["total"] = since(start);
+  r.seconds["total"] = secondsSince(start);
   PhotonsJobResult result;
   result.out = cmd.out;
   result.report = reportJson(cmd, r, rates);

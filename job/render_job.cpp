@@ -59,19 +59,18 @@ void writeReport(const RenderJobSettings& s, const LoadReport& loaded, const Ren
                     {"relative_rmse", e.relative()}});
   }
   const FilmSettings& film = s.render.film;
-  const nlohmann::json j{
-      {"shading", s.shading},
-      {"load", loadJson(loaded)},
-      {"warnings", r.mode.warnings},
-      {"smooth", s.render.smooth},
-      {"sampler", samplerName(film.sampler)},
-      {"light_sampling", s.render.light == LightSampling::SolidAngle ? "solid-angle" : "area"},
-      {"spp", film.samplesPerPixel},
-      {"width", r.mode.image.width},
-      {"height", r.mode.image.height},
-      {"seconds", r.seconds},
-      {"references", s.references},
-      {"regions", rows}};
+  const nlohmann::json j{{"shading", s.shading},
+                         {"load", loadJson(loaded)},
+                         {"warnings", r.mode.warnings},
+                         {"smooth", s.render.smooth},
+                         {"sampler", samplerName(film.sampler)},
+                         {"light_sampling", lightSamplingName(s.render.light)},
+                         {"spp", film.samplesPerPixel},
+                         {"width", r.mode.image.width},
+                         {"height", r.mode.image.height},
+                         {"seconds", r.seconds},
+                         {"references", s.references},
+                         {"regions", rows}};
   writeJson(s.report, j);
 }
 
@@ -122,7 +121,7 @@ RenderJobResult runRenderJob(const RenderJobSettings& given, const PipelineLog& 
     if (mesh.maxArea <= 0 && mesh.targetPatches <= 0) mesh.targetPatches = kDefaultRenderPatches;
     throwTooManyPatches(scene, mesh);
   }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.seconds = secondsSince(start);
   const RadianceImage& img = r.mode.image;
   r.format = ext.substr(1);
   r.exposure = s.exposure > 0 ? s.exposure : autoExposure(img, r.mode.emits);

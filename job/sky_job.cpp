@@ -154,15 +154,13 @@ SkyJobResult runSkyJob(const SkyJobSettings& cmd) {
     cs.sky = sky;
     const auto t = std::chrono::steady_clock::now();
     const std::vector<atmo::ComparisonRow> rows = atmo::compareWithReference(air, cs);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    const double seconds = secondsSince(t);
     result.comparisonTable = atmo::comparisonMarkdown(rows);
     writeFileAtomically(folder.path("comparison.md"), result.comparisonTable);
     report["comparison"] = {
         {"paths", cmd.comparePaths}, {"seconds", seconds}, {"rows", comparisonJson(rows)}};
   }
-  report["seconds"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report["seconds"] = secondsSince(start);
   writeJson(folder.path("report.json"), report);
   folder.commit();
   return result;

@@ -132,8 +132,7 @@ TerrainJobResult runTerrainJob(const TerrainJobSettings& cmd) {
   OutputFolder folder(cmd.out);
   const terrain::Heightfield field = terrain::makeHeightfield(s);
   const terrain::TerrainMesh mesh = terrain::triangulate(field, s);
-  const double generateSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double generateSeconds = secondsSince(start);
 
   json materials = json::object(), surfaces = json::array(), counts = json::object();
   for (int m = 0; m < 3; ++m) {

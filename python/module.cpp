@@ -173,7 +173,9 @@ PyMesh meshPy(const PyScene& s, int patches, double maxArea) {
 PyFormFactors formFactorsPy(const PyMesh& mesh, const std::string& method, int samples,
                             std::uint64_t seed, const std::string& precision, int pairLevels) {
   FormFactorSettings settings;
-  splitFormFactorChoice(method, settings.method, settings.parameters);  // "name:key=value;..."
+  const PluginChoice choice = splitPluginChoice(method);  // "name:key=value;..."
+  settings.method = choice.name;
+  settings.parameters = choice.parameters;
   settings.samples = samples;
   settings.seed = seed;
   if (precision == "float")
@@ -588,7 +590,7 @@ Array renderScenePy(const PyScene& s, const std::string& shading, int width, int
   if (patches < 0 || !(maxArea >= 0) || !std::isfinite(maxArea))
     throw py::value_error("render_scene: patches and max_area must be finite and >= 0");
   if (photons < 1) throw py::value_error("render_scene: photons must be >= 1");
-  integratorRegistry().at(shading.substr(0, shading.find(':')));  // refused before any work
+  integratorRegistry().at(splitPluginChoice(shading).name);  // refused before any work
   RenderSettings settings;
   settings.film.width = width, settings.film.height = height, settings.film.samplesPerPixel = spp;
   settings.film.seed = seed;
@@ -886,12 +888,12 @@ std::vector<Vec3> toPoints(const Array& a, const char* what) {
 
 // ---- materials, the sky and outdoor jobs ----
 
-/// A plugin's parameters for Python: the registry's "key=value, key=r g b" text, or a dict of
-/// numbers, three-number sequences (rgb) and texts, turned into that text so both forms are
-/// read, and refused, by the same parser.
-Params pluginParams(const py::object& params, const std::string& what) {
-  if (params.is_none()) return {};
-  if (py::isinstance<py::str>(params)) return Params::parse(params.cast<std::string>());
+/// A plugin's parameters for Python as the registry's "key=value, key=r g b" text: given so, or
+/// turned into it from a dict of numbers, three-number sequences (rgb) and texts, so both forms
+/// are read, and refused, by the same parser (Params::parse).
+std::string pluginParamsText(const py::object& params, const std::string& what) {
+  if (params.is_none()) return "";
+  if (py::isinstance<py::str>(params)) return params.cast<std::string>();
   if (!py::isinstance<py::dict>(params))
     throw py::type_error(what + " params: expected text \"key=value, ...\" or a dict");
   std::string text;
@@ -912,7 +914,7 @@ Params pluginParams(const py::object& params, const std::string& what) {
                             "' holds a ',' or '=' the text form would split");
     text += (text.empty() ? "" : ", ") + key + "=" + value;
   }
-  return Params::parse(text);
+  return text;
 }
 
 /// A BSDF of the registry, evaluated on arrays of local directions (+z the front normal).
@@ -922,9 +924,9 @@ struct PyBsdf {
 };
 
 PyBsdf makeBsdfPy(const std::string& name, const py::object& params) {
-  return {
-      std::shared_ptr<const Bsdf>(makeBsdf(name, pluginParams(params, "bsdf \"" + name + "\""))),
-      name};
+  return {std::shared_ptr<const Bsdf>(
+              makeBsdf(name, Params::parse(pluginParamsText(params, "bsdf \"" + name + "\"")))),
+          name};
 }
 
 /// Rows of wo and wi, one of them possibly a single (3,) direction for every row.
@@ -1014,17 +1016,7 @@ struct PyPhase {
 };
 
 PyPhase makePhasePy(const std::string& name, const py::object& params) {
-  const Params p = pluginParams(params, "phase function \"" + name + "\"");
-  std::string text;  // makePhaseFunction takes the registry's text form
-  for (const auto& [key, value] : p.values()) {
-    std::string v;
-    if (value.isText) {
-      v = value.text;
-    } else {
-      for (double x : value.numbers) v += (v.empty() ? "" : " ") + formatValue("%.17g", x);
-    }
-    text += (text.empty() ? "" : ", ") + key + "=" + v;
-  }
+  const std::string text = pluginParamsText(params, "phase function \"" + name + "\"");
   return {std::shared_ptr<const PhaseFunction>(makePhaseFunction(name, text))};
 }
 

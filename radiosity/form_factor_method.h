@@ -19,7 +19,8 @@ enum class FormFactorPrecision { Double, Float };
 /// Every setting of a form-factor run, with its default beside it. The CLI fills it once.
 struct FormFactorSettings {
   std::string method = "point-polygon";  ///< --ff: a name from formFactorMethodNames()
-  /// The method's own parameters, "key=value, ..." (--ff NAME:key=value;...); each method
+  /// The method's own parameters, "key=value, ..." (--ff NAME:key=value;..., split by
+  /// splitPluginChoice); each method
   /// reads its keys from Params and the registry refuses the keys it did not read.
   std::string parameters;
   int samples = 16;                 ///< --ff-samples K >= 1: rays / point pairs per pair
@@ -108,10 +109,6 @@ struct FormFactorMethodTraits {
 
 /// \brief The traits of a registered method; throws std::invalid_argument for an unknown name.
 const FormFactorMethodTraits& formFactorTraits(const std::string& method);
-
-/// \brief Splits "name:key=value;key=value" (the --ff text) into the method's name and its
-/// parameters as Params text ("key=value, key=value"); a name alone has no parameters.
-void splitFormFactorChoice(const std::string& text, std::string& name, std::string& parameters);
 
 /// \brief The registered names, default first.
 std::vector<std::string> formFactorMethodNames();

@@ -99,15 +99,6 @@ std::unique_ptr<FormFactorMethod> makeFormFactorMethod(const PatchMesh& mesh,
   }
 }
 
-void splitFormFactorChoice(const std::string& text, std::string& name, std::string& parameters) {
-  const std::size_t colon = text.find(':');
-  name = text.substr(0, colon);
-  parameters.clear();
-  if (colon == std::string::npos) return;
-  // The --solvers spelling: ';' between parameters, as ',' separates the solvers there.
-  for (char c : text.substr(colon + 1)) parameters += c == ';' ? ',' : c;
-}
-
 std::vector<std::string> formFactorMethodNames() {
   std::vector<std::string> names;
   for (const MethodEntry& m : kMethods) names.emplace_back(m.name);

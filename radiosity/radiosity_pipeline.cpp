@@ -11,6 +11,7 @@
 #include "solvers/kernels.h"
 #include "solvers/registry.h"
 #include "util/format.h"
+#include "util/params.h"
 
 namespace radkit {
 
@@ -82,14 +83,8 @@ std::vector<SolverChoice> parseSolverList(const std::string& text) {
   std::string item;
   while (std::getline(list, item, ',')) {
     if (item.empty()) continue;
-    SolverChoice c;
-    auto colon = item.find(':');
-    c.name = item.substr(0, colon);
-    if (colon != std::string::npos) {
-      c.parameters = item.substr(colon + 1);
-      for (char& ch : c.parameters)
-        if (ch == ';') ch = ',';
-    }
+    const PluginChoice choice = splitPluginChoice(item);
+    SolverChoice c{choice.name, choice.parameters};
     makeSolver(c.name, Params::parse(c.parameters));  // validates name and keys now
     out.push_back(c);
   }

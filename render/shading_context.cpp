@@ -18,6 +18,10 @@ LightSampling parseLightSampling(const std::string& name) {
   throw std::invalid_argument("unknown light sampling \"" + name + "\" (area or solid-angle)");
 }
 
+std::string lightSamplingName(LightSampling sampling) {
+  return sampling == LightSampling::SolidAngle ? "solid-angle" : "area";
+}
+
 namespace {
 
 /// The glossy lobe of `bsdf` drawn with the model `glossy` asks for, by Walter et al. 2007,

@@ -42,6 +42,8 @@ enum class LightSampling {
 };
 /// "area" or "solid-angle"; throws std::invalid_argument otherwise.
 LightSampling parseLightSampling(const std::string& name);
+/// The name parseLightSampling reads.
+std::string lightSamplingName(LightSampling sampling);
 
 /// A surface point seen along a ray, in the frame in which its BSDF is evaluated.
 struct SurfaceHit {

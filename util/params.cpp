@@ -149,4 +149,13 @@ void Params::rejectUnused(const std::string& owner) const {
                    (known.empty() ? " has no parameters" : " reads " + known));
 }
 
+PluginChoice splitPluginChoice(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  PluginChoice choice{text.substr(0, colon), ""};
+  if (colon != std::string::npos) choice.parameters = text.substr(colon + 1);
+  for (char& c : choice.parameters)
+    if (c == ';') c = ',';
+  return choice;
+}
+
 }  // namespace radkit

@@ -81,4 +81,13 @@ class Params {
   std::set<std::string> m_read;
 };
 
+/// A plugin as a command line names it, "name:key=value;key=value": ';' separates its
+/// parameters because ',' separates the items of a list (--solvers jacobi,sor:omega=1.2).
+struct PluginChoice {
+  std::string name;
+  std::string parameters;  ///< Params::parse's text, ';' turned into ','; empty for a name alone
+};
+/// \brief Splits a plugin choice at its first ':'.
+PluginChoice splitPluginChoice(const std::string& text);
+
 }  // namespace radkit

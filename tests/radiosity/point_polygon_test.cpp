@@ -9,6 +9,7 @@
 #include "radiosity/form_factors.h"
 #include "radiosity/surface_form_factors.h"
 #include "test_scenes.h"
+#include "util/params.h"
 
 namespace radkit {
 namespace {
@@ -326,10 +327,9 @@ TEST(PointPolygon, ExactItsOwnParameterEqualsTheSettingAndUnknownKeysAreRefused)
   none.method = "monte-carlo";
   none.parameters = "pair_levels=2";
   EXPECT_THROW(makeFormFactorMethod(b.mesh(), scene, none), ParamError);
-  std::string name, parameters;
-  splitFormFactorChoice("point-polygon:pair_levels=2;x=1", name, parameters);
-  EXPECT_EQ(name, "point-polygon");
-  EXPECT_EQ(parameters, "pair_levels=2,x=1");
+  const PluginChoice choice = splitPluginChoice("point-polygon:pair_levels=2;x=1");
+  EXPECT_EQ(choice.name, "point-polygon");
+  EXPECT_EQ(choice.parameters, "pair_levels=2,x=1");
 }
 
 }  // namespace
