@@ -8,6 +8,7 @@
 
 #include "apps/common.h"
 #include "job/terrain_job.h"
+#include "sky/sky_radiance.h"
 #include "util/format.h"
 
 namespace radkit::app {
@@ -86,8 +87,10 @@ void addTerrainCommand(CLI::App& app) {
   sub->add_option("--format", cmd->format, "Mesh files: obj or ply")
       ->check(CLI::IsMember({"obj", "ply"}))
       ->capture_default_str();
-  sub->add_option("--sky", cmd->sky, "The scene's sky: physical, cie-overcast or uniform")
-      ->check(CLI::IsMember({"physical", "cie-overcast", "uniform"}))
+  sub->add_option("--sky", cmd->sky,
+                  "The scene's sky: " + skyRegistry().namesText() +
+                      ", with parameters as NAME:key=value;... (without them, 10 000 lux for the "
+                      "uniform and CIE skies)")
       ->capture_default_str();
   sub->add_option("--sun-elevation", cmd->sunElevation, "Physical sky: sun elevation, degrees")
       ->check(FiniteRange(-90, 90))

@@ -1,13 +1,15 @@
 // The sky a scene declares ("sky" in the scene file, docs/daylight.md) as radiance over
-// directions in scene coordinates: a uniform sky, the CIE standard overcast sky, or the
-// physical sky of atmosphere/ (tabulated once per run), with the sun beside it.
+// directions in scene coordinates: its model (sky/registry.cpp) in the scene's frame, with the
+// sun beside it and the ground's glow below the horizon.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "geometry/scene.h"
+#include "sky/sky_radiance.h"
 
 namespace radkit {
 
@@ -15,6 +17,7 @@ class SkyModel {
  public:
   /// \throws std::invalid_argument for a description the loader would have refused.
   explicit SkyModel(const SkyDescription& sky);
+  ~SkyModel();
 
   /// Radiance (W m⁻² sr⁻¹) arriving from unit direction `d` (scene coordinates, pointing away
   /// from the scene): the sky above the horizon, the ground's glow below it. The sun's disc
@@ -35,30 +38,23 @@ class SkyModel {
   Vec3 horizontalSun() const { return m_horizontalSun; }
 
   const SkyDescription& description() const { return m_sky; }
-  std::string typeName() const;
-  /// Seconds spent tabulating the physical sky (0 for the others).
-  double tableSeconds() const { return m_tableSeconds; }
+  /// The model's name (sky/registry.cpp).
+  const std::string& typeName() const { return m_sky.model; }
+  /// What report.json says of the model beyond its name (SkyRadiance::report).
+  std::map<std::string, double> modelReport() const { return m_model->report(); }
 
   /// The local frame (x east, y north, z up) of a scene direction, and back.
   Vec3 toLocal(const Vec3& d) const { return {dot(d, m_east), dot(d, m_north), dot(d, m_up)}; }
   Vec3 toScene(const Vec3& l) const { return m_east * l.x + m_north * l.y + m_up * l.z; }
 
  private:
-  Vec3 skyRadiance(const Vec3& local) const;  ///< above the horizon
-  Vec3 tableLookup(const Vec3& local) const;
-  void tabulatePhysical();
-
   SkyDescription m_sky;
+  std::unique_ptr<SkyRadiance> m_model;
   Vec3 m_up, m_north, m_east;
   bool m_sunUp = false;
   Vec3 m_sunDirection{0, 0, 1}, m_sunIrradiance{0, 0, 0};
   double m_sunCosRadius = 1;
   Vec3 m_horizontalSky{0, 0, 0}, m_horizontalSun{0, 0, 0}, m_groundRadiance{0, 0, 0};
-  // The physical sky: radiance at rows of elevation e = (π/2) t², t = row/(rows − 1) (fine
-  // near the horizon, where it changes fastest) and columns of azimuth, bilinear between.
-  int m_rows = 0, m_columns = 0;
-  std::vector<Vec3> m_table;
-  double m_tableSeconds = 0;
 };
 
 }  // namespace radkit

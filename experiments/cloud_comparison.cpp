@@ -37,7 +37,7 @@ CloudComparison compareCloudModels(const media::Medium& layer, const CloudCompar
   // sky tabulated as daylight/ does for scenes. Below the horizon the sky is the ground's glow
   // ρ E_h/π (black by default).
   SkyDescription sd;
-  sd.type = SkyDescription::Type::Physical;
+  sd.model = "physical", sd.parameters = Params();
   sd.sun = true, sd.sunElevationDeg = c.sunElevationDeg, sd.sunAzimuthDeg = c.sunAzimuthDeg;
   sd.groundReflectance = c.groundAlbedo;
   const auto sky = std::make_shared<const SkyModel>(sd);

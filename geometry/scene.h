@@ -72,20 +72,17 @@ struct Camera {
 /// Daylight: a sky, and optionally the sun, lighting the scene from outside it (the "sky" key,
 /// docs/daylight.md). Plain data; daylight/ turns it into radiance and patch irradiance.
 struct SkyDescription {
-  enum class Type { Uniform, CieOvercast, Physical };
-  Type type = Type::Uniform;
-  Vec3 radiance{0, 0, 0};        ///< uniform sky, W m⁻² sr⁻¹ per channel
-  Vec3 zenithRadiance{0, 0, 0};  ///< CIE overcast: L(θ) = L_z (1 + 2 cos θ)/3
+  std::string model = "uniform";  ///< a sky model of sky/registry.cpp ("type" in the file)
+  /// The model's own keys, as given (checked when loaded); by default a black uniform sky.
+  Params parameters = Params({{"radiance", 0.0}});
   bool sun = false;
   double sunElevationDeg = 45, sunAzimuthDeg = 180;  ///< azimuth clockwise from north
-  /// Uniform and CIE skies: the sun's normal irradiance (W/m² per channel). The physical sky
-  /// computes it from the atmosphere.
+  /// The sun's normal irradiance (W/m² per channel), for a model that does not compute it
+  /// (SkyRadiance::computesSun).
   Vec3 sunIrradiance{0, 0, 0};
   double sunAngularRadiusDeg = 0.2665;
-  double density = 1;   ///< physical: air density at the ground over the standard one
-  double altitude = 0;  ///< physical: the scene's height above the ground of the planet (m)
-  Vec3 up{0, 0, 1};     ///< the zenith in scene coordinates
-  Vec3 north{0, 1, 0};  ///< azimuth 0 (made perpendicular to up)
+  Vec3 up{0, 0, 1};              ///< the zenith in scene coordinates
+  Vec3 north{0, 1, 0};           ///< azimuth 0 (made perpendicular to up)
   double groundReflectance = 0;  ///< below the horizon: radiance ρ_g E_h / π (0: black)
   int samples = 256;             ///< sky rays per patch
   int sunSamples = 16;           ///< shadow rays to the sun's disc per patch

@@ -23,7 +23,9 @@
 #include "geometry/mesh_reader.h"
 #include "geometry/mesh_structure.h"
 #include "geometry/validation.h"
+#include "sky/sky_radiance.h"
 #include "util/format.h"
+#include "util/photometry.h"
 
 namespace radkit {
 
@@ -37,9 +39,6 @@ namespace {
 constexpr double kLargestPlausibleMetres = 200;
 constexpr double kSmallestPlausibleMetres = 1e-2;
 constexpr double kLargestPlausibleOutdoorMetres = 1e5;
-/// Photometry as in docs/formats.md (683 · Y): white light of luminance L has radiance L/683
-/// in every channel, since Y(1, 1, 1) = 1.
-constexpr double kLumensPerWattWhite = 683.0;
 
 std::string unitList() {
   std::string list;
@@ -53,6 +52,25 @@ bool isKnownUnit(const std::string& unit) {
   return false;
 }
 
+/// A plugin's own keys: every key of j but the common ones, as Params (a name, a number, or a
+/// triple), for its registry to read and check.
+Params pluginParams(ObjectReader& r, const json& j, std::initializer_list<const char*> common) {
+  Params params;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& key = it.key();
+    if (std::any_of(common.begin(), common.end(), [&](const char* c) { return key == c; }))
+      continue;
+    const json& v = it.value();
+    if (v.is_string())
+      params.setText(key, v.get<std::string>());
+    else if (v.is_array())
+      params.set(key, r.toVec3(v, key));
+    else
+      params.set(key, r.toNumber(v, key));
+  }
+  return params;
+}
+
 /// A material: "brdf" names the BSDF, "emission" and "two_sided" belong to every material, and
 /// every other key is the BSDF's own, read and range-checked by it (bsdf/registry.cpp).
 Material readMaterial(const std::string& name, const json& j, const std::string& file) {
@@ -63,17 +81,7 @@ Material readMaterial(const std::string& name, const json& j, const std::string&
   m.bsdf = r.string("brdf", "lambert");
   m.emission = r.vec3("emission", m.emission);
   m.twoSided = r.boolean("two_sided", false);
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    const std::string& key = it.key();
-    if (key == "brdf" || key == "emission" || key == "two_sided") continue;
-    const json& v = it.value();
-    if (v.is_string())
-      m.params.setText(key, v.get<std::string>());
-    else if (v.is_array())
-      m.params.set(key, r.toVec3(v, key));
-    else
-      m.params.set(key, r.toNumber(v, key));
-  }
+  m.params = pluginParams(r, j, {"brdf", "emission", "two_sided"});
   try {
     resolveMaterial(m);
   } catch (const ParamError& e) {
@@ -320,22 +328,17 @@ Vec3 readRadiance(ObjectReader& r, const json& j, const std::string& key) {
 }
 
 void requireNonNegative(ObjectReader& r, const Vec3& v, const std::string& key) {
-  if (v.x < 0 || v.y < 0 || v.z < 0)
-    r.fail("\"" + key +
-           "\" must not be negative (light cannot be taken away). Fix: give 0 or more");
-  // The bounds of an emission: a sun of 1e308 wrote inf into surfaces.csv.
-  for (double c : {v.x, v.y, v.z})
-    if (c != 0 && !(c >= kMinEmission && c <= kMaxEmission))
-      r.fail("\"" + key + "\" " + formatNumber(c) + " is outside [" + formatNumber(kMinEmission) +
-             ", " + formatNumber(kMaxEmission) +
-             "], where results stay finite. Fix: give it in a unit that brings it into range");
+  try {
+    checkEmission(key, v);
+  } catch (const ParamError& e) {
+    r.fail(e.what());
+  }
 }
 
-/// The sun: where it stands and, for the uniform and CIE skies, how strong it is.
-void readSun(const json& j, const std::string& file, SkyDescription& sky) {
+/// The sun: where it stands and, unless the sky model computes it, how strong it is.
+void readSun(const json& j, const std::string& file, bool modelMakesSun, SkyDescription& sky) {
   ObjectReader r(j, "sky's \"sun\"", file);
-  const bool physical = sky.type == SkyDescription::Type::Physical;
-  if (physical)
+  if (modelMakesSun)
     r.allowOnly({"elevation", "azimuth", "angular_radius"});
   else
     r.allowOnly({"elevation", "azimuth", "angular_radius", "irradiance", "illuminance"});
@@ -346,7 +349,7 @@ void readSun(const json& j, const std::string& file, SkyDescription& sky) {
   sky.sunAngularRadiusDeg = r.number("angular_radius", sky.sunAngularRadiusDeg);
   if (!(sky.sunAngularRadiusDeg > 0 && sky.sunAngularRadiusDeg <= 10))
     r.fail("\"angular_radius\" must lie in (0, 10] degrees (the real sun's is 0.2665)");
-  if (physical) return;
+  if (modelMakesSun) return;
   if (r.has("irradiance") == r.has("illuminance"))
     r.fail(
         "needs exactly one of \"irradiance\" (W/m² per channel, normal to the sun) and "
@@ -357,7 +360,7 @@ void readSun(const json& j, const std::string& file, SkyDescription& sky) {
   } else {
     const double lux = r.toNumber(j.at("illuminance"), "illuminance");
     if (lux < 0) r.fail("\"illuminance\" must not be negative");
-    const double w = lux / kLumensPerWattWhite;
+    const double w = lux / kLumensPerWatt;
     sky.sunIrradiance = {w, w, w};
     requireNonNegative(r, sky.sunIrradiance, "illuminance");
   }
@@ -366,52 +369,21 @@ void readSun(const json& j, const std::string& file, SkyDescription& sky) {
 SkyDescription readSky(const json& j, const std::string& file) {
   ObjectReader r(j, "\"sky\"", file);
   SkyDescription sky;
-  const std::string type = r.string("type", "");
-  if (type == "uniform") {
-    sky.type = SkyDescription::Type::Uniform;
-    r.allowOnly({"type", "radiance", "luminance", "sun", "up", "north", "ground_reflectance",
-                 "samples", "sun_samples"});
-    if (r.has("radiance") == r.has("luminance"))
-      r.fail("(uniform) needs exactly one of \"radiance\" (W m⁻² sr⁻¹) and \"luminance\" (cd/m²)");
-    if (r.has("radiance")) {
-      sky.radiance = readRadiance(r, j.at("radiance"), "radiance");
-    } else {
-      const double l = r.toNumber(j.at("luminance"), "luminance") / kLumensPerWattWhite;
-      sky.radiance = {l, l, l};
-    }
-    requireNonNegative(r, sky.radiance, "radiance");
-  } else if (type == "cie-overcast") {
-    sky.type = SkyDescription::Type::CieOvercast;
-    r.allowOnly({"type", "zenith_radiance", "zenith_luminance", "sun", "up", "north",
-                 "ground_reflectance", "samples", "sun_samples"});
-    if (r.has("zenith_radiance") == r.has("zenith_luminance"))
-      r.fail(
-          "(cie-overcast) needs exactly one of \"zenith_radiance\" (W m⁻² sr⁻¹) and "
-          "\"zenith_luminance\" (cd/m²)");
-    if (r.has("zenith_radiance")) {
-      sky.zenithRadiance = readRadiance(r, j.at("zenith_radiance"), "zenith_radiance");
-    } else {
-      const double l =
-          r.toNumber(j.at("zenith_luminance"), "zenith_luminance") / kLumensPerWattWhite;
-      sky.zenithRadiance = {l, l, l};
-    }
-    requireNonNegative(r, sky.zenithRadiance, "zenith_radiance");
-  } else if (type == "physical") {
-    sky.type = SkyDescription::Type::Physical;
-    r.allowOnly({"type", "sun", "density", "altitude", "up", "north", "ground_reflectance",
-                 "samples", "sun_samples"});
-    sky.density = r.number("density", sky.density);
-    if (!(sky.density > 0 && sky.density <= 100))
-      r.fail("\"density\" (air density over the standard one) must lie in (0, 100]");
-    sky.altitude = r.number("altitude", sky.altitude);
-    if (!(sky.altitude >= 0 && sky.altitude < 50000))
-      r.fail("\"altitude\" must lie in [0, 50000) metres (inside the atmosphere)");
-    if (!r.has("sun")) r.fail("(physical) needs a \"sun\": {\"elevation\": degrees}");
-  } else {
-    r.fail("needs \"type\": one of \"uniform\", \"cie-overcast\", \"physical\"" +
-           std::string(type.empty() ? "" : " (not \"" + type + "\")"));
+  if (!r.has("type"))
+    r.fail("needs \"type\": one of " + skyRegistry().namesText() + " (docs/daylight.md)");
+  sky.model = r.string("type", "");
+  sky.parameters = pluginParams(
+      r, j, {"type", "sun", "up", "north", "ground_reflectance", "samples", "sun_samples"});
+  // Checks the model's own keys now; its set-up (the physical sky's table) waits for daylight/.
+  std::unique_ptr<SkyRadiance> model;
+  try {
+    model = skyRegistry().make(sky.model, sky.parameters);
+  } catch (const ParamError& e) {
+    r.fail(e.what());
   }
-  if (r.has("sun")) readSun(j.at("sun"), file, sky);
+  if (model->needsSun() && !r.has("sun"))
+    r.fail("(" + sky.model + ") needs a \"sun\": {\"elevation\": degrees}");
+  if (r.has("sun")) readSun(j.at("sun"), file, model->computesSun(), sky);
   sky.up = r.vec3("up", sky.up);
   sky.north = r.vec3("north", sky.north);
   if (length(sky.up) == 0) r.fail("\"up\" must not be the zero vector");

@@ -7,6 +7,7 @@
 
 #include "geometry/scene.h"
 #include "geometry/scene_loader.h"
+#include "util/photometry.h"
 
 namespace radkit {
 
@@ -49,9 +50,8 @@ MeshRepair repairMesh(Surface& surface);
 /// Largest |coordinate| validateScene accepts (scene units).
 constexpr double kMaxCoordinate = 1e15;
 
-/// Range of a non-zero emission (W/m²) validateScene accepts: with areas up to kMaxCoordinate²
-/// and squared powers in the error estimates, every result stays a normal double.
-constexpr double kMinEmission = 1e-60, kMaxEmission = 1e60;
+// kMinEmission and kMaxEmission (util/photometry.h) bound a non-zero emission: with areas up to
+// kMaxCoordinate² and squared powers in the error estimates, every result stays a normal double.
 
 /// Reports exact self-intersections between non-adjacent faces of one surface (CGAL PMP).
 /// Returns the number of intersecting face pairs found (0 when clean).

@@ -29,7 +29,8 @@ JobSettings resolveJobSettings(const JobSettings& given) {
     if (s.kind != JobKind::Run)
       throw std::invalid_argument("preset \"" + s.preset +
                                   "\" runs hierarchical radiosity, which only a run does; use "
-                                  "a dense preset (draft, balanced, reference)");
+                                  "a dense preset (" +
+                                  densePresetNames() + ")");
     if (s.method && *s.method != JobMethod::Hierarchical)
       throw std::invalid_argument("preset \"" + s.preset +
                                   "\" runs the hierarchical method, not the dense one; drop "

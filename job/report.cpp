@@ -135,9 +135,7 @@ json daylightJson(const SkyModel& sky, const Daylight& d) {
                 {"direction", vec3Json(sky.sunDirection())},
                 {"normal_irradiance_W_m2", vec3Json(sky.sunIrradiance())},
                 {"rays_per_patch", k.sunSamples}};
-  if (k.type == SkyDescription::Type::Physical)
-    j["physical"] = {
-        {"density", k.density}, {"altitude_m", k.altitude}, {"table_seconds", sky.tableSeconds()}};
+  if (const auto model = sky.modelReport(); !model.empty()) j[sky.typeName()] = model;
   return j;
 }
 

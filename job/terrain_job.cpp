@@ -9,6 +9,7 @@
 #include "job/report.h"
 #include "render/camera.h"
 #include "render/hdr_io.h"
+#include "sky/sky_radiance.h"
 #include "util/canvas.h"
 #include "util/format.h"
 #include "util/output_folder.h"
@@ -98,19 +99,32 @@ json renderLandscapes(const TerrainJobSettings& cmd, const terrain::TerrainSetti
   return out;
 }
 
+/// A parameter as the scene file writes it: a name, a number (whole numbers without ".0"), or
+/// a triple.
+json paramJson(const Params::Value& v) {
+  if (v.isText) return v.text;
+  if (v.numbers.size() != 1) return v.numbers;
+  const double x = v.numbers[0];
+  if (x == std::floor(x) && std::abs(x) < 1e15) return static_cast<long long>(x);
+  return x;
+}
+
+/// The scene's sky: the model named by --sky with its parameters, or its registry example (a
+/// daylight of 10 000 lux) when none are given; the terrain's sun for a model that needs one.
 json skyJson(const TerrainJobSettings& cmd) {
-  json sky{{"type", cmd.sky},
+  const PluginChoice choice = splitPluginChoice(cmd.sky);
+  const SkyRegistry::Entry& entry = skyRegistry().at(choice.name);
+  const Params params =
+      Params::parse(choice.parameters.empty() ? entry.example : choice.parameters);
+  const std::unique_ptr<SkyRadiance> model = skyRegistry().make(choice.name, params);
+  json sky{{"type", choice.name},
            {"up", {0, 0, 1}},
            {"north", {0, 1, 0}},
            {"samples", cmd.skySamples},
            {"sun_samples", cmd.sunSamples}};
-  if (cmd.sky == "physical") {
+  for (const auto& [key, value] : params.values()) sky[key] = paramJson(value);
+  if (model->needsSun())
     sky["sun"] = {{"elevation", cmd.sunElevation}, {"azimuth", cmd.sunAzimuth}};
-  } else if (cmd.sky == "cie-overcast") {
-    sky["zenith_luminance"] = 4093;  // 10 000 lux on an open horizontal plane
-  } else {
-    sky["luminance"] = 3183;  // 10 000 lux: πL = E
-  }
   return sky;
 }
 
@@ -122,9 +136,12 @@ TerrainJobResult runTerrainJob(const TerrainJobSettings& cmd) {
     throw std::invalid_argument("terrain: type \"" + cmd.type + "\" is neither ridged nor fbm");
   if (cmd.format != "obj" && cmd.format != "ply")
     throw std::invalid_argument("terrain: format \"" + cmd.format + "\" is neither obj nor ply");
-  if (cmd.sky != "physical" && cmd.sky != "cie-overcast" && cmd.sky != "uniform")
-    throw std::invalid_argument("terrain: sky \"" + cmd.sky +
-                                "\" is none of physical, cie-overcast, uniform");
+  json sky;
+  try {
+    sky = skyJson(cmd);
+  } catch (const ParamError& e) {
+    throw std::invalid_argument(std::string("terrain: sky: ") + e.what());
+  }
   TerrainJobResult result;
   result.out = cmd.out;
   terrain::TerrainSettings s = cmd.settings;
@@ -163,7 +180,7 @@ TerrainJobResult runTerrainJob(const TerrainJobSettings& cmd) {
                              {"look_at", vec3Json(terrainCamera(s).lookAt)},
                              {"up", {0, 0, 1}},
                              {"fov_deg", terrainCamera(s).fovDeg}});
-  scene["sky"] = ordered(skyJson(cmd));
+  scene["sky"] = ordered(sky);
   writeFileAtomically(folder.path("terrain.json"), scene.dump(1) + "\n");
   writeHeightMap(folder.path("heightmap.png"), field, s.height);
   const FractalSettings& f = s.fractal;

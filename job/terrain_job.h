@@ -17,7 +17,9 @@ struct TerrainJobSettings {
   terrain::TerrainSettings settings;  ///< its `type` is set from `type`
   std::string type = "ridged";        ///< "ridged" (multifractal) or "fbm"
   std::string format = "obj";         ///< mesh files: "obj" or "ply"
-  std::string sky = "physical";       ///< the scene's sky: physical, cie-overcast or uniform
+  /// The scene's sky: a model of sky/registry.cpp, with parameters as "name:key=value;..."
+  /// (the model's registry example when none are given).
+  std::string sky = "physical";
   double sunElevation = 35, sunAzimuth = 150;  ///< degrees; azimuth clockwise from north
   int skySamples = 128, sunSamples = 16;       ///< the scene's sky and sun rays per patch
   bool image = false;                          ///< render the landscape both ways and compare

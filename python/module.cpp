@@ -42,11 +42,13 @@
 #include "radiosity/form_factor_storage.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/pair_rule.h"
+#include "radiosity/presets.h"
 #include "radiosity/radiosity_solution.h"
 #include "render/camera.h"
 #include "render/path_tracer.h"
 #include "render/radiosity_image.h"
 #include "render/shading_context.h"
+#include "sky/sky_radiance.h"
 #include "solvers/registry.h"
 #include "solvers/solver.h"
 #include "solvers/system_input.h"
@@ -1045,6 +1047,35 @@ py::tuple phaseSamplePy(const PyPhase& p, const Array& u) {
   return py::make_tuple(mu, pdf);
 }
 
+/// A sky model of the registry (sky/), prepared for a sun, on arrays of local directions.
+struct PySky {
+  std::shared_ptr<SkyRadiance> sky;
+  std::string name;
+};
+
+PySky makeSkyPy(const std::string& name, const py::object& params, double sunElevation,
+                double sunAzimuth) {
+  const std::string text = pluginParamsText(params, "sky model \"" + name + "\"");
+  std::shared_ptr<SkyRadiance> sky = skyRegistry().make(name, Params::parse(text));
+  if (!(std::abs(sunElevation) <= 90 && std::isfinite(sunAzimuth)))
+    throw py::value_error("sun_elevation must lie in [-90, 90] degrees, sun_azimuth be finite");
+  {
+    py::gil_scoped_release release;
+    sky->prepare(true, sunElevation, sunAzimuth);
+  }
+  return {sky, name};
+}
+
+/// Radiance toward (n, 3) local directions; zero at and below the horizon, where a scene's
+/// ground takes over.
+Array skyModelRadiancePy(const PySky& s, const Array& directions) {
+  const std::vector<Vec3> dirs = toPoints(directions, "directions");
+  std::vector<Vec3> radiance(dirs.size());
+  for (std::size_t k = 0; k < dirs.size(); ++k)
+    if (length(dirs[k]) > 0 && dirs[k].z > 0) radiance[k] = s.sky->radiance(normalize(dirs[k]));
+  return vec3Array(radiance);
+}
+
 py::dict reportDict(const std::string& out, const nlohmann::json& report) {
   py::dict d;
   d["out"] = out;
@@ -1404,6 +1435,27 @@ PYBIND11_MODULE(radkit, mod) {
       .def("__repr__",
            [](const PyPhase& p) { return "<radkit.PhaseFunction " + p.phase->name() + ">"; });
   mod.def("phase_function_names", &phaseFunctionNames, "The phase functions' names");
+  py::class_<PySky>(mod, "SkyModel",
+                    "A sky model of the registry (sky_models()), as a scene's \"sky\" names it, "
+                    "with its sun placed (degrees, azimuth clockwise from north)")
+      .def(py::init(&makeSkyPy), py::arg("name"), py::arg("params") = py::none(), py::kw_only(),
+           py::arg("sun_elevation") = 45.0, py::arg("sun_azimuth") = 180.0)
+      .def("radiance", &skyModelRadiancePy, py::arg("directions"),
+           "(n, 3) W/m^2/sr toward (n, 3) directions in the local frame (x east, y north, z up); "
+           "0 at and below the horizon")
+      .def_property_readonly(
+          "horizontal_irradiance",
+          [](const PySky& s) { return vec3Array({s.sky->horizontalIrradiance()}); },
+          "(1, 3) W/m^2 on an open horizontal plane from the sky (not the sun)")
+      .def_property_readonly(
+          "sun_irradiance", [](const PySky& s) { return vec3Array({s.sky->sunIrradiance()}); },
+          "(1, 3) W/m^2 normal to the sun, for a model that makes its sun (else zero)")
+      .def_property_readonly("name", [](const PySky& s) { return s.name; })
+      .def("__repr__", [](const PySky& s) { return "<radkit.SkyModel " + s.name + ">"; });
+  mod.def(
+      "sky_models", [] { return skyRegistry().names(); },
+      "The sky models a scene's \"sky\" may name (its \"type\") and SkyModel builds");
+  mod.def("preset_names", &presetNames, "The presets run(preset=...) and radkit run --preset take");
   mod.def("sky_radiance", &skyRadiancePy, py::arg("directions"), py::arg("sun_elevation") = 30.0,
           py::arg("sun_azimuth") = 180.0, py::arg("altitude") = 1.0, py::arg("density") = 1.0,
           py::arg("view_samples") = 32, py::arg("light_samples") = 8,

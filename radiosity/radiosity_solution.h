@@ -8,6 +8,7 @@
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
 #include "solvers/radiosity_system.h"
+#include "util/photometry.h"
 
 namespace radkit {
 
@@ -20,9 +21,6 @@ std::vector<Vec3> toVec3(const Channels& c);
 
 /// Irradiance H_i = Σ_j F_ij B_j (W/m²): the flux density arriving at each patch.
 std::vector<Vec3> irradiance(const FormFactorMatrix& f, const Channels& radiosity);
-
-/// Luminous efficacy used for photometric units (lm/W), as in docs/formats.md (Units).
-constexpr double kLumensPerWatt = 683.0;
 
 /// Area-weighted means over one named surface.
 struct SurfaceResult {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "util/errors.h"
+#include "util/photometry.h"
 #include "util/vec3.h"
 #include "viewer/run_folder.h"
 
@@ -44,9 +45,6 @@ struct ViewSettings {
   double exposure = 0;       ///< multiplier on radiance L = B/π; 0: automatic
   int picked = -1;           ///< picked patch, -1 for none
 };
-
-/// Luminous efficacy at 555 nm, lm/W: photometric = 683 × Rec. 709 luminance of radiometric.
-constexpr double kLumensPerWatt = 683.0;
 
 /// \brief Automatic exposure for true colour: maps the area-weighted 95th percentile of the
 /// luminance of L = B/π over non-emitting patches to 0.8, as render/radiosity_image.cpp does

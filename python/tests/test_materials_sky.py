@@ -121,3 +121,37 @@ def test_phase_functions_integrate_to_one_and_have_their_mean_cosine():
         radkit.PhaseFunction("henyey-greenstein", {"g": 1.5})
     with pytest.raises(ValueError, match="not a cosine"):
         radkit.PhaseFunction("isotropic").eval(np.array([1.5]))
+
+
+def test_every_sky_model_is_a_scene_sky_whose_irradiance_integrates_its_radiance():
+    # E_h = ∫ L cos θ dω by the midpoint rule on a grid unlike any model's own.
+    n = 200
+    e = (np.arange(n) + 0.5) / n * (math.pi / 2)
+    a = (np.arange(2 * n) + 0.5) / (2 * n) * 2 * math.pi
+    E, A = np.meshgrid(e, a, indexing="ij")
+    dirs = np.stack([np.cos(E) * np.sin(A), np.cos(E) * np.cos(A), np.sin(E)], -1).reshape(-1, 3)
+    weight = (np.sin(E) * np.cos(E)).reshape(-1, 1) * (math.pi / 2 / n) * (2 * math.pi / (2 * n))
+    examples = {"uniform": {"luminance": 3183}, "cie-overcast": {"zenith_luminance": 4093}}
+    assert set(examples) | {"physical"} <= set(radkit.sky_models())
+    for name in radkit.sky_models():
+        sky = radkit.SkyModel(name, examples.get(name), sun_elevation=30, sun_azimuth=120)
+        integral = (sky.radiance(dirs) * weight).sum(axis=0)
+        np.testing.assert_allclose(sky.horizontal_irradiance[0], integral, rtol=2e-3, err_msg=name)
+        assert np.all(sky.radiance(-dirs) == 0)  # below the horizon: the scene's ground
+    # Uniform: E_h = πL, so 3183 cd/m² is 10 000 lux within the rounding to whole cd/m².
+    uniform = radkit.SkyModel("uniform", {"luminance": 3183})
+    assert 683 * uniform.horizontal_irradiance[0, 1] == pytest.approx(1e4, abs=2)
+    assert radkit.SkyModel("physical", sun_elevation=30).sun_irradiance[0, 0] > 0
+    assert np.all(radkit.SkyModel("uniform", {"radiance": 1}).sun_irradiance == 0)
+
+
+def test_sky_model_refusals_name_the_model_and_key():
+    with pytest.raises(ValueError, match="uniform, cie-overcast, physical"):
+        radkit.SkyModel("foggy")
+    with pytest.raises(ValueError, match="exactly one"):
+        radkit.SkyModel("uniform")
+    with pytest.raises(ValueError, match='"altitude"'):
+        radkit.SkyModel("physical", {"altitude": 1e6})
+    with pytest.raises(ValueError, match='"colour"'):
+        radkit.SkyModel("uniform", {"radiance": 1, "colour": 2})
+    assert radkit.preset_names()[:3] == ["draft", "balanced", "reference"]

@@ -318,7 +318,14 @@ TEST(Daylight, RefusesBadSkies) {
       std::string::npos);
   EXPECT_NE(message(R"({"type": "uniform", "radiance": 1, "samples": 0})").find("samples"),
             std::string::npos);
-  EXPECT_NE(message(R"({"type": "uniform", "radiance": 1, "colour": 3})").find("unknown key"),
+  // A key the model does not read: the message names it and the keys the model does read.
+  const std::string colour = message(R"({"type": "uniform", "radiance": 1, "colour": 3})");
+  EXPECT_NE(colour.find("\"colour\", which uniform does not use"), std::string::npos) << colour;
+  EXPECT_NE(colour.find("luminance, radiance"), std::string::npos) << colour;
+  EXPECT_NE(message(R"({"type": "physical", "density": 0, "sun": {"elevation": 30}})")
+                .find("\"density\" 0 is outside (0, 100]"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"sun": {"elevation": 30}})").find("uniform, cie-overcast, physical"),
             std::string::npos);
   EXPECT_NE(message(R"({"type": "uniform", "radiance": 1})").find("(loaded)"), std::string::npos);
   for (const char* bad : {R"({"type": "cloudy"})", R"({"type": "physical"})"})

@@ -131,7 +131,7 @@ TEST(Job, RefusesSettingsThatDisagreeBeforeAnyWork) {
   refused(s, "checking links is for the hierarchical method");
   s = {};
   s.preset = "fast";
-  refused(s, "unknown preset 'fast'");
+  refused(s, "unknown preset \"fast\"");
   s = {};
   s.formFactorMethod = "centroid";
   refused(s, "unknown form-factor method 'centroid'");

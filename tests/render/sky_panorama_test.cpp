@@ -41,8 +41,7 @@ SkyDescription zUpSky() {
 TEST(SkyPanorama, ColumnsFollowTheCompassAndRowsTheElevation) {
   // A y-up scene whose north is −z: east is then +x (east = north × up).
   SkyDescription d;
-  d.type = SkyDescription::Type::Uniform;
-  d.radiance = {1, 1, 1};
+  d.parameters = Params({{"radiance", 1.0}});
   d.up = {0, 1, 0};
   d.north = {0, 0, -1};
   const SkyModel sky(d);
@@ -63,8 +62,9 @@ TEST(SkyPanorama, UniformSkyGivesPiLAndTheSunKeepsItsIrradianceAndPlace) {
   // Uniform sky L: E_h = πL. The sun at elevation 30°, azimuth 120° (clockwise from north),
   // normal irradiance E_n: E_h = E_n sin 30° more, and on a plane facing the sun E_n more.
   SkyDescription d = zUpSky();
-  d.type = SkyDescription::Type::Uniform;
-  d.radiance = {1, 2, 3};
+  const Vec3 radiance{1, 2, 3};
+  d.parameters = Params();
+  d.parameters.set("radiance", radiance);
   d.sun = true;
   d.sunElevationDeg = 30;
   d.sunAzimuthDeg = 120;
@@ -79,8 +79,8 @@ TEST(SkyPanorama, UniformSkyGivesPiLAndTheSunKeepsItsIrradianceAndPlace) {
   const double rowHalf = M_PI / p.height / 2;
   for (int c = 0; c < 3; ++c)
     EXPECT_NEAR(
-        e[c], M_PI * d.radiance[c] + d.sunIrradiance[c] * 0.5,
-        1e-4 * M_PI * d.radiance[c] + d.sunIrradiance[c] * std::cos(30 * M_PI / 180) * rowHalf);
+        e[c], M_PI * radiance[c] + d.sunIrradiance[c] * 0.5,
+        1e-4 * M_PI * radiance[c] + d.sunIrradiance[c] * std::cos(30 * M_PI / 180) * rowHalf);
   // The brightest pixel lies at the sun's bearing and elevation, within a pixel (0.7°).
   std::size_t brightest = 0;
   for (std::size_t i = 0; i < p.radiance.size(); ++i)
@@ -99,8 +99,8 @@ TEST(SkyPanorama, CieOvercastSkyGivesSevenPiLzOverNineAndItsGroundGlow) {
   // E_h = 7πL_z/9. Below the horizon the ground glows at ρ_g E_h/π, so a downward plane gets
   // ρ_g E_h.
   SkyDescription d = zUpSky();
-  d.type = SkyDescription::Type::CieOvercast;
-  d.zenithRadiance = {3, 3, 3};
+  d.model = "cie-overcast";
+  d.parameters = Params({{"zenith_radiance", 3.0}});
   d.groundReflectance = 0.2;
   const SkyModel sky(d);
   const RadianceImage p = skyPanorama(sky, 1024);
