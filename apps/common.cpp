@@ -148,15 +148,9 @@ Scene loadSceneReporting(const std::string& path, const LoadOptions& load, LoadR
 }
 
 PatchMesh meshScene(const Scene& scene, const MeshOptions& options) {
-  try {
-    std::vector<std::string> warnings;
-    PatchMesh mesh =
-        subdivide(scene, SubdivisionSettings{options.maxArea, options.patches}, &warnings);
-    for (const std::string& w : warnings) std::cerr << "radkit: warning: " << w << '\n';
-    return mesh;
-  } catch (const TooManyPatches&) {
-    throwTooManyPatches(scene, SubdivisionSettings{options.maxArea, options.patches});
-  }
+  return subdivideScene(
+      scene, SubdivisionSettings{options.maxArea, options.patches},
+      [](const std::string& w) { std::cerr << "radkit: warning: " << w << '\n'; });
 }
 
 std::string fmt(const char* format, double value) { return formatValue(format, value); }

@@ -27,6 +27,7 @@
 #include "geometry/scene_loader.h"
 #include "geometry/structure_text.h"
 #include "geometry/text_numbers.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -101,7 +102,8 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool 
   if (repeatedVertex && !repair)
     throw InputError(path +
                      ": a face repeats a vertex (degenerate face). Fix: remove the "
-                     "repeated index from the face, or give --repair to drop such faces.");
+                     "repeated index from the face, or give " +
+                     setting("repair") + " to drop such faces.");
   // A safety net behind checkMeshStructure: OpenMesh drops faces it cannot add without a word.
   if (declaredFaces >= 0 && (long long)mesh.n_faces() != declaredFaces && !repeatedVertex)
     throw InputError(path + ": the file declares " + std::to_string(declaredFaces) +

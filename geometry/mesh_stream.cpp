@@ -33,6 +33,7 @@
 #include "geometry/positions.h"
 #include "geometry/structure_text.h"
 #include "util/errors.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -273,7 +274,8 @@ void requireNoRepeats(const RawMesh& raw, bool repair, const std::string& path) 
   if (raw.droppedFaces > 0 && !repair)
     throw InputError(path +
                      ": a face repeats a vertex (degenerate face). Fix: remove the "
-                     "repeated index from the face, or give --repair to drop such faces.");
+                     "repeated index from the face, or give " +
+                     setting("repair") + " to drop such faces.");
 }
 
 /// OpenMesh gives faces it cannot join manifoldly copies of their vertices, and the full path

@@ -26,6 +26,7 @@
 #include "sky/sky_radiance.h"
 #include "util/format.h"
 #include "util/photometry.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -431,8 +432,8 @@ Scene loadJsonScene(const std::string& path, const LoadOptions& options, LoadRep
   if (!isKnownUnit(scene.units))
     r.fail("has unknown \"units\" \"" + scene.units + "\". Fix: use one of " + unitList());
   if (!options.units.empty() && scene.units != options.units)
-    r.fail("says \"units\": \"" + scene.units + "\" but --units " + options.units +
-           " was given. Fix: drop --units, or change the scene's \"units\"");
+    r.fail("says \"units\": \"" + scene.units + "\" but " + setting("units") + " " + options.units +
+           " was given. Fix: drop " + setting("units") + ", or change the scene's \"units\"");
   if (r.has("materials")) {
     const json& mats = root.at("materials");
     if (!mats.is_object()) r.fail("\"materials\" must be an object of named materials");
@@ -512,9 +513,11 @@ bool warnOnUnitlessGiants(const Scene& scene, LoadReport& report) {
         s.source + where + ", read in " + scene.units +
         ". STL and OBJ files carry no unit, and CAD exports are often in millimetres. Fix: if it "
         "is in mm, give " +
-        (others ? std::string("its surface \"transform\": {\"scale\": 0.001} (or --units "
-                              "mm when the whole scene is in mm)")
-                : std::string("--units mm")) +
+        (others
+             ? std::string("its surface \"transform\": {\"scale\": 0.001} (or " + setting("units") +
+                           " "
+                           "mm when the whole scene is in mm)")
+             : std::string(setting("units") + " mm")) +
         ".");
     warned = true;
   }
@@ -536,7 +539,7 @@ void warnOnImplausibleSize(const Scene& scene, LoadReport& report) {
       scene.file + ": the scene spans " + text + " read in " + scene.units + ", " +
       (largest > plausible ? "large" : "small") +
       (scene.sky ? " for a landscape." : " for a room or an object.") +
-      " Fix: if its coordinates are in another unit, give --units " + unitList() +
+      " Fix: if its coordinates are in another unit, give " + setting("units") + " " + unitList() +
       (fs::path(scene.file).extension() == ".json" ? " (or \"units\" in the scene file)" : "") +
       ".");
 }
@@ -555,8 +558,8 @@ Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& 
                  [](unsigned char c) { return std::tolower(c); });
   requireRegularFile(path, "scene file");
   if (!options.units.empty() && !isKnownUnit(options.units))
-    throw InputError("--units " + options.units + " is not a unit radkit knows. Fix: use one of " +
-                     unitList() + ".");
+    throw InputError(setting("units") + " " + options.units +
+                     " is not a unit radkit knows. Fix: use one of " + unitList() + ".");
   LoadReport local;
   LoadReport& out = report ? *report : local;
   Scene scene;
@@ -575,8 +578,8 @@ Scene loadScene(const std::string& path, LoadReport* report, const LoadOptions& 
           "light's material an emission \"Ke r g b\" (W/m²) in the MTL file (Ka is ambient "
           "colour, which radkit does not read as emission); or, for a model without a lamp "
           "(a CAD part, a scan), include it from a JSON scene that adds one (\"include\", "
-          "docs/formats.md), or stand it in a lit room with data/tools/make_model_room.py "
-          "MODEL --out SCENE.json.");
+          "docs/formats.md), or stand it in a lit room with "
+          "data/tools/make_model_room.py MODEL --out SCENE.json.");
   } else if (ext == ".stl" || ext == ".ply" || ext == ".off")
     // A bare mesh has neither materials nor a light: say how to give it both.
     throw InputError(path + ": this " +

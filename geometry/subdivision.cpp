@@ -13,10 +13,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 
 #include "geometry/openmesh_errors.h"
 #include "util/errors.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -313,7 +315,8 @@ std::vector<double> spreadByArea(const Scene& scene, const std::vector<SurfaceTo
         std::to_string(starved.size()) + " other surface" + (starved.size() == 1 ? "" : "s") +
         " (\"" + scene.surfaces[starved.front()].name + "\"" + (starved.size() > 1 ? ", ..." : "") +
         ") nearly whole. They were split to their own share instead, so " +
-        "the scene has more patches than the target. Fix: give --max-area for one patch size "
+        "the scene has more patches than the target. Fix: give " + setting("max_area") +
+        " for one patch size "
         "everywhere, or "
         "simplify the mesh.");
   }
@@ -338,7 +341,8 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings,
           ") touch their neighbours where a surface cannot pass (a vertex where two fans meet, "
           "or an edge of more than two faces: OpenMesh's \"complex vertex\" or \"complex "
           "edge\"); each is split into patches on its own, so no face is lost, but patch edges "
-          "there need not line up. Fix: --repair cuts such vertices and edges apart.");
+          "there need not line up. Fix: " +
+          setting("repair") + " cuts such vertices and edges apart.");
     for (double len : tops.back().classLength)
       if (!std::isfinite(len))
         throw InputError(s.source +
@@ -386,6 +390,31 @@ PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings,
       break;
     }
   return out;
+}
+
+PatchMesh subdivideScene(const Scene& scene, const SubdivisionSettings& settings,
+                         const std::function<void(const std::string&)>& warn) {
+  try {
+    std::vector<std::string> warnings;
+    PatchMesh mesh = subdivide(scene, settings, &warnings);
+    if (warn)
+      for (const std::string& w : warnings) warn(w);
+    return mesh;
+  } catch (const TooManyPatches&) {
+    throwTooManyPatches(scene, settings);
+  }
+}
+
+void throwTooManyPatches(const Scene& scene, const SubdivisionSettings& settings) {
+  std::ostringstream option;
+  if (settings.maxArea > 0)
+    option << setting("max_area") + " " << settings.maxArea;
+  else
+    option << setting("patches") + " " << settings.targetPatches;
+  throw InputError(scene.file + ": " + option.str() + " would split the scene into more than " +
+                   std::to_string(kMaxPatches) +
+                   " patches, the most radkit meshes. Fix: give a larger " + setting("max_area") +
+                   ", or fewer " + setting("patches") + ".");
 }
 
 }  // namespace radkit

@@ -1,6 +1,7 @@
 // Patch subdivision: splits every surface into well-shaped patches (OpenMesh).
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,5 +39,14 @@ struct SubdivisionSettings {
 /// warning naming the mesh goes to `warnings` (when given).
 PatchMesh subdivide(const Scene& scene, const SubdivisionSettings& settings,
                     std::vector<std::string>* warnings = nullptr);
+
+/// \brief subdivide() as jobs and front ends call it: each warning goes to `warn` (when set), and
+///        TooManyPatches becomes the InputError of throwTooManyPatches.
+PatchMesh subdivideScene(const Scene& scene, const SubdivisionSettings& settings,
+                         const std::function<void(const std::string&)>& warn);
+
+/// \brief The InputError for TooManyPatches: names the scene and the mesh setting that asked
+///        for more patches than radkit meshes, and the fix.
+[[noreturn]] void throwTooManyPatches(const Scene& scene, const SubdivisionSettings& settings);
 
 }  // namespace radkit

@@ -6,6 +6,7 @@
 #include "geometry/positions.h"
 #include "util/errors.h"
 #include "util/format.h"
+#include "util/setting_names.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
@@ -153,7 +154,8 @@ void warnOnCoincidentFaces(const Scene& scene, LoadReport& report) {
     report.warnings.push_back(
         which + " (e.g. face " + std::to_string(found[1]) + " and face " +
         std::to_string(found[2]) + ": the same polygon facing the same way). Light between " +
-        "coincident faces is wrong in both methods. Fix: remove the copies (--repair removes "
+        "coincident faces is wrong in both methods. Fix: remove the copies (" + setting("repair") +
+        " removes "
         "them within one surface).");
   }
 }
@@ -220,11 +222,14 @@ void checkFace(const Surface& s, std::size_t f) {
     case FaceProblem::RepeatedVertex:
       throw InputError(faceName(s, f) +
                        " repeats a vertex (degenerate face). Fix: remove the repeated point, "
-                       "or give --repair to drop such faces.");
+                       "or give " +
+                       setting("repair") + " to drop such faces.");
     case FaceProblem::Degenerate:
       throw InputError(faceName(s, f) +
                        " is degenerate: its vertices are collinear, so its area "
-                       "is zero. Fix: remove the face or correct its vertices, or give --repair "
+                       "is zero. Fix: remove the face or correct its vertices, or give " +
+                       setting("repair") +
+                       " "
                        "to drop such faces.");
   }
 }
@@ -429,10 +434,10 @@ void repairOrientation(Surface& s, LoadReport& report) {
     std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
     const auto [it, inserted] = byVertices.emplace(key, f);
     if (!inserted)
-      throw InputError(
-          faceName(s, f) + " repeats face " + std::to_string(it->second) +
-          " (same vertices, same winding). Fix: remove one of them (or reverse it, "
-          "for a sheet lit from both sides), or give --repair to remove every such copy.");
+      throw InputError(faceName(s, f) + " repeats face " + std::to_string(it->second) +
+                       " (same vertices, same winding). Fix: remove one of them (or reverse it, "
+                       "for a sheet lit from both sides), or give " +
+                       setting("repair") + " to remove every such copy.");
   }
   std::vector<Point3> points;
   for (const Vec3& v : s.vertices) points.push_back(toCgal(v));
@@ -444,12 +449,13 @@ void repairOrientation(Surface& s, LoadReport& report) {
                            CGAL::parameters::visitor(OrientationVisitor(&record)));
   if (!record.nonManifoldEdges.empty()) {
     const auto& e = record.nonManifoldEdges.front();
-    throw InputError(
-        s.source + ": the edge between vertices " + std::to_string(e[0]) + " and " +
-        std::to_string(e[1]) + " is shared by " + std::to_string(e[2]) +
-        " faces (non-manifold), so no side of them is the front. Fix: give --repair to "
-        "cut such edges (and report what changed), or split the surface so that every "
-        "edge has at most two faces.");
+    throw InputError(s.source + ": the edge between vertices " + std::to_string(e[0]) + " and " +
+                     std::to_string(e[1]) + " is shared by " + std::to_string(e[2]) +
+                     " faces (non-manifold), so no side of them is the front. Fix: give " +
+                     setting("repair") +
+                     " to "
+                     "cut such edges (and report what changed), or split the surface so that every "
+                     "edge has at most two faces.");
   }
   const std::vector<std::size_t> part = edgeConnectedParts(s);
   std::map<std::size_t, std::pair<std::size_t, std::size_t>> counts;  // part: reversed, faces
@@ -470,14 +476,15 @@ void repairOrientation(Surface& s, LoadReport& report) {
       flipped.push_back(f);
     }
   if (const auto clash = firstEdgeClash(s))
-    throw InputError(
-        faceName(s, clash->face) + " and face " + std::to_string(clash->other) +
-        " run the edge between vertices " + std::to_string(clash->edge.first) + " and " +
-        std::to_string(clash->edge.second) +
-        " the same way whichever "
-        "faces are reversed: the surface has one side only (like a Möbius strip). "
-        "Fix: cut it into surfaces that each have a front and a back, or give --repair "
-        "to cut it along one edge.");
+    throw InputError(faceName(s, clash->face) + " and face " + std::to_string(clash->other) +
+                     " run the edge between vertices " + std::to_string(clash->edge.first) +
+                     " and " + std::to_string(clash->edge.second) +
+                     " the same way whichever "
+                     "faces are reversed: the surface has one side only (like a Möbius strip). "
+                     "Fix: cut it into surfaces that each have a front and a back, or give " +
+                     setting("repair") +
+                     " "
+                     "to cut it along one edge.");
   std::string list;
   for (std::size_t k = 0; k < flipped.size() && k < 10; ++k)
     list += (k ? ", " : "") + std::to_string(flipped[k]);
@@ -851,8 +858,8 @@ void validateScene(Scene& scene, LoadReport& report, bool repair,
     } else if (std::size_t n = unweldedVertices(s)) {
       report.warnings.push_back(
           s.source + ": " + count(n, "vertex repeats", "vertices repeat") +
-          " the position of another, so the faces there are not joined. Fix: give "
-          "--repair to weld them.");
+          " the position of another, so the faces there are not joined. Fix: give " +
+          setting("repair") + " to weld them.");
     }
     progress(checking, 0.2);
     // The first face that fails, found in parallel, then worded by checkFace.

@@ -14,6 +14,7 @@
 #include "hierarchy/element_daylight.h"
 #include "hierarchy/refine.h"
 #include "util/sampling.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -188,27 +189,28 @@ std::vector<float> closedLeaves(const Hierarchy& h, const RayScene& rays, std::u
 GatherOrder parseGatherOrder(const std::string& name) {
   if (name == "jacobi") return GatherOrder::Jacobi;
   if (name == "gauss-seidel") return GatherOrder::GaussSeidel;
-  throw std::invalid_argument("--gather '" + name +
+  throw std::invalid_argument(setting("gather") + " '" + name +
                               "' is not an ordering: use jacobi or gauss-seidel");
 }
 
 void validateHierarchicalSettings(const HierarchicalSettings& s) {
   if (!(s.epsilon >= kMinEpsilon) || s.epsilon >= 1)
-    throw std::invalid_argument(
-        "--epsilon " + num(s.epsilon) + " is not a link error threshold: use a number in [" +
-        num(kMinEpsilon) + ", 1), for example 1e-4 (smaller is more accurate and slower)");
+    throw std::invalid_argument(setting("epsilon") + " " + num(s.epsilon) +
+                                " is not a link error threshold: use a number in [" +
+                                num(kMinEpsilon) +
+                                ", 1), for example 1e-4 (smaller is more accurate and slower)");
   if (!(s.minArea >= 0) || !std::isfinite(s.minArea))
     throw std::invalid_argument(
-        "--min-area " + num(s.minArea) +
+        setting("min_area") + " " + num(s.minArea) +
         " is not an area: use a positive area in scene units², or 0 for the default");
   if (s.raysPerLink < 1 || s.raysPerLink > 4096)
-    throw std::invalid_argument("--hr-rays " + std::to_string(s.raysPerLink) +
+    throw std::invalid_argument(setting("hr_rays") + " " + std::to_string(s.raysPerLink) +
                                 " must be between 1 and 4096 (default 16)");
   if (s.rounds < 1 || s.rounds > 8)
-    throw std::invalid_argument("--hr-rounds " + std::to_string(s.rounds) +
+    throw std::invalid_argument(setting("hr_rounds") + " " + std::to_string(s.rounds) +
                                 " must be between 1 and 8 (default 3)");
   if (!(s.stopping.tolerance > 0) || !std::isfinite(s.stopping.tolerance))
-    throw std::invalid_argument("--tol " + num(s.stopping.tolerance) +
+    throw std::invalid_argument(setting("tol") + " " + num(s.stopping.tolerance) +
                                 " must be a positive number, e.g. 1e-6");
 }
 
@@ -348,9 +350,9 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
   r.minArea = settings.minArea > 0 ? settings.minArea : kDefaultMinAreaFraction * totalArea;
   if (r.minArea > totalArea)
     throw std::invalid_argument(
-        "--min-area " + num(r.minArea) + " is larger than the whole scene (" + num(totalArea) +
-        " scene units²): use at most " + num(totalArea * 1e-3) + ", or 0 for the default (" +
-        num(kDefaultMinAreaFraction) + " of the scene's area)");
+        setting("min_area") + " " + num(r.minArea) + " is larger than the whole scene (" +
+        num(totalArea) + " scene units²): use at most " + num(totalArea * 1e-3) +
+        ", or 0 for the default (" + num(kDefaultMinAreaFraction) + " of the scene's area)");
 
   Clock::time_point t = Clock::now();
   const int faces = base.size();
@@ -521,7 +523,7 @@ HierarchicalResult solveHierarchical(PatchMesh base, std::vector<SurfaceRadiomet
                               num(kStagnationSweeps) + " sweeps" + " after " +
                               std::to_string(iteration) + " sweeps" + monitor.rateText() +
                               " (rounding error: tolerance " + num(tolerance) +
-                              " is below what this system reaches; raise --tol)");
+                              " is below what this system reaches; raise " + setting("tol") + ")");
       } else if (last && monitor.overBudget(residual, tolerance, double(maxSweeps - sweep - 1),
                                             settings.stopping.maxSeconds - seconds)) {
         // Only the last round: the earlier ones are capped at 1000 sweeps anyway, and their

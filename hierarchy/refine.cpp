@@ -8,6 +8,7 @@
 
 #include "radiosity/contour.h"
 #include "util/sampling.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -528,10 +529,11 @@ RefineStats Refiner::refine(std::vector<HLink>& links, SourceState& state,
                         state.radiosity.capacity() * (sizeof(Vec3) * 4);
     if (bytes > m_settings.memoryBudget)
       throw HierarchyMemoryError(
-          "hierarchical radiosity outgrew --memory-budget " + gib(m_settings.memoryBudget) +
-          " while refining links (" + std::to_string(m_h.size()) + " nodes, " +
-          std::to_string(links.size() + frontier.size()) + " links, about " + gib(bytes) +
-          "). Raise --memory-budget, or ask for less: a larger --epsilon or --min-area");
+          "hierarchical radiosity outgrew " + setting("memory_budget") + " " +
+          gib(m_settings.memoryBudget) + " while refining links (" + std::to_string(m_h.size()) +
+          " nodes, " + std::to_string(links.size() + frontier.size()) + " links, about " +
+          gib(bytes) + "). Raise " + setting("memory_budget") + ", or ask for less: a larger " +
+          setting("epsilon") + " or " + setting("min_area"));
     if (progress) progress(stats.evaluated, static_cast<long long>(frontier.size()));
   }
   // Sources split after a link to them was kept (by a later link in this round) get their

@@ -9,6 +9,7 @@
 #include "photon/tracer.h"
 #include "render/final_gather.h"
 #include "render/shading.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -42,11 +43,7 @@ PatchMesh ownMesh(const Scene& scene, const RenderSettings& s, bool defaultPatch
   SubdivisionSettings mesh = s.mesh;
   if (defaultPatches && mesh.maxArea <= 0 && mesh.targetPatches <= 0)
     mesh.targetPatches = kDefaultRenderPatches;
-  std::vector<std::string> warnings;
-  PatchMesh out = subdivide(scene, mesh, &warnings);
-  for (const std::string& w : warnings)
-    if (s.warning) s.warning(w);
-  return out;
+  return subdivideScene(scene, mesh, s.warning);
 }
 
 /// The radiosity solution the two-pass modes shade with.
@@ -173,9 +170,9 @@ class TwoPassIntegrator final : public Integrator {
     // The two modes differ only in how glossy materials are shaded.
     if (!hasGlossyMaterial(scene, s.bsdf))
       warn(s, out,
-           scene.file +
-               ": no surface has a glossy (phong or cook-torrance) material, so "
-               "--shading phong and --shading cook-torrance give the same image. Fix: give "
+           scene.file + ": no surface has a glossy (phong or cook-torrance) material, so " +
+               setting("shading") + " phong and " + setting("shading") +
+               " cook-torrance give the same image. Fix: give "
                "materials \"brdf\": \"phong\" or \"cook-torrance\" (data/cornell-box-glossy.json "
                "has both)");
     return out;
@@ -203,7 +200,7 @@ const Registry<Integrator>& integratorRegistry() {
       "integrator",
       {
           {"radiosity", create<RadiosityIntegrator>,
-           "the radiosity solution seen by the camera (flat, or --smooth)", ""},
+           "the radiosity solution seen by the camera (flat, or smoothed)", ""},
           {"phong", createPhong,
            "two-pass: radiosity for diffuse light, glossy materials shaded as Phong", ""},
           {"cook-torrance", createCookTorrance,
@@ -211,7 +208,7 @@ const Registry<Integrator>& integratorRegistry() {
           {"path-trace", create<PathTraceIntegrator>,
            "unidirectional path tracing with MIS (the reference)", ""},
           {"photon-map", create<PhotonMapIntegrator>,
-           "photon mapping with final gathering (--photons, --gather-rays)", ""},
+           "photon mapping with final gathering (photon count and gather rays)", ""},
           {"final-gather", create<FinalGatherIntegrator>,
            "one gather bounce over the radiosity solution", ""},
       });

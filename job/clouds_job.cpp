@@ -18,6 +18,7 @@
 #include "util/errors.h"
 #include "util/format.h"
 #include "util/output_folder.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -61,14 +62,15 @@ CloudsJobResult runCloudsJob(const CloudsJobSettings& cmd) {
     const double depth = layer.majorant() * extent;
     constexpr double kMaxOpticalExtent = 1e5;
     if (!(depth <= kMaxOpticalExtent))
-      throw InputError((scene ? cmd.scene + ": the medium's" : std::string("--extinction:")) +
-                       " extinction " + formatValue("%g", layer.majorant()) +
-                       " /m across a medium " + formatValue("%g", extent) +
-                       " m wide is an optical extent of " + formatValue("%g", depth) +
-                       ", and a path takes about that many tracking steps (the limit is " +
-                       formatValue("%g", kMaxOpticalExtent) + "). Fix: give an extinction below " +
-                       formatValue("%g", kMaxOpticalExtent / extent) +
-                       " /m (dense cloud is 0.05-0.12 /m) or a smaller medium");
+      throw InputError(
+          (scene ? cmd.scene + ": the medium's" : std::string(setting("extinction") + ":")) +
+          " extinction " + formatValue("%g", layer.majorant()) + " /m across a medium " +
+          formatValue("%g", extent) + " m wide is an optical extent of " +
+          formatValue("%g", depth) +
+          ", and a path takes about that many tracking steps (the limit is " +
+          formatValue("%g", kMaxOpticalExtent) + "). Fix: give an extinction below " +
+          formatValue("%g", kMaxOpticalExtent / extent) +
+          " /m (dense cloud is 0.05-0.12 /m) or a smaller medium");
   }
   const double groundAlbedo = scene ? scene->groundAlbedo : 0.0;
   const double layerSeconds = secondsSince(start);
@@ -104,8 +106,12 @@ CloudsJobResult runCloudsJob(const CloudsJobSettings& cmd) {
                                      : cmd.cameraElevationDeg.value_or(25);
   if (!(length(cross(camera.lookAt - camera.position, camera.up)) > 0))
     throw InputError((scene ? cmd.scene + ": " : std::string()) +
-                     "the camera's view is parallel to its \"up\" after --camera-elevation. "
-                     "Fix: give another --camera-elevation, or the camera an \"up\" across "
+                     "the camera's view is parallel to its \"up\" after " +
+                     setting("camera_elevation") +
+                     ". "
+                     "Fix: give another " +
+                     setting("camera_elevation") +
+                     ", or the camera an \"up\" across "
                      "the view");
   CloudComparisonSettings cs;
   cs.width = cmd.width, cs.height = cmd.height, cs.samples = cmd.samples, cs.seed = cmd.seed;

@@ -14,6 +14,7 @@
 #include "util/errors.h"
 #include "util/format.h"
 #include "util/output_folder.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -66,7 +67,7 @@ std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene, 
   const bool floorTooBig = !atFloor && e.budget > 0 && atFloorBytes > double(e.budget);
   std::string message = e.what();
   if (atFloor || floorTooBig) {
-    const std::string fewer = kFewerPatchesFix;
+    const std::string fewer = fewerPatchesFix();
     if (const std::size_t at = message.find(fewer); at != std::string::npos) {
       message.erase(at, fewer.size());
     } else if (const std::size_t last = message.find(", " + fewer.substr(0, fewer.size() - 2));
@@ -91,10 +92,11 @@ std::string memoryBudgetMessage(const MemoryBudgetError& e, const Scene& scene, 
     // 1.3 kB, so for large meshes the range errs high.
     const double base = 40.0 * 1024 * 1024;
     const double low = base + 2.7e3 * double(faces), high = base + 11.7e3 * double(faces);
-    message +=
-        " --method hierarchical keeps no n×n matrix: on the shipped scenes it took 40 MiB "
-        "and 2.7-11.7 kB per input face, about " +
-        formatBytes(low) + " to " + formatBytes(high) + " here (docs/bring-your-own-model.md)";
+    message += " " + setting("method") +
+               " hierarchical keeps no n×n matrix: on the shipped scenes it took 40 MiB "
+               "and 2.7-11.7 kB per input face, about " +
+               formatBytes(low) + " to " + formatBytes(high) +
+               " here (docs/bring-your-own-model.md)";
   }
   return message;
 }

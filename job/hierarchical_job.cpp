@@ -17,6 +17,7 @@
 #include "util/format.h"
 #include "util/output_folder.h"
 #include "util/process_memory.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -165,8 +166,8 @@ std::vector<std::string> hierarchicalWarnings(const Scene& scene, const Hierarch
     out.push_back(scene.file + ": the energy balance is off by " +
                   formatValue("%.2g", 100 * r.energy.relativeImbalance) +
                   " % (the escape estimate's standard error is " + formatValue("%.2g", 100 * se) +
-                  " %): the links lose or add light. Fix: lower --epsilon, or raise --hr-rays." +
-                  sliver);
+                  " %): the links lose or add light. Fix: lower " + setting("epsilon") +
+                  ", or raise " + setting("hr_rays") + "." + sliver);
   }
   return out;
 }

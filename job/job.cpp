@@ -13,6 +13,7 @@
 #include "util/errors.h"
 #include "util/format.h"
 #include "util/params.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -147,7 +148,7 @@ Scene loadJobScene(const std::string& path, const LoadOptions& load, const std::
                    const PipelineLog& log, LoadReport* out) {
   // Parsed before the scene loads: a typo is refused before minutes of work.
   std::optional<Camera> given;
-  if (!camera.empty()) given = parseCamera("--camera", camera);
+  if (!camera.empty()) given = parseCamera(setting("camera"), camera);
   LoadReport local;
   LoadReport& report = out ? *out : local;
   // Stages of loading that run over a second (a large mesh read and checked) show progress.
@@ -174,18 +175,6 @@ Scene loadJobScene(const std::string& path, const LoadOptions& load, const std::
   return scene;
 }
 
-void throwTooManyPatches(const Scene& scene, const SubdivisionSettings& mesh) {
-  std::ostringstream option;
-  if (mesh.maxArea > 0)
-    option << "--max-area " << mesh.maxArea;
-  else
-    option << "--patches " << mesh.targetPatches;
-  throw InputError(scene.file + ": " + option.str() + " would split the scene into more than " +
-                   std::to_string(kMaxPatches) +
-                   " patches, the most radkit meshes. Fix: give a larger "
-                   "--max-area, or fewer --patches.");
-}
-
 JobResult runJob(const JobSettings& given, const PipelineLog& log) {
   const auto start = std::chrono::steady_clock::now();
   const JobSettings s = resolveJobSettings(given);
@@ -202,7 +191,7 @@ JobResult runJob(Scene scene, const JobSettings& given, const PipelineLog& log,
   JobSettings named = given;
   if (named.scene.empty()) named.scene = scene.file;
   const JobSettings s = resolveJobSettings(named);
-  if (!s.camera.empty()) scene.camera = parseCamera("--camera", s.camera);
+  if (!s.camera.empty()) scene.camera = parseCamera(setting("camera"), s.camera);
   if (*s.method == JobMethod::Hierarchical)
     return runHierarchicalJob(std::move(scene), loaded, s, log, start, 0);
   return runDenseJob(std::move(scene), loaded, s, log, start);

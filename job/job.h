@@ -138,8 +138,4 @@ std::string defaultOutFolder(const std::string& sceneName);
 Scene loadJobScene(const std::string& path, const LoadOptions& load, const std::string& camera,
                    const PipelineLog& log, LoadReport* report = nullptr);
 
-/// \brief The InputError for subdivide's TooManyPatches, naming the mesh setting that asked
-/// for more patches than radkit meshes.
-[[noreturn]] void throwTooManyPatches(const Scene& scene, const SubdivisionSettings& mesh);
-
 }  // namespace radkit

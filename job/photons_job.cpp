@@ -19,6 +19,7 @@
 #include "util/errors.h"
 #include "util/format.h"
 #include "util/output_folder.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -134,20 +135,21 @@ void checkCompareFolder(const std::string& folder, const Scene& scene, const Pat
   const std::filesystem::path dir(folder);
   const std::string fix = ". Fix: give the --out folder of a `radkit run` of " + scene.file;
   for (const char* file : {"report.json", "surfaces.csv"})
-    requireRegularFile((dir / file).string(), "--compare folder's " + std::string(file));
+    requireRegularFile((dir / file).string(),
+                       setting("compare") + " folder's " + std::string(file));
   std::ifstream in(dir / "report.json");
   json report = json::object();
   if (in) try {
       report = json::parse(in);
     } catch (const json::exception& e) {
-      throw InputError("--compare " + folder + ": report.json is not JSON (" + e.what() + ")" +
-                       fix);
+      throw InputError(setting("compare") + " " + folder + ": report.json is not JSON (" +
+                       e.what() + ")" + fix);
     }
   const json sceneJson =
       report.is_object() ? report.value("scene", json::object()) : json::object();
   const std::string name = sceneJson.is_object() ? sceneJson.value("name", scene.name) : scene.name;
   if (name != scene.name)
-    throw InputError("--compare " + folder + " is a run of scene \"" + name + "\" (" +
+    throw InputError(setting("compare") + " " + folder + " is a run of scene \"" + name + "\" (" +
                      (sceneJson.is_object() ? sceneJson.value("file", "?") : "?") + "), not of \"" +
                      scene.name + "\"" + fix);
   const std::vector<SurfaceRadiosity> theirs = readSurfacesCsv((dir / "surfaces.csv").string());
@@ -159,7 +161,7 @@ void checkCompareFolder(const std::string& folder, const Scene& scene, const Pat
         theirs[scene.surfaces.size() + backs].name == s.name + " (back)")
       ++backs;
   if (theirs.size() != scene.surfaces.size() + backs)
-    throw InputError("--compare " + folder + ": its surfaces.csv has " +
+    throw InputError(setting("compare") + " " + folder + ": its surfaces.csv has " +
                      std::to_string(theirs.size()) + " surfaces, this scene " +
                      std::to_string(scene.surfaces.size()) + fix);
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
@@ -170,10 +172,11 @@ void checkCompareFolder(const std::string& folder, const Scene& scene, const Pat
     // surfaces.csv keeps 17 digits; a hand-written reference may round to 3.
     if (theirs[s].name != scene.surfaces[s].name ||
         !(std::fabs(theirs[s].area - area) <= 1e-3 * area))
-      throw InputError("--compare " + folder + ": its surface " + std::to_string(s) + " is \"" +
-                       theirs[s].name + "\" of area " + formatValue("%.6g", theirs[s].area) +
-                       " m²" + ", this scene's \"" + scene.surfaces[s].name + "\" of area " +
-                       formatValue("%.6g", area) + " m² (the scene changed since that run)" + fix);
+      throw InputError(setting("compare") + " " + folder + ": its surface " + std::to_string(s) +
+                       " is \"" + theirs[s].name + "\" of area " +
+                       formatValue("%.6g", theirs[s].area) + " m²" + ", this scene's \"" +
+                       scene.surfaces[s].name + "\" of area " + formatValue("%.6g", area) +
+                       " m² (the scene changed since that run)" + fix);
   }
 }
 
@@ -182,19 +185,15 @@ void checkCompareFolder(const std::string& folder, const Scene& scene, const Pat
 void traceAndEstimate(const PhotonsJobSettings& cmd, PhotonRun& r, const PipelineLog& log) {
   if (!cmd.compare.empty() &&
       !std::filesystem::exists(std::filesystem::path(cmd.compare) / "surfaces.csv"))
-    throw InputError("--compare " + cmd.compare +
-                     ": no surfaces.csv there. Fix: give the --out folder of a "
+    throw InputError(setting("compare") + " " + cmd.compare +
+                     ": no surfaces.csv there. Fix: give the " + setting("out") +
+                     " folder of a "
                      "`radkit run` of the same scene");
   r.scene = loadJobScene(cmd.scene, cmd.load, cmd.camera, log, &r.loaded);
   auto t = Clock::now();
-  try {
-    std::vector<std::string> warnings;
-    r.mesh = subdivide(r.scene, *cmd.mesh, &warnings);
-    if (log.message)
-      for (const std::string& w : warnings) log.message("warning: " + w);
-  } catch (const TooManyPatches&) {
-    throwTooManyPatches(r.scene, *cmd.mesh);
-  }
+  r.mesh = subdivideScene(r.scene, *cmd.mesh, [&](const std::string& w) {
+    if (log.message) log.message("warning: " + w);
+  });
   r.rays = std::make_unique<RayScene>(r.mesh);
   r.seconds["mesh_and_ray_scene"] = secondsSince(t);
   r.emitters = std::make_unique<EmitterSampler>(photonEmitters(r.scene, r.mesh));

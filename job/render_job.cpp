@@ -17,6 +17,7 @@
 #include "util/errors.h"
 #include "util/format.h"
 #include "util/output_folder.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -42,7 +43,8 @@ std::vector<RegionError> regionErrors(const Scene& scene, const RenderResult& mo
     errors.insert(errors.begin() + 1, compareToReference(img, refs, lit, {"surfaces"})[1]);
     return errors;
   } catch (const std::invalid_argument& e) {
-    throw InputError(std::string(e.what()) + ". Fix: render the image at the reference's --size");
+    throw InputError(std::string(e.what()) + ". Fix: render the image at the reference's " +
+                     setting("size"));
   }
 }
 
@@ -80,18 +82,18 @@ RenderJobResult runRenderJob(const RenderJobSettings& given, const PipelineLog& 
   RenderJobSettings s = given;
   const int width = s.render.film.width, height = s.render.film.height;
   // Refused before the render, which may take minutes, rather than when it is written.
-  checkOutputFile("--out", s.out);
+  checkOutputFile(setting("out"), s.out);
   if (!s.report.empty()) {
     if (s.references.empty())
-      throw InputError("--report " + s.report +
-                       " needs --reference: the report holds the errors against it");
-    checkOutputFile("--report", s.report);
+      throw InputError(setting("report") + " " + s.report + " needs " + setting("reference") +
+                       ": the report holds the errors against it");
+    checkOutputFile(setting("report"), s.report);
   }
   std::string ext = std::filesystem::path(s.out).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   if (ext != ".png" && ext != ".pfm" && ext != ".exr")
-    throw InputError("--out " + s.out + ": '" + ext +
+    throw InputError(setting("out") + " " + s.out + ": '" + ext +
                      "' is not an image format render writes (PNG bytes under "
                      "another name would mislead). Fix: end the name in .png (tone mapped), .exr "
                      "or .pfm (linear "
@@ -102,10 +104,10 @@ RenderJobResult runRenderJob(const RenderJobSettings& given, const PipelineLog& 
   for (const std::string& f : s.references) {
     refs.push_back(readPfm(f));
     if (refs.back().width != width || refs.back().height != height)
-      throw InputError("--reference " + f + " is " + std::to_string(refs.back().width) + "x" +
-                       std::to_string(refs.back().height) + ", the image --size " +
-                       std::to_string(width) + "x" + std::to_string(height) +
-                       ". Fix: render at the reference's --size");
+      throw InputError(setting("reference") + " " + f + " is " + std::to_string(refs.back().width) +
+                       "x" + std::to_string(refs.back().height) + ", the image " + setting("size") +
+                       " " + std::to_string(width) + "x" + std::to_string(height) +
+                       ". Fix: render at the reference's " + setting("size"));
   }
   LoadReport loaded;
   const Scene scene = loadJobScene(s.scene, s.load, s.camera, log, &loaded);

@@ -14,6 +14,7 @@
 #include "util/line_chart.h"
 #include "util/output_folder.h"
 #include "util/process_memory.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -223,12 +224,12 @@ StudyJobResult runStudyJob(const StudyJobSettings& cmd, const PipelineLog& log) 
   // 8000-patch reference for minutes.
   const double reference = estimateReferenceSeconds(cmd.settings);
   if (reference > cmd.settings.maxSeconds)
-    throw InputError("--max-seconds " + formatValue("%g", cmd.settings.maxSeconds) +
-                     " is shorter than the reference of " + "--knob-patches " +
+    throw InputError(setting("max_seconds") + " " + formatValue("%g", cmd.settings.maxSeconds) +
+                     " is shorter than the reference of " + setting("knob_patches") + " " +
                      std::to_string(cmd.settings.knobPatches) + " alone (" +
                      std::to_string(2 * cmd.settings.knobPatches) + " patches, estimated " +
-                     formatValue("%.0f s", reference) +
-                     "). Fix: raise --max-seconds or lower --knob-patches");
+                     formatValue("%.0f s", reference) + "). Fix: raise " + setting("max_seconds") +
+                     " or lower " + setting("knob_patches"));
   const auto begin = Clock::now();
   Scene scene = loadJobScene(cmd.scene, {}, "", log);
   OutputFolder folder(cmd.out);  // refuses a folder it cannot replace before the study

@@ -34,6 +34,8 @@
 #include "job/job.h"
 #include "job/sky_job.h"
 #include "job/terrain_job.h"
+#include "media/medium_json.h"
+#include "media/volume_tracer.h"
 #include "phase/phase_function.h"
 #include "photon/estimate.h"
 #include "photon/image.h"
@@ -53,6 +55,7 @@
 #include "solvers/solver.h"
 #include "solvers/system_input.h"
 #include "util/format.h"
+#include "util/setting_names.h"
 #include "util/threads.h"
 
 namespace py = pybind11;
@@ -1047,6 +1050,74 @@ py::tuple phaseSamplePy(const PyPhase& p, const Array& u) {
   return py::make_tuple(mu, pdf);
 }
 
+/// A participating medium as a volume scene's "medium" describes it (docs/formats.md, "Volume
+/// scenes"): a cloud layer or a homogeneous box, with its phase function.
+struct PyMedium {
+  std::shared_ptr<const media::Medium> medium;
+  std::string kind, phaseName, phaseParams;
+};
+
+PyMedium makeMediumPy(const py::object& description) {
+  const std::string text =
+      py::isinstance<py::str>(description)
+          ? description.cast<std::string>()
+          : py::module_::import("json").attr("dumps")(description).cast<std::string>();
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw py::value_error(std::string("Medium: not JSON: ") + e.what());
+  }
+  PyMedium m;
+  m.medium = media::parseMedium(j, "Medium(...)", &m.kind, &m.phaseName, &m.phaseParams);
+  return m;
+}
+
+Array mediumExtinctionPy(const PyMedium& m, const Array& points) {
+  const std::vector<Vec3> p = toPoints(points, "points");
+  Array out{py::ssize_t(p.size())};
+  double* o = out.mutable_data();
+  for (std::size_t k = 0; k < p.size(); ++k) o[k] = m.medium->extinction(p[k]);
+  return out;
+}
+
+/// Transmittance along o + t·d for t in [0, distance) by ratio tracking (unbiased): the mean of
+/// `samples` estimates per ray and its standard error. Ray k's stream is keyed (seed, k), so the
+/// result does not depend on the thread count.
+py::tuple mediumTransmittancePy(const PyMedium& m, const Array& origins, const Array& directions,
+                                const Array& distances, int samples, std::uint64_t seed) {
+  if (samples < 2) throw py::value_error("transmittance: samples must be >= 2 (for the error)");
+  const std::vector<Vec3> o = toPoints(origins, "origins"), d = toPoints(directions, "directions");
+  const double* t = distances.data();
+  const std::size_t n = std::max({o.size(), d.size(), std::size_t(distances.size())});
+  for (std::size_t size : {o.size(), d.size(), std::size_t(distances.size())})
+    if (size != n && size != 1)
+      throw py::value_error("transmittance: origins, directions and distances differ in length");
+  for (std::size_t k = 0; k < d.size(); ++k)
+    if (!(length(d[k]) > 0)) throw py::value_error("transmittance: a direction is zero");
+  for (py::ssize_t k = 0; k < distances.size(); ++k)
+    if (!(t[k] >= 0)) throw py::value_error("transmittance: a distance is negative or NaN");
+  Array mean{py::ssize_t(n)}, error{py::ssize_t(n)};
+  double* mo = mean.mutable_data();
+  double* eo = error.mutable_data();
+  {
+    py::gil_scoped_release release;
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+      const Vec3 ok = o[o.size() == 1 ? 0 : k], dk = normalize(d[d.size() == 1 ? 0 : k]);
+      const double tk = t[distances.size() == 1 ? 0 : k];
+      Rng rng(seed, k, 0);
+      double sum = 0, sum2 = 0;
+      for (int s = 0; s < samples; ++s) {
+        const double x = media::ratioTrack(*m.medium, ok, dk, tk, rng);
+        sum += x, sum2 += x * x;
+      }
+      mo[k] = sum / samples;
+      eo[k] = std::sqrt(std::max(0.0, sum2 / samples - mo[k] * mo[k]) / (samples - 1));
+    });
+  }
+  return py::make_tuple(mean, error);
+}
+
 /// A sky model of the registry (sky/), prepared for a sun, on arrays of local directions.
 struct PySky {
   std::shared_ptr<SkyRadiance> sky;
@@ -1156,7 +1227,26 @@ Array photonImagePy(const PyMesh& m, std::size_t photons, int k, const std::stri
 
 }  // namespace
 
+/// Library messages name settings by key (util/setting_names.h); a Python user reads them as the
+/// keyword arguments that set them, and the command line's flag for a setting only it has.
+std::string pythonSpelling(const std::string& key) {
+  static const std::map<std::string, std::string> renamed = {
+      {"tol", "tolerance"}, {"hr_rays", "rays_per_link"}, {"hr_rounds", "rounds"}};
+  static const char* const keywords[] = {
+      "out",        "method",  "preset",    "patches",         "max_area",    "ff",
+      "ff_samples", "solvers", "tolerance", "max_iterations",  "max_seconds", "memory_budget",
+      "seed",       "epsilon", "min_area",  "rays_per_link",   "rounds",      "gather",
+      "camera",     "smooth",  "units",     "repair",          "shading",     "photons",
+      "width",      "height",  "coverage",  "camera_elevation"};
+  const auto it = renamed.find(key);
+  const std::string name = it == renamed.end() ? key : it->second;
+  for (const char* k : keywords)
+    if (name == k) return name + "=";
+  return "the command line's " + flagSpelling(key);
+}
+
 PYBIND11_MODULE(radkit, mod) {
+  setSettingSpeller(&pythonSpelling);
   mod.doc() =
       "radkit: radiosity and global illumination. Load a scene, mesh it into patches, compute "
       "the form-factor matrix, solve B = E + rho F B with a built-in or a Python solver, and "
@@ -1435,6 +1525,32 @@ PYBIND11_MODULE(radkit, mod) {
       .def("__repr__",
            [](const PyPhase& p) { return "<radkit.PhaseFunction " + p.phase->name() + ">"; });
   mod.def("phase_function_names", &phaseFunctionNames, "The phase functions' names");
+  py::class_<PyMedium>(mod, "Medium",
+                       "A participating medium as a volume scene's \"medium\" describes it (a dict "
+                       "or JSON text; docs/formats.md): a cloud layer or a homogeneous box")
+      .def(py::init(&makeMediumPy), py::arg("description"))
+      .def("extinction", &mediumExtinctionPy, py::arg("points"),
+           "sigma_t (1/m) at (n, 3) points, zero outside the medium's bounds")
+      .def("transmittance", &mediumTransmittancePy, py::arg("origins"), py::arg("directions"),
+           py::arg("distances"), py::kw_only(), py::arg("samples") = 64, py::arg("seed") = 1,
+           "(mean, standard error) of the transmittance over [0, distance) along each ray, by "
+           "ratio tracking (unbiased); one origin, direction or distance serves every ray")
+      .def_property_readonly("majorant", [](const PyMedium& m) { return m.medium->majorant(); })
+      .def_property_readonly("albedo", [](const PyMedium& m) { return m.medium->albedo(); })
+      .def_property_readonly("bounds",
+                             [](const PyMedium& m) {
+                               const Bounds3 b = m.medium->bounds();
+                               return vec3Array({b.lo, b.hi});
+                             })
+      .def_property_readonly("kind", [](const PyMedium& m) { return m.kind; })
+      .def_property_readonly(
+          "phase",
+          [](const PyMedium& m) {
+            return PyPhase{std::shared_ptr<const PhaseFunction>(
+                makePhaseFunction(m.phaseName, m.phaseParams))};
+          },
+          "its phase function, a PhaseFunction")
+      .def("__repr__", [](const PyMedium& m) { return "<radkit.Medium " + m.kind + ">"; });
   py::class_<PySky>(mod, "SkyModel",
                     "A sky model of the registry (sky_models()), as a scene's \"sky\" names it, "
                     "with its sun placed (degrees, azimuth clockwise from north)")

@@ -3,6 +3,7 @@
 
 #include "radiosity/form_factor_method.h"
 #include "util/params.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -62,7 +63,8 @@ const MethodEntry& methodEntry(const std::string& name) {
   if (const MethodEntry* m = findMethod(name)) return *m;
   std::string known;
   for (const MethodEntry& m : kMethods) known += std::string(" ") + m.name;
-  throw std::invalid_argument("unknown form-factor method '" + name + "' (--ff); known:" + known);
+  throw std::invalid_argument("unknown form-factor method '" + name + "' (" + setting("ff") +
+                              "); known:" + known);
 }
 
 }  // namespace
@@ -73,7 +75,7 @@ const FormFactorMethodTraits& formFactorTraits(const std::string& method) {
 
 void validateFormFactorSettings(const FormFactorSettings& s) {
   if (s.samples < 1)
-    throw std::invalid_argument("--ff-samples must be at least 1 (got " +
+    throw std::invalid_argument(setting("ff_samples") + " must be at least 1 (got " +
                                 std::to_string(s.samples) + ")");
   if (s.quadrature.order < 1 || s.quadrature.order > 16)
     throw std::invalid_argument("quadrature order must be in [1, 16] (got " +

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "radiosity/patch_pairs.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -106,9 +107,9 @@ StoragePlan planStorage(const PatchMesh& mesh, const FormFactorSettings& setting
                     (estimated ? "at least " : "up to ") + formatBytes(double(plan.sparseBytes)) +
                     " (" + (estimated ? "at least " : "") + std::to_string(plan.facingPairs) +
                     " facing pairs" + (estimated ? ", estimated from 200000 sampled pairs" : "") +
-                    "). Fix: raise --memory-budget, " + kFewerPatchesFix;
+                    "). Fix: raise " + setting("memory_budget") + ", " + fewerPatchesFix();
   if (settings.precision == FormFactorPrecision::Double)
-    msg += "or store F in single precision (--ff-storage float: dense " +
+    msg += "or store F in single precision (" + setting("ff_storage") + " float: dense " +
            formatBytes(double(plan.denseBytes) / 2) + ", sparse " +
            (estimated ? "at least " : "up to ") +
            formatBytes(double(sparseBytes(n, plan.facingPairs, 4))) + ")";

@@ -11,13 +11,16 @@
 #include "geometry/patch_mesh.h"
 #include "radiosity/form_factor_method.h"
 #include "solvers/matrix.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
 /// The fix MemoryBudgetError's message offers for the patch count; a caller that knows the mesh
 /// is at its floor (one patch per input face) removes it.
-inline constexpr const char* kFewerPatchesFix =
-    "use fewer patches (--max-area larger or --patches smaller), ";
+inline std::string fewerPatchesFix() {
+  return "use fewer patches (" + setting("max_area") + " larger or " + setting("patches") +
+         " smaller), ";
+}
 
 /// Thrown when no storage fits the budget; the message names the options that would help.
 class MemoryBudgetError : public std::runtime_error {

@@ -1,6 +1,7 @@
 // The form-factor driver: plan storage, compute rows in parallel, assemble, measure.
 #include "radiosity/form_factors.h"
 #include "util/format.h"
+#include "util/setting_names.h"
 #include "util/threads.h"
 
 #include <tbb/blocked_range.h>
@@ -234,7 +235,8 @@ FormFactorResult computeFormFactors(const PatchMesh& mesh, const Visibility& vis
   std::unique_ptr<FormFactorMethod> method = makeFormFactorMethod(mesh, visibility, settings);
   const double scalar = settings.precision == FormFactorPrecision::Double ? 8 : 4;
   if (log && double(mesh.size()) * mesh.size() * scalar > double(settings.memoryBudget))
-    log("form factors: dense F does not fit --memory-budget; sizing sparse storage from the pairs "
+    log("form factors: dense F does not fit " + setting("memory_budget") +
+        "; sizing sparse storage from the pairs "
         "that face "
         "each other (up to " +
         std::to_string((long long)mesh.size() * (mesh.size() - 1) / 2) + " tests)");

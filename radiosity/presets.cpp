@@ -20,7 +20,8 @@ constexpr Preset::Row kReference{
 // input faces, not their square (docs/hierarchical.md, "Cost and scaling").
 constexpr Preset::Row kLarge{
     0, 16, 1e-6,
-    "hierarchical radiosity (--method hierarchical, epsilon 1e-4): Cornell box ~1.2 s, the "
+    "hierarchical radiosity (radkit run --method hierarchical, epsilon 1e-4): Cornell box ~1.2 "
+    "s, the "
     "balanced preset's surface errors; a million input triangles ~50 s and 1.2 GiB",
     true};
 

@@ -12,6 +12,7 @@
 #include "solvers/registry.h"
 #include "util/format.h"
 #include "util/params.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -66,10 +67,11 @@ std::vector<std::string> numericalWarnings(const Scene& scene, const PipelineRes
           sci(distance) + " " + scene.units +
           " away, too large for its form factor to be estimated (the mesh, not visibility "
           "noise). Fix: split \"" +
-          scene.surfaces[to->surface].name + "\" finer: --max-area " + sci(distance * distance) +
-          " or more --patches");
+          scene.surfaces[to->surface].name + "\" finer: " + setting("max_area") + " " +
+          sci(distance * distance) + " or more " + setting("patches"));
     } else {
-      out.push_back(head + " (visibility noise). Fix: raise --ff-samples or refine the mesh");
+      out.push_back(head + " (visibility noise). Fix: raise " + setting("ff_samples") +
+                    " or refine the mesh");
     }
   }
   return out;
@@ -88,7 +90,8 @@ std::vector<SolverChoice> parseSolverList(const std::string& text) {
     makeSolver(c.name, Params::parse(c.parameters));  // validates name and keys now
     out.push_back(c);
   }
-  if (out.empty()) throw std::invalid_argument("--solvers: give at least one solver name");
+  if (out.empty())
+    throw std::invalid_argument(setting("solvers") + ": give at least one solver name");
   return out;
 }
 
@@ -104,8 +107,8 @@ std::string hemisphereNoiseWarning(double noise, int samples) {
   return "hemisphere form factors are noisy: the median patch's gathered light has a standard "
          "error of " +
          sci(100 * noise) + " % at K = " + std::to_string(samples) +
-         " rays per patch (the image will be a patchwork). Fix: --ff-samples " + std::to_string(k) +
-         " or more, or --ff point-polygon";
+         " rays per patch (the image will be a patchwork). Fix: " + setting("ff_samples") + " " +
+         std::to_string(k) + " or more, or " + setting("ff") + " point-polygon";
 }
 
 double gatheredLightNoise(const FormFactorMatrix& f, const PatchMesh& mesh,

@@ -8,6 +8,7 @@
 #include "geometry/patch_mesh.h"
 #include "geometry/scene.h"
 #include "util/errors.h"
+#include "util/setting_names.h"
 #include "util/vec3.h"
 
 namespace radkit {
@@ -60,7 +61,7 @@ Camera sceneCamera(const Scene& scene, const PatchMesh& mesh);
 /// \brief The camera an image of the scene is taken with: `given` (parseCamera's text) when not
 /// empty, else the scene's, else automaticCamera(scene). `option` names `given` in errors.
 Camera chooseCamera(const Scene& scene, const std::string& given = "",
-                    const std::string& option = "--camera");
+                    const std::string& option = setting("camera"));
 
 /// \brief Parses a --camera value "px,py,pz,lx,ly,lz[,ux,uy,uz[,fov]]" (position, look-at,
 /// up, vertical field of view in degrees; up +y and 40° when left out).

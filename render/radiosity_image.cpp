@@ -1,4 +1,5 @@
 #include "render/radiosity_image.h"
+#include "util/setting_names.h"
 
 #include <tbb/parallel_for.h>
 
@@ -108,7 +109,8 @@ bool writeRadiosityPng(const std::string& path, const Scene& scene, const PatchM
 std::string blackPictureWarning(const std::string& file) {
   return file +
          " is black: the camera sees no lit surface (the backs of walls, or surfaces no light "
-         "reaches). Fix: give the scene a \"camera\", or --camera px,py,pz,lx,ly,lz";
+         "reaches). Fix: give the scene a \"camera\", or " +
+         setting("camera") + " px,py,pz,lx,ly,lz";
 }
 
 }  // namespace radkit

@@ -1,14 +1,34 @@
 #!/usr/bin/env python3
 """Fails when a source file includes a header from a folder on its own or a higher floor
-(scripts/folders.txt), naming the file, the line and the two floors, or when .clang-tidy's
-header filter leaves a folder out. tests/, fuzz/ and docs' examples sit above every floor and
-are not checked."""
+(scripts/folders.txt), naming the file, the line and the two floors; when a library's string
+speaks in command-line flags ("raise --tol") instead of naming the setting (util/setting_names.h:
+setting("tol")); or when .clang-tidy's header filter leaves a folder out. tests/, fuzz/ and
+docs' examples sit above every floor and are not checked."""
 import re
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
+LITERAL = re.compile(r'"((?:[^"\\\n]|\\.)*)"')
+FLAG = re.compile(r'(?<![\w-])--[a-z][a-z0-9-]*')
+# The front ends spell settings as flags or keywords themselves.
+FRONT_ENDS = {"apps", "python"}
+
+
+def flag_words(text):
+    """A flag in a string literal of a code line; a whole command line ("radkit run --method
+    hierarchical", a `quoted` command, a script's) is a command, not a setting."""
+    if text.lstrip().startswith("//"):
+        return None
+    for m in LITERAL.finditer(text):
+        body = m.group(1)
+        if "radkit " in body or "`" in body or ".py " in body:
+            continue
+        f = FLAG.search(body)
+        if f:
+            return f.group(0)
+    return None
 
 
 def floors(root):
@@ -32,6 +52,13 @@ def main():
                 continue
             checked += 1
             for number, text in enumerate(path.read_text(errors="replace").splitlines(), 1):
+                flag = None if folder in FRONT_ENDS else flag_words(text)
+                if flag:
+                    key = flag[2:].replace("-", "_")
+                    problems.append(
+                        f"{path.relative_to(root)}:{number}: a library message says {flag}, a "
+                        f"command-line flag. Fix: name the setting, setting(\"{key}\") "
+                        f"(util/setting_names.h), so each front end spells it its own way")
                 m = INCLUDE.match(text)
                 if not m or m.group(1) == folder or m.group(1) not in floor:
                     continue

@@ -12,6 +12,7 @@ packages=(
   libopenexr-dev  # render --out x.exr
   clang libclang-rt-14-dev  # scripts/run-sanitizers.sh
   clang-format  # scripts/check-format.sh (CI)
+  clang-tidy  # scripts/run-tidy.sh (CI)
   pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-matplotlib  # python/, labs/
   python3-nbclient python3-nbformat python3-ipykernel  # labs/run_notebook.py
 )

@@ -98,8 +98,9 @@ Vec3 PhysicalSky::radiance(const Vec3& local) const {
 std::unique_ptr<SkyRadiance> createPhysicalSky(Params& params) {
   const double density = params.number("density", 1, 0, 100, true, false,
                                        "give the air density over the standard one in that range");
-  const double altitude = params.number("altitude", 0, 0, 50000, false, true,
-                                        "give the height above the ground in metres, inside the atmosphere");
+  const double altitude =
+      params.number("altitude", 0, 0, 50000, false, true,
+                    "give the height above the ground in metres, inside the atmosphere");
   return std::make_unique<PhysicalSky>(density, altitude);
 }
 

@@ -1,5 +1,6 @@
 #include "solvers/solver.h"
 #include "util/format.h"
+#include "util/setting_names.h"
 
 #include <chrono>
 #include <cmath>
@@ -70,7 +71,8 @@ std::string stopReason(const Solver& solver, const SolverSettings& settings, lon
   if (!std::isfinite(r) || !allFinite(solver.radiosity()) || r > 1e6 * p.startResidual) {
     result.exit = "diverged";
     return "diverged: the residual grew to " + number(r) + tail +
-           " (rows of rho F sum above 1: check the form factors' row sums, raise --ff-samples)";
+           " (rows of rho F sum above 1: check the form factors' row sums, raise " +
+           setting("ff_samples") + ")";
   }
   if (r <= settings.tolerance) {
     result.converged = true;
@@ -113,7 +115,7 @@ std::string stopReason(const Solver& solver, const SolverSettings& settings, lon
       return "stagnated: no residual below " + number(p.best) + " for " +
              number(kStagnationSweeps) + " sweeps" + tail + rateText(p.rate) +
              " (rounding error: tolerance " + number(settings.tolerance) +
-             " is below what this system reaches; raise --tol)";
+             " is below what this system reaches; raise " + setting("tol") + ")";
     }
   }
   // Southwell's steps are shots: the iterations left count at the sweeps per step so far.
@@ -186,16 +188,19 @@ bool ConvergenceMonitor::overBudget(double r, double tolerance, double sweepsLef
 std::string ConvergenceMonitor::overBudgetText(double r, double tolerance,
                                                const SolverSettings& limits, long iteration) const {
   const std::string budget =
-      timeBound ? "--max-seconds " + number(limits.maxSeconds) + " leaves at " +
-                      number(secondsPerSweep) + " s per sweep"
-                : "--max-iterations " + std::to_string(limits.maxIterations) + " leaves";
+      timeBound
+          ? setting("max_seconds") + " " + number(limits.maxSeconds) + " leaves at " +
+                number(secondsPerSweep) + " s per sweep"
+          : setting("max_iterations") + " " + std::to_string(limits.maxIterations) + " leaves";
   return "predicted over budget: at estimated spectral radius " +
          formatNumber(std::min(windowRate, previousRate), 7) + " the residual " + number(r) +
          " needs about " + number(predicted) + " more sweeps to reach tolerance " +
          number(tolerance) + ", over twice the " +
          std::to_string(static_cast<long long>(affordable)) + " sweeps that " + budget +
-         " (stopped after " + std::to_string(iteration) +
-         " iterations). Fix: raise --max-iterations or --max-seconds, loosen --tol, or lower the "
+         " (stopped after " + std::to_string(iteration) + " iterations). Fix: raise " +
+         setting("max_iterations") + " or " + setting("max_seconds") + ", loosen " +
+         setting("tol") +
+         ", or lower the "
          "reflectance (a closed scene with reflectance near 1 converges slowly)";
 }
 

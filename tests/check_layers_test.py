@@ -32,6 +32,12 @@ def main():
         (tree / "solvers" / "fine.cpp").write_text('#include "util/good.h"\n')
         (tree / "util" / "bad.h").write_text('#pragma once\n#include "apps/options.h"\n')
         (tree / "bsdf" / "sideways.cpp").write_text('// same floor\n#include "solvers/x.h"\n')
+        # Flag words in a library's message, and three strings that may keep them: a comment,
+        # a whole radkit command, and a front end's own message.
+        (tree / "solvers" / "says.cpp").write_text(
+            'auto a = "x";\nthrow E("raise --max-iterations or --tol");\n'
+            '// the CLI sets --tol\nauto b = "radkit run --method hierarchical";\n')
+        (tree / "apps" / "cli.cpp").write_text('auto c = "give --out";\n')
         # The repository's .clang-tidy without python/ in its header filter.
         tidy = (ROOT / ".clang-tidy").read_text().replace("|python|", "|")
         (tree / ".clang-tidy").write_text(tidy)
@@ -41,7 +47,9 @@ def main():
                          bad.stdout), bad.stdout
         assert "bsdf/sideways.cpp:2: includes solvers/ (floor 1) from bsdf/ (floor 1)" in bad.stdout, bad.stdout
         assert ".clang-tidy: HeaderFilterRegex does not name python/" in bad.stdout, bad.stdout
-        assert "3 problems" in bad.stdout, bad.stdout
+        assert ('solvers/says.cpp:2: a library message says --max-iterations, a command-line '
+                'flag. Fix: name the setting, setting("max_iterations")') in bad.stdout, bad.stdout
+        assert "4 problems" in bad.stdout, bad.stdout
     print("check-layers: passes on the repository, fails on climbing includes")
 
 

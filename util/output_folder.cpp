@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "util/errors.h"
+#include "util/setting_names.h"
 
 namespace radkit {
 
@@ -63,14 +64,15 @@ std::string notReplaceable(const fs::path& dir) {
   if (!listed)
     return dir.string() + " exists and radkit did not mark it as its output (no valid " +
            std::string(kOutputMarker) +
-           " file), and an output folder is replaced whole. Fix: choose another --out, or "
+           " file), and an output folder is replaced whole. Fix: choose another " + setting("out") +
+           ", or "
            "empty or remove that folder (an output of an older radkit has no marker: remove it).";
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
     if (name != kOutputMarker && std::find(listed->begin(), listed->end(), name) == listed->end())
       return dir.string() + " holds " + name +
              ", which radkit did not write, and an output folder is replaced whole. Fix: move " +
-             name + " out of it, or choose another --out.";
+             name + " out of it, or choose another " + setting("out") + ".";
   }
   return "";
 }
@@ -79,8 +81,9 @@ std::string notReplaceable(const fs::path& dir) {
 
 OutputFolder::OutputFolder(std::string destination) : m_destination(std::move(destination)) {
   if (m_destination.empty())
-    throw std::runtime_error(
-        "the output folder (--out) is empty. Fix: give a folder name, e.g. --out out/run1");
+    throw std::runtime_error("the output folder (" + setting("out") +
+                             ") is empty. Fix: give a folder name, e.g. " + setting("out") +
+                             " out/run1");
   fs::path dest = fs::absolute(m_destination).lexically_normal();
   if (dest.filename().empty()) dest = dest.parent_path();
   // The folder is replaced whole: `--out .` would move the working folder away under the shell.
@@ -88,16 +91,17 @@ OutputFolder::OutputFolder(std::string destination) : m_destination(std::move(de
   const fs::path cwd = fs::current_path(ec);
   const auto [end, rest] = std::mismatch(dest.begin(), dest.end(), cwd.begin(), cwd.end());
   if (dest == dest.root_path() || (!ec && end == dest.end()))
-    throw std::runtime_error(
-        "--out " + m_destination +
-        " is the working folder or contains it, and an output "
-        "folder is replaced whole. Fix: give a new folder name, e.g. --out out/run1");
+    throw std::runtime_error(setting("out") + " " + m_destination +
+                             " is the working folder or contains it, and an output "
+                             "folder is replaced whole. Fix: give a new folder name, e.g. " +
+                             setting("out") + " out/run1");
   m_destination = dest.string();
   fs::path parent = dest.parent_path();
   if (fs::exists(dest) && !fs::is_directory(dest))
     throw std::runtime_error(dest.string() +
                              " exists and is not a folder, and an output folder is replaced "
-                             "whole. Fix: choose another --out.");
+                             "whole. Fix: choose another " +
+                             setting("out") + ".");
   if (fs::exists(dest))
     if (const std::string why = notReplaceable(dest); !why.empty()) throw std::runtime_error(why);
   fs::create_directories(parent, ec);

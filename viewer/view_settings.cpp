@@ -6,6 +6,7 @@
 
 #include "render/radiosity_image.h"
 #include "util/errors.h"
+#include "util/setting_names.h"
 
 namespace radkit::viewer {
 
@@ -19,12 +20,12 @@ ModeChoice parseMode(const std::string& text) {
     const std::string id = text.substr(rowPrefix.size());
     if (!id.empty() && id.size() < 10 && std::all_of(id.begin(), id.end(), ::isdigit))
       return {ViewMode::FormFactorRow, std::stoi(id)};
-    throw InputError("--mode " + text +
+    throw InputError(setting("mode") + " " + text +
                      ": the patch id after 'formfactors-row:' must be a number >= 0 "
                      "(patch ids are the id column of patches.csv)");
   }
   throw InputError(
-      "--mode " + text +
+      setting("mode") + " " + text +
       ": unknown mode; use radiosity, false-colour, formfactors-row:ID, matrix or convergence");
 }
 
@@ -33,7 +34,7 @@ Channel parseChannel(const std::string& text) {
   if (text == "g" || text == "green") return Channel::Green;
   if (text == "b" || text == "blue") return Channel::Blue;
   if (text == "l" || text == "luminance") return Channel::Luminance;
-  throw InputError("--channel " + text + ": unknown channel; use r, g, b or luminance");
+  throw InputError(setting("channel") + " " + text + ": unknown channel; use r, g, b or luminance");
 }
 
 std::string modeName(ViewMode mode) {

@@ -10,6 +10,7 @@
 
 #include "util/errors.h"
 #include "util/output_folder.h"
+#include "util/setting_names.h"
 #include "viewer/viewer_window.h"
 
 namespace radkit::viewer {
@@ -52,12 +53,14 @@ ViewSettings settingsFor(const ViewerOptions& o, const ModeChoice& mode) {
   s.photometric = o.photometric;
   s.exposure = o.exposure;
   if (s.photometric && s.channel != Channel::Luminance)
-    throw InputError("--photometric shows luminance in cd/m²; drop --channel " + o.channel +
-                     " or use --channel luminance");
-  if (!(o.exposure >= 0)) throw InputError("--exposure must be >= 0 (0 picks one automatically)");
+    throw InputError(setting("photometric") + " shows luminance in cd/m²; drop " +
+                     setting("channel") + " " + o.channel + " or use " + setting("channel") +
+                     " luminance");
+  if (!(o.exposure >= 0))
+    throw InputError(setting("exposure") + " must be >= 0 (0 picks one automatically)");
   if (o.width < 16 || o.height < 16 || o.width > 8192 || o.height > 8192)
-    throw InputError("--size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                     ": width and height must be 16..8192 pixels");
+    throw InputError(setting("size") + " " + std::to_string(o.width) + "x" +
+                     std::to_string(o.height) + ": width and height must be 16..8192 pixels");
   return s;
 }
 
@@ -68,7 +71,7 @@ void requireInputs(const RunFolder& run, const ModeChoice& mode) {
       !linksOnly)
     throw InputError(run.path + ": " + run.formFactorsMissing);
   if (mode.mode == ViewMode::FormFactorRow && mode.row >= run.patches.size())
-    throw InputError("--mode formfactors-row:" + std::to_string(mode.row) +
+    throw InputError(setting("mode") + " formfactors-row:" + std::to_string(mode.row) +
                      ": no such patch; ids are 0.." + std::to_string(run.patches.size() - 1) +
                      " (the id column of patches.csv)");
   if (mode.mode == ViewMode::Convergence && run.convergence.empty())
@@ -90,7 +93,7 @@ void parseSize(const std::string& text, int& width, int& height, int minSide, in
   const int w = x == std::string::npos ? -1 : number(text.substr(0, x));
   const int h = x == std::string::npos ? -1 : number(text.substr(x + 1));
   if (w < minSide || h < minSide || w > maxSide || h > maxSide)
-    throw InputError("--size " + text + ": expected WIDTHxHEIGHT in pixels, each " +
+    throw InputError(setting("size") + " " + text + ": expected WIDTHxHEIGHT in pixels, each " +
                      std::to_string(minSide) + ".." + std::to_string(maxSide) + " (e.g. 1024x768)");
   width = w;
   height = h;
@@ -102,7 +105,7 @@ int runViewer(const ViewerOptions& o) {
   if (!o.screenshot.empty()) {
     const auto folder = std::filesystem::path(o.screenshot).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder))
-      throw InputError("--screenshot " + o.screenshot + ": folder " + folder.string() +
+      throw InputError(setting("screenshot") + " " + o.screenshot + ": folder " + folder.string() +
                        " does not exist; create it first");
   }
   RunFolder run = readRunFolder(o.runFolder);

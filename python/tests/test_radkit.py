@@ -625,6 +625,13 @@ def test_run_takes_areas_in_square_metres_raises_warnings_and_refuses_bad_settin
         assert not (tmp_path / "d").exists()
     with pytest.raises(ValueError, match="units and repair are for a scene file"):
         radkit.run(radkit.load_scene(path), out=tmp_path / "d", units="mm")
+    # The library names settings; Python spells them as its keywords, not the flags.
+    for keywords, spelled in [({"method": "hierarchical", "epsilon": 5}, "epsilon= 5"),
+                              ({"method": "hierarchical", "rays_per_link": 0}, "rays_per_link= 0"),
+                              ({"units": "parsec"}, "units= parsec")]:
+        with pytest.raises((ValueError, radkit.InputError), match=spelled) as error:
+            radkit.run(path, out=tmp_path / "d", **keywords)
+        assert "--" not in str(error.value), error.value
 
 
 def read_pfm(path):
