@@ -4,11 +4,13 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
 #include "job/clouds_job.h"
+#include "phase/phase_function.h"
 
 namespace radkit::app {
 
@@ -21,8 +23,16 @@ struct CloudsCommand {
   double sunElevation = 40, sunAzimuth = 150, cameraElevation = 25, fov = 70;
   // Options that, given explicitly, override the scene file's values.
   CLI::Option *sunElevationOption = nullptr, *sunAzimuthOption = nullptr,
-              *cameraElevationOption = nullptr, *fovOption = nullptr;
+              *cameraElevationOption = nullptr, *fovOption = nullptr, *phaseOption = nullptr,
+              *phaseParamsOption = nullptr;
 };
+
+/// "a, b, c".
+std::string registryNames(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;
+  return text;
+}
 
 /// The option's value when it was given on the command line (its default does not count).
 std::optional<double> ifGiven(const CLI::Option* option, double value) {
@@ -71,12 +81,12 @@ void addCloudsCommand(CLI::App& app) {
       sub->add_option("--scene", cmd->job.scene,
                       "Volume scene file (JSON, docs/formats.md): medium, sun, camera and ground; "
                       "--sun-*, --camera-elevation and --fov given override it");
-  CLI::Option* phaseOption =
+  CLI::Option* phaseOption = cmd->phaseOption =
       sub->add_option("--phase", cmd->job.phase,
-                      "Phase function: isotropic, rayleigh, henyey-greenstein, "
-                      "double-henyey-greenstein or mie-cloud")
+                      "Phase function: " + registryNames(phaseFunctionNames()) +
+                          " (henyey-greenstein with g 0.86 when not given)")
           ->capture_default_str();
-  CLI::Option* phaseParamsOption =
+  CLI::Option* phaseParamsOption = cmd->phaseParamsOption =
       sub->add_option("--phase-params", cmd->job.phaseParams, "Its parameters, e.g. \"g=0.85\"");
   CLI::Option* coverageOption = sub->add_option("--coverage", l.coverage, "Cloud cover in [0, 1]")
                                     ->check(FiniteRange(0, 1))
@@ -139,6 +149,9 @@ void addCloudsCommand(CLI::App& app) {
     CloudsJobSettings& job = cmd->job;
     if (job.scene.empty() && !(job.layer.top > job.layer.bottom))
       throw CLI::ValidationError("--top", "must be above --bottom");
+    // A phase named without --phase-params takes its own defaults, as in a scene file.
+    if (cmd->phaseOption->count() > 0 && cmd->phaseParamsOption->count() == 0)
+      job.phaseParams.clear();
     job.sunElevationDeg = ifGiven(cmd->sunElevationOption, cmd->sunElevation);
     job.sunAzimuthDeg = ifGiven(cmd->sunAzimuthOption, cmd->sunAzimuth);
     job.cameraElevationDeg = ifGiven(cmd->cameraElevationOption, cmd->cameraElevation);

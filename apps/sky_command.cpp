@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common.h"
+#include "atmosphere/rayleigh.h"
 #include "job/sky_job.h"
 #include "util/errors.h"
 
@@ -82,6 +83,10 @@ void addSkyCommand(CLI::App& app) {
   sub->add_option("--density", cmd->job.relativeDensity,
                   "Air density relative to the standard one (scales Rayleigh and Mie alike)")
       ->check(FiniteRange(1e-6, 100))
+      ->capture_default_str();
+  sub->add_option("--rayleigh", cmd->job.rayleigh,
+                  "The air's Rayleigh scattering: " + atmosphere::rayleighRegistry().namesText() +
+                      " (bodhaine:co2=PPM; docs/atmosphere.md)")
       ->capture_default_str();
   sub->add_option("--altitude", cmd->job.altitude, "Observer's height above the ground in metres")
       ->check(FiniteRange(0, 50000))

@@ -124,7 +124,7 @@ RawMesh readWithOpenMesh(const std::string& path, long long declaredFaces, bool 
   }
   if (!refused.empty()) restoreFileVertices(raw, refused);
   if (lowerExtension(path) == ".ply" && raw.faces.empty())
-    for (std::vector<int>& t : plyStripTriangles(path)) raw.faces.push_back(Face{std::move(t)});
+    for (std::vector<int>& t : plyStripTriangles(path)) raw.faces.push_back(Face{t});
   if (repeatedVertex && declaredFaces > (long long)raw.faces.size())
     raw.droppedFaces = declaredFaces - raw.faces.size();
   return raw;

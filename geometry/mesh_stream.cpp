@@ -647,7 +647,7 @@ RawMesh readBinaryStl(MappedFile& file, const std::string& path, bool repair,
   for (std::uint32_t t = 0; t < count; ++t) {
     const unsigned char* p = d + 84 + 50 * std::size_t(t) + 12;  // after the normal
     FaceIndices face;
-    for (int corner = 0; corner < 3; ++corner) {
+    for (std::size_t corner = 0; corner < 3; ++corner) {
       Key key;
       std::memcpy(key.c, p + 12 * corner, 12);
       for (float& c : key.c) {

@@ -308,7 +308,8 @@ void HierarchicalSystem::buildLandings() {
     }
   }
   m_linkIrradiance.assign(L, Vec3{});
-  m_landingCount = static_cast<long long>(m_sourceLandings.size() + m_incoming.size());
+  m_landingCount =
+      static_cast<long long>(m_sourceLandings.size()) + static_cast<long long>(m_incoming.size());
 }
 
 void HierarchicalSystem::releaseGatherArrays() {

@@ -46,11 +46,8 @@ CloudsJobResult runCloudsJob(const CloudsJobSettings& cmd) {
       throw std::invalid_argument("clouds: the layer's top must be above its bottom");
     media::CloudLayerSettings layerSettings = cmd.layer;
     layerSettings.seed = std::uint32_t(cmd.seed);  // without a scene file the seed seeds the noise
-    medium = std::make_unique<media::CloudLayer>(
-        layerSettings,
-        makePhaseFunction(cmd.phase, cmd.phaseParams.empty() && cmd.phase == "henyey-greenstein"
-                                         ? "g=0.86"
-                                         : cmd.phaseParams));
+    medium = std::make_unique<media::CloudLayer>(layerSettings,
+                                                 makePhaseFunction(cmd.phase, cmd.phaseParams));
   }
   const media::Medium& layer = *medium;
   {

@@ -18,10 +18,11 @@ struct CloudsJobSettings {
   /// A volume scene file (medium, sun, camera, ground; docs/formats.md); empty: the layer.
   std::string scene;
   media::CloudLayerSettings layer;  ///< without a scene file; its seed is `seed`
-  /// The layer's phase function (phase registry) and its parameters; empty parameters give
-  /// Henyey-Greenstein g = 0.86, the Mie cloud table's mean cosine. HG, not the Mie table, by
-  /// default: the table's forward peak makes the reference's sun estimates fireflies.
-  std::string phase = "henyey-greenstein", phaseParams;
+  /// The layer's phase function (phase registry) and its parameters (empty: the function's own
+  /// defaults). By default Henyey-Greenstein g = 0.86, the Mie cloud table's mean cosine, as a
+  /// volume scene's medium without "phase" (docs/formats.md); HG, not the Mie table: the
+  /// table's forward peak makes the reference's sun estimates fireflies.
+  std::string phase = "henyey-greenstein", phaseParams = "g=0.86";
   int width = 128, height = 72;
   int samples = 32;  ///< reference paths per pixel
   // Unset: the scene file's value, else the default beside it.

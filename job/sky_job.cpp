@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "atmosphere/rayleigh.h"
 #include "atmosphere/sky_image.h"
 #include "experiments/sky_comparison.h"
 #include "job/report.h"
@@ -71,6 +72,13 @@ SkyJobResult runSkyJob(const SkyJobSettings& cmd) {
   OutputFolder folder(cmd.out);  // refuses an --out it cannot replace before the work
   atmo::AtmosphereParameters parameters;
   parameters.relativeDensity = cmd.relativeDensity;
+  atmo::RayleighAir rayleigh;
+  try {
+    rayleigh = atmo::rayleighAir(cmd.rayleigh);
+  } catch (const ParamError& e) {
+    throw std::invalid_argument(std::string("sky: ") + e.what());
+  }
+  atmo::useRayleigh(parameters, rayleigh);
   const atmo::Atmosphere air(parameters);
   const atmo::SkySettings& sky = cmd.sky;
   const Vec3 sun = atmo::sunDirection(cmd.sunElevationDeg, cmd.sunAzimuthDeg);
@@ -119,31 +127,44 @@ SkyJobResult runSkyJob(const SkyJobSettings& cmd) {
   const Vec3 diffuse = atmo::modelHorizontalIrradiance(air, eye, sun, sky);
   const Vec3 direct = air.sunIrradiance(eye, sun) * std::max(0.0, sun.z);
   json& report = result.report;
-  report = json{{"radkit", RADKIT_VERSION},
-                {"command", "sky"},
-                {"settings",
-                 {{"sun_elevation_deg", cmd.sunElevationDeg},
-                  {"sun_azimuth_deg", cmd.sunAzimuthDeg},
-                  {"relative_density", cmd.relativeDensity},
-                  {"altitude_m", cmd.altitude},
-                  {"view_samples", sky.viewSamples},
-                  {"light_samples", sky.lightSamples},
-                  {"multiple_scattering", sky.multipleScattering},
-                  {"size", cmd.size},
-                  {"projection", cmd.projection},
-                  {"camera_azimuth_deg", cmd.cameraAzimuthDeg},
-                  {"camera_elevation_deg", cmd.cameraElevationDeg},
-                  {"fov_deg", cmd.fovDeg},
-                  {"seed", cmd.seed}}},
-                {"images", images},
-                {"radiance",
-                 {{"zenith", vec3Json(zenith)},
-                  {"horizon_toward_sun_2deg", vec3Json(towardSun)},
-                  {"horizon_away_from_sun_2deg", vec3Json(awayFromSun)}}},
-                {"irradiance",
-                 {{"diffuse_horizontal", vec3Json(diffuse)},
-                  {"direct_horizontal", vec3Json(direct)},
-                  {"direct_normal", vec3Json(air.sunIrradiance(eye, sun))}}}};
+  report = json{
+      {"radkit", RADKIT_VERSION},
+      {"command", "sky"},
+      {"settings",
+       {{"sun_elevation_deg", cmd.sunElevationDeg},
+        {"sun_azimuth_deg", cmd.sunAzimuthDeg},
+        {"relative_density", cmd.relativeDensity},
+        {"rayleigh", cmd.rayleigh},
+        {"altitude_m", cmd.altitude},
+        {"view_samples", sky.viewSamples},
+        {"light_samples", sky.lightSamples},
+        {"multiple_scattering", sky.multipleScattering},
+        {"size", cmd.size},
+        {"projection", cmd.projection},
+        {"camera_azimuth_deg", cmd.cameraAzimuthDeg},
+        {"camera_elevation_deg", cmd.cameraElevationDeg},
+        {"fov_deg", cmd.fovDeg},
+        {"seed", cmd.seed}}},
+      {"images", images},
+      {"radiance",
+       {{"zenith", vec3Json(zenith)},
+        {"horizon_toward_sun_2deg", vec3Json(towardSun)},
+        {"horizon_away_from_sun_2deg", vec3Json(awayFromSun)}}},
+      {"rayleigh",
+       {{"model", cmd.rayleigh},
+        {"scattering_per_m", vec3Json(parameters.rayleighScattering)},
+        {"scale_height_m", parameters.rayleighScaleHeight},
+        {"wavelengths_nm",
+         {1e9 * atmo::kWavelengths[0], 1e9 * atmo::kWavelengths[1], 1e9 * atmo::kWavelengths[2]}},
+        // Vertical, ground to the top of the atmosphere, at the run's density.
+        {"optical_depth",
+         vec3Json(atmo::rayleighOpticalDepth(parameters.rayleighScattering * cmd.relativeDensity,
+                                             parameters.rayleighScaleHeight,
+                                             parameters.topRadius - parameters.groundRadius))}}},
+      {"irradiance",
+       {{"diffuse_horizontal", vec3Json(diffuse)},
+        {"direct_horizontal", vec3Json(direct)},
+        {"direct_normal", vec3Json(air.sunIrradiance(eye, sun))}}}};
   if (cmd.comparePaths > 0) {
     atmo::ComparisonSettings cs;
     cs.sunElevationsDeg = cmd.compareElevationsDeg;

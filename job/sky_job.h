@@ -17,7 +17,9 @@ namespace radkit {
 struct SkyJobSettings {
   double sunElevationDeg = 30, sunAzimuthDeg = 180;  ///< azimuth clockwise from north
   double relativeDensity = 1;  ///< air density over the standard one (Rayleigh and Mie alike)
-  double altitude = 1;         ///< the observer's height above the ground, m
+  /// The Rayleigh model (atmosphere/rayleigh.h): "bruneton" or "bodhaine[:co2=ppm]".
+  std::string rayleigh = "bruneton";
+  double altitude = 1;  ///< the observer's height above the ground, m
   atmosphere::SkySettings sky;
   int size = 512;  ///< image height in pixels; the panorama is twice as wide
   /// Which images: "fisheye", "panorama", "camera" or "all".

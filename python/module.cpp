@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "atmosphere/atmosphere.h"
+#include "atmosphere/rayleigh.h"
 #include "bsdf/bsdf.h"
 #include "geometry/patch_mesh.h"
 #include "geometry/ray_scene.h"
@@ -991,12 +992,14 @@ py::dict bsdfSamplePy(const PyBsdf& b, const Array& wo, const Array& u) {
 /// The physical sky's radiance (atmosphere/) toward directions in the observer's frame
 /// (x east, y north, z up), as radkit sky computes every pixel.
 Array skyRadiancePy(const Array& directions, double elevation, double azimuth, double altitude,
-                    double density, int viewSamples, int lightSamples, bool multiple) {
+                    double density, int viewSamples, int lightSamples, bool multiple,
+                    const std::string& rayleigh) {
   if (!(density > 0) || !(altitude >= 0) || viewSamples < 1 || lightSamples < 1)
     throw py::value_error("sky_radiance: density > 0, altitude >= 0 and samples >= 1");
   const std::vector<Vec3> dirs = toPoints(directions, "directions");
   atmosphere::AtmosphereParameters parameters;
   parameters.relativeDensity = density;
+  atmosphere::useRayleigh(parameters, atmosphere::rayleighAir(rayleigh));
   std::vector<Vec3> radiance(dirs.size());
   {
     py::gil_scoped_release release;
@@ -1093,8 +1096,8 @@ py::tuple mediumTransmittancePy(const PyMedium& m, const Array& origins, const A
   for (std::size_t size : {o.size(), d.size(), std::size_t(distances.size())})
     if (size != n && size != 1)
       throw py::value_error("transmittance: origins, directions and distances differ in length");
-  for (std::size_t k = 0; k < d.size(); ++k)
-    if (!(length(d[k]) > 0)) throw py::value_error("transmittance: a direction is zero");
+  for (const Vec3& dir : d)
+    if (!(length(dir) > 0)) throw py::value_error("transmittance: a direction is zero");
   for (py::ssize_t k = 0; k < distances.size(); ++k)
     if (!(t[k] >= 0)) throw py::value_error("transmittance: a distance is negative or NaN");
   Array mean{py::ssize_t(n)}, error{py::ssize_t(n)};
@@ -1575,17 +1578,31 @@ PYBIND11_MODULE(radkit, mod) {
   mod.def("sky_radiance", &skyRadiancePy, py::arg("directions"), py::arg("sun_elevation") = 30.0,
           py::arg("sun_azimuth") = 180.0, py::arg("altitude") = 1.0, py::arg("density") = 1.0,
           py::arg("view_samples") = 32, py::arg("light_samples") = 8,
-          py::arg("multiple_scattering") = true,
+          py::arg("multiple_scattering") = true, py::arg("rayleigh") = "bruneton",
           "The physical sky's radiance, (n, 3) W/m^2/sr, toward (n, 3) directions in the "
-          "observer's frame (x east, y north, z up); degrees, azimuth clockwise from north");
+          "observer's frame (x east, y north, z up); degrees, azimuth clockwise from north; "
+          "rayleigh names the air's Rayleigh model (rayleigh_optical_depth())");
+  mod.def(
+      "rayleigh_optical_depth",
+      [](const std::string& rayleigh) {
+        const atmosphere::RayleighAir air = atmosphere::rayleighAir(rayleigh);
+        const atmosphere::AtmosphereParameters p;
+        return vec3Array({atmosphere::rayleighOpticalDepth(air.scattering, air.scaleHeight,
+                                                           p.topRadius - p.groundRadius)});
+      },
+      py::arg("rayleigh") = "bruneton",
+      "(1, 3) vertical Rayleigh optical depth of the atmosphere at the channels' wavelengths "
+      "(680, 550, 440 nm) for a Rayleigh model: bruneton (the default) or bodhaine[:co2=ppm]");
   mod.def(
       "sky",
       [](const std::filesystem::path& out, double elevation, double azimuth, int size,
          const std::string& projection, double density, double altitude, int viewSamples,
-         int lightSamples, bool multiple, long long compare, std::uint64_t seed) {
+         int lightSamples, bool multiple, long long compare, std::uint64_t seed,
+         const std::string& rayleigh) {
         SkyJobSettings s;
         s.out = out.string(), s.sunElevationDeg = elevation, s.sunAzimuthDeg = azimuth;
         s.size = size, s.projection = projection, s.relativeDensity = density;
+        s.rayleigh = rayleigh;
         s.altitude = altitude, s.sky.viewSamples = viewSamples, s.sky.lightSamples = lightSamples;
         s.sky.multipleScattering = multiple, s.comparePaths = compare, s.seed = seed;
         SkyJobResult r;
@@ -1599,7 +1616,7 @@ PYBIND11_MODULE(radkit, mod) {
       py::arg("sun_azimuth") = 180.0, py::arg("size") = 512, py::arg("projection") = "all",
       py::arg("density") = 1.0, py::arg("altitude") = 1.0, py::arg("view_samples") = 32,
       py::arg("light_samples") = 8, py::arg("multiple_scattering") = true, py::arg("compare") = 0,
-      py::arg("seed") = 1,
+      py::arg("seed") = 1, py::arg("rayleigh") = "bruneton",
       "radkit sky's job: the sky's images and report.json in `out`; returns dict out, report");
   mod.def(
       "clouds",

@@ -79,7 +79,10 @@ double unclippedContourFormFactor(const Vec3& x, const Vec3& n, const Vec3* poly
   double* p = fixed;
   if (edges + 1 > kStack) heap.resize(3 * std::size_t(edges + 1)), p = heap.data();
   const int stride = edges + 1 > kStack ? edges + 1 : kStack;
-  double *px = p, *py = p + stride, *pz = p + 2 * stride;
+  // 2 · stride stays far below INT_MAX (a polygon has at most a few thousand vertices); the
+  // form with a wider type makes GCC 12 warn that the stack buffer may be read uninitialised.
+  double *px = p, *py = p + stride,
+         *pz = p + 2 * stride;  // NOLINT(bugprone-implicit-widening-of-multiplication-result)
   for (int k = 0; k <= edges; ++k) {
     const Vec3 v = polygon[k < count ? k : 0] - x;
     px[k] = v.x, py[k] = v.y, pz[k] = v.z;

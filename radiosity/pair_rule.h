@@ -62,8 +62,10 @@ inline int selectPairLevel(const PairSeparation& s, double tolerance,
   const double allowed = tolerance * s.cosA * s.cosB;
   double power = rho2;
   const int top = maxLevel < kMaxPairLevel ? maxLevel : kMaxPairLevel;
-  for (int n = 1; n <= top; ++n, power *= rho2)
+  for (int n = 1; n <= top; ++n) {
     if (kPairBoundConstant[n] * power * factor <= allowed) return n;
+    power *= rho2;
+  }
   return 0;
 }
 
@@ -116,10 +118,10 @@ class PatchPointCache {
   PointSet points(int i, int n) const {
     const std::size_t slot = std::size_t(i) * (m_levels + 1) + (n - 1);
     const double* base = m_pool.data() + m_offset[slot];
-    const int padded = m_padded[slot];
+    const std::ptrdiff_t padded = m_padded[slot];
     PointSet s;
     s.x = base, s.y = base + padded, s.z = base + 2 * padded, s.w = base + 3 * padded;
-    s.count = m_count[slot], s.padded = padded;
+    s.count = m_count[slot], s.padded = m_padded[slot];
     return s;
   }
   /// \brief The product rule's points of parallelogram i (maxLevel >= 3).

@@ -3,7 +3,7 @@
 with .clang-tidy and the clang-tidy version, passed before: a translation unit that has not
 changed cannot have new findings. The cache is a folder of empty files named by that hash
 (RADKIT_TIDY_CACHE, by default ~/.cache/radkit-tidy), so it survives a fresh clone as ccache
-does; a run with findings caches nothing. Usage: tidy-cached.py BUILD_DIR FILE...
+does; a file with findings is not cached. Usage: tidy-cached.py BUILD_DIR FILE...
 Prints the findings and a summary; exits 1 on any finding."""
 import hashlib
 import json
@@ -66,21 +66,22 @@ def main():
     with ThreadPoolExecutor(jobs) as pool:
         keys = dict(zip(files, pool.map(key, files)))
     todo = [f for f in files if not (cache / keys[f]).exists()]
-    findings = []
-    if todo:
-        run = subprocess.run(["run-clang-tidy", "-quiet", "-p", str(build), "-j", str(jobs)] +
-                             todo, capture_output=True, text=True)
-        findings = sorted(set(l for l in (run.stdout + run.stderr).splitlines()
-                              if re.search(r"(warning|error): ", l)))
-        for line in findings:
-            print(line)
-        if not findings and run.returncode != 0:
-            print(run.stdout[-4000:] + run.stderr[-4000:])
-            print("tidy: run-clang-tidy failed without a finding", file=sys.stderr)
-            return 1
-        if not findings:
-            for f in todo:
-                (cache / keys[f]).touch()
+
+    def tidy(f):
+        run = subprocess.run(["clang-tidy", "-p", str(build), "-quiet", f], capture_output=True,
+                             text=True)
+        text = re.sub(r"\x1b\[[0-9;]*m", "", run.stdout + run.stderr)  # colour codes
+        found = [l for l in text.splitlines() if re.search(r"(warning|error): ", l)]
+        if run.returncode != 0 and not found:
+            found = [f"{f}: clang-tidy exited {run.returncode}: {text[-2000:]}"]
+        if not found:
+            (cache / keys[f]).touch()  # this translation unit is clean
+        return found
+
+    with ThreadPoolExecutor(jobs) as pool:
+        findings = sorted(set(l for found in pool.map(tidy, todo) for l in found))
+    for line in findings:
+        print(line)
     print(f"clang-tidy: {len(findings)} findings; {len(todo)} of {len(files)} files checked, "
           f"{len(files) - len(todo)} unchanged since a clean run (cache {cache})")
     return 1 if findings else 0

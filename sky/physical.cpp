@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "atmosphere/atmosphere.h"
+#include "atmosphere/rayleigh.h"
 #include "sky/sky_radiance.h"
 
 namespace radkit {
@@ -21,7 +22,9 @@ constexpr int kTableRows = 96, kTableColumns = 192;
 
 class PhysicalSky final : public SkyRadiance {
  public:
-  PhysicalSky(double density, double altitude) : m_density(density), m_altitude(altitude) {}
+  PhysicalSky(double density, double altitude, std::string rayleigh,
+              const atmosphere::RayleighAir& air)
+      : m_density(density), m_altitude(altitude), m_rayleigh(std::move(rayleigh)), m_air(air) {}
 
   bool needsSun() const override { return true; }
   bool computesSun() const override { return true; }
@@ -35,6 +38,8 @@ class PhysicalSky final : public SkyRadiance {
 
  private:
   double m_density, m_altitude;
+  std::string m_rayleigh;  ///< the Rayleigh model's name, as given
+  atmosphere::RayleighAir m_air;
   // Radiance at rows of elevation e = (π/2) t², t = row/(rows − 1) (fine near the horizon,
   // where it changes fastest) and columns of azimuth, bilinear between.
   std::vector<Vec3> m_table;
@@ -46,6 +51,7 @@ void PhysicalSky::prepare(bool sun, double sunElevationDeg, double sunAzimuthDeg
   const auto start = std::chrono::steady_clock::now();
   atmosphere::AtmosphereParameters parameters;
   parameters.relativeDensity = m_density;
+  atmosphere::useRayleigh(parameters, m_air);
   const atmosphere::Atmosphere air(parameters);
   const Vec3 eye = air.pointAtAltitude(m_altitude);
   const Vec3 sunLocal = atmosphere::sunDirection(sunElevationDeg, sunAzimuthDeg);
@@ -101,7 +107,11 @@ std::unique_ptr<SkyRadiance> createPhysicalSky(Params& params) {
   const double altitude =
       params.number("altitude", 0, 0, 50000, false, true,
                     "give the height above the ground in metres, inside the atmosphere");
-  return std::make_unique<PhysicalSky>(density, altitude);
+  // The air's Rayleigh model by name (atmosphere/rayleigh.h), its parameters after ':' with
+  // ';' between them ("bodhaine:co2=420").
+  const std::string rayleigh = params.text("rayleigh", "bruneton");
+  const atmosphere::RayleighAir air = atmosphere::rayleighAir(rayleigh);
+  return std::make_unique<PhysicalSky>(density, altitude, rayleigh, air);
 }
 
 }  // namespace radkit

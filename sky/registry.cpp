@@ -21,7 +21,8 @@ const SkyRegistry& skyRegistry() {
            "zenith_luminance=4093"},
           {"physical", createPhysicalSky,
            "Rayleigh and Mie scattering of the atmosphere (atmosphere/) for the scene's sun, which "
-           "it also makes; density (1, over the standard one), altitude (0 m)",
+           "it also makes; density (1, over the standard one), altitude (0 m), rayleigh "
+           "(bruneton, or bodhaine[:co2=ppm])",
            ""},
       });
   return registry;

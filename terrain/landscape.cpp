@@ -226,7 +226,7 @@ LandscapeImage renderLandscape(const TerrainSurface& s, const atmosphere::Atmosp
             std::vector<int> scratch;
             latinHypercube(settings.sunSamples, 2, rng, u, scratch);
             const double cosMax = std::cos(radius);
-            for (int k = 0; k < settings.sunSamples; ++k) {
+            for (std::size_t k = 0; k < std::size_t(settings.sunSamples); ++k) {
               const Vec3 dir = sunFrame.toWorld(sampleUniformCone(cosMax, u[2 * k], u[2 * k + 1]));
               visible += !rays->occludedRaw(lifted, dir, 0, kInf);
             }

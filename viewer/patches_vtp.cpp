@@ -113,13 +113,13 @@ void XMLCALL startElement(void* data, const XML_Char* name, const XML_Char** att
   // <Piece><Points|Polys|CellData><DataArray>: the arrays the viewer reads; others are skipped.
   const char* named = attribute(attrs, "Name");
   std::string key;
+  const bool polys = parent == "Polys" && named &&
+                     (std::string(named) == "connectivity" || std::string(named) == "offsets");
+  const bool cells = parent == "CellData" && named &&
+                     std::find(kCellArrays.begin(), kCellArrays.end(), named) != kCellArrays.end();
   if (parent == "Points")
     key = "points";
-  else if (parent == "Polys" && named &&
-           (std::string(named) == "connectivity" || std::string(named) == "offsets"))
-    key = named;
-  else if (parent == "CellData" && named &&
-           std::find(kCellArrays.begin(), kCellArrays.end(), named) != kCellArrays.end())
+  else if (polys || cells)
     key = named;
   if (key.empty()) return;
   if (s.arrays.count(key))

@@ -187,3 +187,24 @@ def test_medium_transmittance_is_beer_lambert_within_its_standard_error():
     with pytest.raises(ValueError, match="extinction"):
         radkit.Medium({"type": "homogeneous-box", "min": [0, 0, 0], "max": [1, 1, 1],
                        "extinction": -1})
+
+
+def test_rayleigh_models_by_name_reach_the_sky_job_and_the_scene_sky(tmp_path):
+    # Bodhaine et al. 1999, eq. (30) (their fit of Table 3): tau_R at 680, 550, 440 nm.
+    bodhaine = [0.040959, 0.097065, 0.24261]
+    np.testing.assert_allclose(radkit.rayleigh_optical_depth("bodhaine")[0], bodhaine, rtol=0.01)
+    r = radkit.sky(tmp_path / "sky", size=16, projection="fisheye", rayleigh="bodhaine")
+    reported = r["report"]["rayleigh"]
+    assert reported["model"] == "bodhaine"
+    np.testing.assert_allclose(reported["optical_depth"], bodhaine, rtol=0.01)
+    # The default (Bruneton and Neyret's coefficients) lies 8-14 % above.
+    ratio = radkit.rayleigh_optical_depth()[0] / bodhaine
+    assert np.all((ratio > 1.08) & (ratio < 1.14)), ratio
+    # Less Rayleigh scattering, a darker blue sky, in the scene's physical sky too.
+    thin = radkit.SkyModel("physical", {"rayleigh": "bodhaine"}, sun_elevation=30)
+    default = radkit.SkyModel("physical", sun_elevation=30)
+    assert thin.horizontal_irradiance[0, 2] < default.horizontal_irradiance[0, 2]
+    with pytest.raises(ValueError, match="bruneton, bodhaine"):
+        radkit.SkyModel("physical", {"rayleigh": "nishita"})
+    with pytest.raises(ValueError, match="co2"):
+        radkit.rayleigh_optical_depth("bodhaine:co2=-1")
