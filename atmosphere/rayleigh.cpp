@@ -3,7 +3,6 @@
 #include <cmath>
 #include <memory>
 
-
 namespace radkit::atmosphere {
 
 namespace {
@@ -15,7 +14,7 @@ constexpr double kSeaLevelPressure = 101325;      // Pa
 /// Gravity at the mass-weighted column height z_c = 0.73737 z + 5517.56 m of a sea-level column
 /// at 45° latitude, by List (1968)'s formula, as Bodhaine et al. evaluate it (m/s²).
 double columnGravity() {
-  const double zc = 5517.56;  // m
+  const double zc = 5517.56;   // m
   const double g0 = 980.6160;  // cm/s² at 45°, where cos 2φ = 0
   return (g0 - 3.085462e-4 * zc + 7.254e-11 * zc * zc - 1.517e-17 * zc * zc * zc) * 1e-2;
 }
@@ -43,8 +42,7 @@ std::unique_ptr<RayleighAir> createBodhaine(Params& params) {
 BodhaineAir bodhaineAir(double wavelength, double co2) {
   const double um = wavelength * 1e6, inv2 = 1 / (um * um);
   // Peck and Reeder (1972) for 300 ppm CO2 (eq. 18), and its CO2 correction (eq. 19).
-  const double n300 =
-      (8060.51 + 2480990 / (132.274 - inv2) + 17455.7 / (39.32957 - inv2)) * 1e-8;
+  const double n300 = (8060.51 + 2480990 / (132.274 - inv2) + 17455.7 / (39.32957 - inv2)) * 1e-8;
   const double nm1 = n300 * (1 + 0.54 * (co2 - 0.0003));
   // King factors: N2 and O2 from Bates (1984), Ar 1.00, CO2 1.15 (eqs. 5, 6), weighted by
   // volume with CO2 in percent (eq. 23).
@@ -54,10 +52,9 @@ BodhaineAir bodhaineAir(double wavelength, double co2) {
   const double king = (78.084 * fN2 + 20.946 * fO2 + 0.934 * 1.00 + percent * 1.15) /
                       (78.084 + 20.946 + 0.934 + percent);
   const double n = 1 + nm1, n2 = n * n;
-  const double sigma = 24 * M_PI * M_PI * M_PI * (n2 - 1) * (n2 - 1) /
-                       (std::pow(wavelength, 4) * kStandardDensity * kStandardDensity *
-                        (n2 + 2) * (n2 + 2)) *
-                       king;
+  const double sigma =
+      24 * M_PI * M_PI * M_PI * (n2 - 1) * (n2 - 1) /
+      (std::pow(wavelength, 4) * kStandardDensity * kStandardDensity * (n2 + 2) * (n2 + 2)) * king;
   const double molarMass = (15.0556 * co2 + 28.9595) * 1e-3;
   const double tau = sigma * kSeaLevelPressure * kAvogadro / (molarMass * columnGravity());
   return {nm1, king, sigma, tau};
