@@ -4,7 +4,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -26,13 +25,6 @@ struct CloudsCommand {
               *cameraElevationOption = nullptr, *fovOption = nullptr, *phaseOption = nullptr,
               *phaseParamsOption = nullptr;
 };
-
-/// "a, b, c".
-std::string registryNames(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;
-  return text;
-}
 
 /// The option's value when it was given on the command line (its default does not count).
 std::optional<double> ifGiven(const CLI::Option* option, double value) {
@@ -83,7 +75,7 @@ void addCloudsCommand(CLI::App& app) {
                       "--sun-*, --camera-elevation and --fov given override it");
   CLI::Option* phaseOption = cmd->phaseOption =
       sub->add_option("--phase", cmd->job.phase,
-                      "Phase function: " + registryNames(phaseFunctionNames()) +
+                      "Phase function: " + phaseRegistry().namesText() +
                           " (henyey-greenstein with g 0.86 when not given)")
           ->capture_default_str();
   CLI::Option* phaseParamsOption = cmd->phaseParamsOption =

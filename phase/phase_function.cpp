@@ -195,6 +195,8 @@ std::unique_ptr<PhaseFunction> createMieCloud(Params& p) {
   return std::make_unique<TabulatedPhase>(mieCloud(s).table());
 }
 
+}  // namespace
+
 const Registry<PhaseFunction>& phaseRegistry() {
   static const Registry<PhaseFunction> registry(
       "phase function",
@@ -211,8 +213,6 @@ const Registry<PhaseFunction>& phaseRegistry() {
       });
   return registry;
 }
-
-}  // namespace
 
 std::unique_ptr<PhaseFunction> makePhaseFunction(const std::string& name,
                                                  const std::string& params) {

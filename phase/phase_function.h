@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "util/registry.h"
+
 namespace radkit {
 
 /// A rotationally symmetric phase function: ∫ eval over the sphere is 1.
@@ -128,6 +130,8 @@ std::unique_ptr<PhaseFunction> makePhaseFunction(const std::string& name,
                                                  const std::string& params = "");
 /// The registry's names.
 std::vector<std::string> phaseFunctionNames();
+/// The registry itself (names for help texts, entries for tests).
+const Registry<PhaseFunction>& phaseRegistry();
 /// \brief Parameters the registry-driven tests use for each name (a valid example).
 std::string phaseFunctionExample(const std::string& name);
 

@@ -22,9 +22,8 @@ constexpr int kTableRows = 96, kTableColumns = 192;
 
 class PhysicalSky final : public SkyRadiance {
  public:
-  PhysicalSky(double density, double altitude, std::string rayleigh,
-              const atmosphere::RayleighAir& air)
-      : m_density(density), m_altitude(altitude), m_rayleigh(std::move(rayleigh)), m_air(air) {}
+  PhysicalSky(double density, double altitude, const atmosphere::RayleighAir& air)
+      : m_density(density), m_altitude(altitude), m_air(air) {}
 
   bool needsSun() const override { return true; }
   bool computesSun() const override { return true; }
@@ -38,7 +37,6 @@ class PhysicalSky final : public SkyRadiance {
 
  private:
   double m_density, m_altitude;
-  std::string m_rayleigh;  ///< the Rayleigh model's name, as given
   atmosphere::RayleighAir m_air;
   // Radiance at rows of elevation e = (π/2) t², t = row/(rows − 1) (fine near the horizon,
   // where it changes fastest) and columns of azimuth, bilinear between.
@@ -109,9 +107,8 @@ std::unique_ptr<SkyRadiance> createPhysicalSky(Params& params) {
                     "give the height above the ground in metres, inside the atmosphere");
   // The air's Rayleigh model by name (atmosphere/rayleigh.h), its parameters after ':' with
   // ';' between them ("bodhaine:co2=420").
-  const std::string rayleigh = params.text("rayleigh", "bruneton");
-  const atmosphere::RayleighAir air = atmosphere::rayleighAir(rayleigh);
-  return std::make_unique<PhysicalSky>(density, altitude, rayleigh, air);
+  const atmosphere::RayleighAir air = atmosphere::rayleighAir(params.text("rayleigh", "bruneton"));
+  return std::make_unique<PhysicalSky>(density, altitude, air);
 }
 
 }  // namespace radkit
